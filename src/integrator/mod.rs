@@ -1,0 +1,1 @@
+//! Estimators of the light transport equation. (to be written)

@@ -1,0 +1,1 @@
+//! Change of variables between measures, and numerical Jacobians of any warp. (to be written)

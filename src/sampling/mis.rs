@@ -1,0 +1,1 @@
+//! Multiple importance sampling weights. (to be written)

@@ -1,0 +1,1 @@
+//! Samplers: per-pixel sample values, independent, stratified and low-discrepancy. (to be written)

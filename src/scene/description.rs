@@ -1,0 +1,343 @@
+//! What a scene file says, as plain data: the output of the XML loader and the input of the
+//! renderer. Every default is Mitsuba 3's, so a description built in code with
+//! [`Default`] values means what the same XML without those attributes means to Mitsuba.
+
+use glam::{Mat4, Vec3};
+use std::path::PathBuf;
+
+/// A whole scene: integrator, sensor, shapes with their materials and area emitters, and the
+/// emitters that are not attached to shapes.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SceneDescription {
+    /// How light transport is estimated.
+    pub integrator: IntegratorDesc,
+    /// The camera, its film and its sampler.
+    pub sensor: SensorDesc,
+    /// Every shape, in file order.
+    pub shapes: Vec<ShapeDesc>,
+    /// Emitters not attached to a shape (point, constant environment, environment map).
+    pub emitters: Vec<EmitterDesc>,
+    /// The file the description was read from, if any (for messages and relative paths).
+    pub source: Option<PathBuf>,
+}
+
+/// The integrator plugin and its parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IntegratorDesc {
+    /// Mitsuba's `path`: unidirectional path tracing with next-event estimation and MIS.
+    Path {
+        /// Longest path depth: −1 unlimited, 1 emitters seen directly, 2 direct lighting.
+        max_depth: i32,
+        /// Depth from which Russian roulette starts (Mitsuba's default 5).
+        rr_depth: u32,
+    },
+    /// Mitsuba's `direct`: direct lighting with a number of emitter and BSDF samples.
+    Direct {
+        /// Light samples per shading point (Mitsuba's default 1).
+        emitter_samples: u32,
+        /// BSDF samples per shading point (Mitsuba's default 1).
+        bsdf_samples: u32,
+    },
+}
+
+impl Default for IntegratorDesc {
+    fn default() -> Self {
+        Self::Path {
+            max_depth: -1,
+            rr_depth: 5,
+        }
+    }
+}
+
+/// Which image axis `fov` spans.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FovAxis {
+    /// The horizontal axis (Mitsuba's default).
+    #[default]
+    X,
+    /// The vertical axis.
+    Y,
+    /// The shorter of the two.
+    Smaller,
+    /// The longer of the two.
+    Larger,
+}
+
+/// A perspective sensor (Mitsuba's `perspective`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SensorDesc {
+    /// Field of view in degrees, along [`SensorDesc::fov_axis`].
+    pub fov: f32,
+    /// Which axis `fov` spans.
+    pub fov_axis: FovAxis,
+    /// Near clip distance (default 0.01).
+    pub near_clip: f32,
+    /// Far clip distance (default 10⁴).
+    pub far_clip: f32,
+    /// Camera-to-world transform. The camera looks down +z in its own space, +y up, and
+    /// (as in Mitsuba) +x to the left of the image.
+    pub to_world: Mat4,
+    /// The film.
+    pub film: FilmDesc,
+    /// The sampler.
+    pub sampler: SamplerDesc,
+}
+
+impl Default for SensorDesc {
+    fn default() -> Self {
+        Self {
+            fov: 45.0,
+            fov_axis: FovAxis::X,
+            near_clip: 1e-2,
+            far_clip: 1e4,
+            to_world: Mat4::IDENTITY,
+            film: FilmDesc::default(),
+            sampler: SamplerDesc::default(),
+        }
+    }
+}
+
+/// The film (Mitsuba's `hdrfilm`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FilmDesc {
+    /// Width in pixels (default 768).
+    pub width: u32,
+    /// Height in pixels (default 576).
+    pub height: u32,
+    /// The pixel reconstruction filter.
+    pub filter: FilterDesc,
+}
+
+impl Default for FilmDesc {
+    fn default() -> Self {
+        Self {
+            width: 768,
+            height: 576,
+            filter: FilterDesc::default(),
+        }
+    }
+}
+
+/// A pixel reconstruction filter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FilterDesc {
+    /// One pixel wide: each pixel is the plain mean of radiance over its footprint.
+    Box,
+    /// A Gaussian of the given standard deviation in pixels, truncated at 4σ (Mitsuba's
+    /// default filter, σ = 0.5).
+    Gaussian {
+        /// Standard deviation in pixels.
+        stddev: f32,
+    },
+}
+
+impl Default for FilterDesc {
+    fn default() -> Self {
+        Self::Gaussian { stddev: 0.5 }
+    }
+}
+
+/// Which sample generator a scene asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SamplerKind {
+    /// Mitsuba's `independent`.
+    #[default]
+    Independent,
+    /// Mitsuba's `stratified` (jittered).
+    Stratified,
+    /// Mitsuba's `ldsampler`; ours is Owen-scrambled Sobol.
+    LowDiscrepancy,
+}
+
+/// The sampler plugin.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SamplerDesc {
+    /// The generator.
+    pub kind: SamplerKind,
+    /// Samples per pixel (default 4).
+    pub sample_count: u32,
+    /// Seed (default 0).
+    pub seed: u64,
+}
+
+impl Default for SamplerDesc {
+    fn default() -> Self {
+        Self {
+            kind: SamplerKind::Independent,
+            sample_count: 4,
+            seed: 0,
+        }
+    }
+}
+
+/// The geometry of a shape, in its object space (before `to_world`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ShapeKind {
+    /// `rectangle`: [−1,1]² in the z = 0 plane, facing +z.
+    Rectangle,
+    /// `cube`: [−1,1]³, faces pointing outwards.
+    Cube,
+    /// `disk`: the unit disk in the z = 0 plane, facing +z.
+    Disk,
+    /// `sphere`: centre and radius (applied before `to_world`), normals pointing outwards.
+    Sphere {
+        /// Centre (default origin).
+        center: Vec3,
+        /// Radius (default 1).
+        radius: f32,
+    },
+    /// `obj`: a triangle mesh read from a Wavefront OBJ file.
+    Obj {
+        /// The file, resolved against the scene file's folder.
+        filename: PathBuf,
+        /// Use flat face normals even where the file has vertex normals.
+        face_normals: bool,
+    },
+    /// A triangle mesh given in code.
+    Mesh {
+        /// Vertex positions.
+        positions: Vec<Vec3>,
+        /// Per-vertex normals (empty for flat shading).
+        normals: Vec<Vec3>,
+        /// Triangles as vertex indices.
+        indices: Vec<[u32; 3]>,
+    },
+}
+
+/// A shape with its transform, material and optional area emitter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeDesc {
+    /// The `id` attribute, if any.
+    pub id: Option<String>,
+    /// The geometry in object space.
+    pub kind: ShapeKind,
+    /// Object-to-world transform.
+    pub to_world: Mat4,
+    /// Flip the normals (Mitsuba's `flip_normals`).
+    pub flip_normals: bool,
+    /// The material. Mitsuba's default when a shape has none is diffuse with reflectance 0.5.
+    pub bsdf: BsdfDesc,
+    /// The area emitter on the shape's front side, if any.
+    pub emitter: Option<AreaEmitterDesc>,
+}
+
+impl ShapeDesc {
+    /// A shape of the given kind with identity transform, the default material and no
+    /// emitter.
+    pub fn new(kind: ShapeKind) -> Self {
+        Self {
+            id: None,
+            kind,
+            to_world: Mat4::IDENTITY,
+            flip_normals: false,
+            bsdf: BsdfDesc::default(),
+            emitter: None,
+        }
+    }
+}
+
+/// Microfacet normal distribution of a rough material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MicrofacetKind {
+    /// Beckmann (Mitsuba's default).
+    #[default]
+    Beckmann,
+    /// GGX / Trowbridge–Reitz.
+    Ggx,
+}
+
+/// The Fresnel term of a conductor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ConductorFresnel {
+    /// Mitsuba's `material = "none"` (its default): a 100% reflecting mirror.
+    Perfect,
+    /// A complex index of refraction per RGB channel.
+    Complex {
+        /// Real part η.
+        eta: Vec3,
+        /// Imaginary part k.
+        k: Vec3,
+    },
+}
+
+/// A material (Mitsuba's BSDF plugins that the loader supports).
+#[derive(Debug, Clone, PartialEq)]
+pub enum BsdfDesc {
+    /// `diffuse`: Lambertian, one-sided.
+    Diffuse {
+        /// Albedo, linear RGB (default 0.5).
+        reflectance: Vec3,
+    },
+    /// `conductor`: a smooth mirror.
+    Conductor {
+        /// The Fresnel term.
+        fresnel: ConductorFresnel,
+        /// Scale on the reflectance (default 1).
+        specular_reflectance: Vec3,
+    },
+    /// `roughconductor`: a microfacet conductor, sampled with visible normals.
+    RoughConductor {
+        /// The normal distribution.
+        distribution: MicrofacetKind,
+        /// Roughness α (default 0.1). Isotropic only.
+        alpha: f32,
+        /// The Fresnel term.
+        fresnel: ConductorFresnel,
+        /// Scale on the reflectance (default 1).
+        specular_reflectance: Vec3,
+    },
+    /// `dielectric`: smooth glass that reflects and refracts.
+    Dielectric {
+        /// Interior index of refraction (default 1.5046, BK7).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Scale on reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Scale on transmission (default 1).
+        specular_transmittance: Vec3,
+    },
+    /// `twosided`: the nested BSDF on both sides of the surface.
+    TwoSided(Box<BsdfDesc>),
+}
+
+impl Default for BsdfDesc {
+    fn default() -> Self {
+        Self::Diffuse {
+            reflectance: Vec3::splat(0.5),
+        }
+    }
+}
+
+/// An `area` emitter attached to a shape: constant radiance leaving the front side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AreaEmitterDesc {
+    /// Emitted radiance, linear RGB.
+    pub radiance: Vec3,
+}
+
+/// An emitter that is not attached to a shape.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EmitterDesc {
+    /// `point`: an isotropic point light.
+    Point {
+        /// Position in world space.
+        position: Vec3,
+        /// Radiant intensity, linear RGB (W/sr).
+        intensity: Vec3,
+    },
+    /// `constant`: radiance arriving equally from every direction.
+    Constant {
+        /// Radiance, linear RGB.
+        radiance: Vec3,
+    },
+    /// `envmap`: an environment map read from an EXR file (latitude–longitude).
+    EnvMap {
+        /// The file, resolved against the scene file's folder.
+        filename: PathBuf,
+        /// Scale on the radiance (default 1).
+        scale: f32,
+        /// Map-to-world transform.
+        to_world: Mat4,
+    },
+}
