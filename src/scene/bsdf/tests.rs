@@ -90,8 +90,8 @@ fn pdf_integrates_to_at_most_one() {
             assert!(integral.is_finite() && integral <= 1.01, "{b:?} {wo}: {integral}");
             if wo.z > 0.3 {
                 // Rough lobes lose the reflections that fall below the horizon (GGX α = 0.5:
-                // 20% at normal incidence).
-                assert!(integral > 0.75, "{b:?} {wo}: {integral}");
+                // 20% at normal incidence; more for Beckmann sampled without visible normals).
+                assert!(integral > 0.6, "{b:?} {wo}: {integral}");
             }
         }
     }
