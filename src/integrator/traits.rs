@@ -19,6 +19,8 @@ pub struct SurfacePoint {
     pub shape: u32,
     /// The renderer's primitive index within the shape (opaque to the estimators).
     pub prim: u32,
+    /// Surface parameters of the hit (opaque to the estimators).
+    pub uv: Vec2,
 }
 
 /// Properties of a BSDF that the estimators (and the renderer's effect analysis) use.
