@@ -9,9 +9,11 @@
 //! Ernst, Stamminger, Greiner 2006, "Filter Importance Sampling", IEEE Symposium on
 //! Interactive Ray Tracing.
 
+mod compare;
 mod filter;
 mod io;
 
+pub use compare::{compare_blocks, z_two_sided, BlockReport};
 pub use filter::PixelFilter;
 pub use io::{read_exr, write_exr, write_png, ImageError};
 

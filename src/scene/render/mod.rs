@@ -36,6 +36,8 @@ pub(crate) mod geo {
 }
 
 pub use geo::AccelKind;
+#[doc(hidden)]
+pub use geo::cornell_box_standin;
 
 use crate::integrator::{DirectIntegrator, Integrator, PathTracer, Strategy};
 use crate::scene::bsdf::{AnyBsdf, Sided};

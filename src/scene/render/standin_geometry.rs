@@ -278,3 +278,41 @@ impl Camera {
         }
     }
 }
+
+/// Stand-in for `scene::cornell_box::cornell_box()` (branch loader).
+pub fn cornell_box_standin() -> crate::scene::description::SceneDescription {
+    use crate::scene::description::*;
+    let m = |a: [f32; 16]| Mat4::from_cols_array(&a).transpose();
+    let white = BsdfDesc::Diffuse { reflectance: Vec3::new(0.885809, 0.698859, 0.666422) };
+    let red = BsdfDesc::Diffuse { reflectance: Vec3::new(0.570068, 0.0430135, 0.0443706) };
+    let green = BsdfDesc::Diffuse { reflectance: Vec3::new(0.105421, 0.37798, 0.076425) };
+    let shape = |kind, to_world, bsdf: &BsdfDesc| ShapeDesc { to_world, bsdf: bsdf.clone(), ..ShapeDesc::new(kind) };
+    let mut light = shape(ShapeKind::Rectangle, m([0.23, 0., 0., 0., 0., 0., -0.19, 0.99, 0., 0.19, 0., 0.01, 0., 0., 0., 1.]), &white);
+    light.emitter = Some(AreaEmitterDesc { radiance: Vec3::new(18.387, 13.9873, 6.75357) });
+    let shapes = vec![
+        light,
+        shape(ShapeKind::Rectangle, m([1., 0., 0., 0., 0., 0., 1., -1., 0., -1., 0., 0., 0., 0., 0., 1.]), &white),
+        shape(ShapeKind::Rectangle, m([1., 0., 0., 0., 0., 0., -1., 1., 0., 1., 0., 0., 0., 0., 0., 1.]), &white),
+        shape(ShapeKind::Rectangle, m([1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., -1., 0., 0., 0., 1.]), &white),
+        shape(ShapeKind::Rectangle, m([0., 0., -1., 1., 0., 1., 0., 0., 1., 0., 0., 0., 0., 0., 0., 1.]), &green),
+        shape(ShapeKind::Rectangle, m([0., 0., 1., -1., 0., 1., 0., 0., -1., 0., 0., 0., 0., 0., 0., 1.]), &red),
+        shape(ShapeKind::Cube, m([0.286891, 0., -0.0877115, 0.335, 0., 0.3, 0., -0.7, 0.0877115, 0., 0.286891, 0.38, 0., 0., 0., 1.]), &white),
+        shape(ShapeKind::Cube, m([0.28491, 0., 0.0939491, -0.33, 0., 0.61, 0., -0.4, -0.0939491, 0., 0.28491, -0.28, 0., 0., 0., 1.]), &white),
+    ];
+    let to_world = Mat4::from_cols(Vec3::new(-1., 0., 0.).extend(0.), Vec3::Y.extend(0.), Vec3::new(0., 0., -1.).extend(0.), Vec3::new(0., 0., 3.9).extend(1.));
+    SceneDescription {
+        integrator: IntegratorDesc::Path { max_depth: -1, rr_depth: 5 },
+        sensor: SensorDesc {
+            fov: 39.3077,
+            fov_axis: FovAxis::Smaller,
+            near_clip: 0.001,
+            far_clip: 100.0,
+            to_world,
+            film: FilmDesc { width: 256, height: 256, filter: FilterDesc::Box },
+            sampler: SamplerDesc { kind: SamplerKind::Independent, sample_count: 64, seed: 0 },
+        },
+        shapes,
+        emitters: vec![],
+        source: None,
+    }
+}
