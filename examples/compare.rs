@@ -28,7 +28,7 @@ fn run() -> Result<(), String> {
         None => vec![Vec3::ZERO; img.len()],
     };
     for b in [16, 32] {
-        let r = compare_blocks(&img, &var, &reference, w, h, b, 0.05, 0.01);
+        let r = compare_blocks(&img, &var, &reference, None, w, h, b, 0.05, 0.01);
         println!(
             "{b}×{b}: {} blocks, worst block {:.2}%, mean ratio ({:.4}, {:.4}, {:.4}), worst |z| {:.2} (critical {:.2}), non-finite pixels {}",
             r.blocks,

@@ -107,7 +107,11 @@ fn builtin(defines: &[(String, String)]) -> Result<SceneDescription, String> {
                     *max_depth = m;
                 }
             }
-            _ => return Err(format!("-D {k}: the Cornell box has no parameter '{k}' (spp, res, max_depth)")),
+            _ => {
+                return Err(format!(
+                    "-D {k}: the Cornell box has no parameter '{k}' (spp, res, max_depth)"
+                ))
+            }
         }
     }
     Ok(d)
@@ -131,7 +135,10 @@ fn run() -> Result<(), String> {
                 .unwrap_or_else(|| "scene".into()),
         ),
     };
-    let out = args.out.clone().unwrap_or_else(|| PathBuf::from(format!("{name}.exr")));
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("{name}.exr")));
     let renderer = Renderer::new(&desc, &args.opts).map_err(|e| e.to_string())?;
     let (w, h) = renderer.size();
     println!(
@@ -172,9 +179,14 @@ fn run() -> Result<(), String> {
     result.write_png(&png).map_err(|e| e.to_string())?;
     println!("wrote {} and {}", out.display(), png.display());
     if args.variance {
-        let stem = out.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        let stem = out
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
         let vpath = out.with_file_name(format!("{stem}-variance.exr"));
-        result.write_variance_exr(&vpath).map_err(|e| e.to_string())?;
+        result
+            .write_variance_exr(&vpath)
+            .map_err(|e| e.to_string())?;
         println!("wrote {}", vpath.display());
     }
     Ok(())

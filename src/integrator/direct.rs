@@ -66,7 +66,11 @@ impl DirectIntegrator {
         let (nl, nb) = (n_l as f32, n_b as f32);
         let smooth = bsdf.flags().smooth;
         // The delta-light part, when light sampling of smooth lights is off.
-        let n_delta = if n_l == 0 && scene.has_delta_lights() { 1 } else { n_l };
+        let n_delta = if n_l == 0 && scene.has_delta_lights() {
+            1
+        } else {
+            n_l
+        };
         for _ in 0..n_delta {
             let u_pick = rng.next_1d();
             let u = rng.next_2d();
@@ -106,12 +110,20 @@ impl DirectIntegrator {
             let (le, pdf_l) = match hit {
                 Some(h) if scene.is_emitter(&h) => (
                     scene.emitted(&h, -wi),
-                    if bs.delta { 0.0 } else { scene.light_pdf(&sp, &h) },
+                    if bs.delta {
+                        0.0
+                    } else {
+                        scene.light_pdf(&sp, &h)
+                    },
                 ),
                 Some(_) => continue,
                 None if scene.has_environment() => (
                     scene.environment(wi),
-                    if bs.delta { 0.0 } else { scene.environment_pdf(&sp, wi) },
+                    if bs.delta {
+                        0.0
+                    } else {
+                        scene.environment_pdf(&sp, wi)
+                    },
                 ),
                 None => continue,
             };

@@ -62,7 +62,11 @@ impl PathTracer {
 
     /// Weight of an emitter reached by the ray sampled at `prev` (`None`: the camera).
     #[inline]
-    fn hit_weight(&self, prev: &Option<PrevVertex>, light_pdf: impl FnOnce(&SurfacePoint) -> f32) -> f32 {
+    fn hit_weight(
+        &self,
+        prev: &Option<PrevVertex>,
+        light_pdf: impl FnOnce(&SurfacePoint) -> f32,
+    ) -> f32 {
         match prev {
             None => 1.0,
             Some(v) if v.delta => 1.0,

@@ -71,10 +71,17 @@ mod tests {
         for c in [1.0f32, 0.7, 0.3, 0.05] {
             let rc = fresnel_conductor(c, Vec3::splat(1.5), Vec3::ZERO);
             let (rd, _, _, _) = fresnel_dielectric(c, 1.5);
-            assert!(rc.x.is_finite() && (rc.x - rd).abs() < 1e-4, "{c}: {rc} vs {rd}");
+            assert!(
+                rc.x.is_finite() && (rc.x - rd).abs() < 1e-4,
+                "{c}: {rc} vs {rd}"
+            );
         }
         // Gold-like values reflect strongly, and everything reflects fully at grazing angles.
-        let au = fresnel_conductor(1.0, Vec3::new(0.143, 0.374, 1.442), Vec3::new(3.98, 2.38, 1.6));
+        let au = fresnel_conductor(
+            1.0,
+            Vec3::new(0.143, 0.374, 1.442),
+            Vec3::new(3.98, 2.38, 1.6),
+        );
         assert!(au.x > 0.9 && au.z < au.x);
         let g = fresnel_conductor(0.0, Vec3::splat(0.2), Vec3::splat(3.0));
         assert!((g - Vec3::ONE).abs().max_element() < 1e-4);

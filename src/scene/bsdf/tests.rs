@@ -59,7 +59,11 @@ fn sample_weight_is_eval_over_pdf() {
                 };
                 let (f, pdf) = b.eval_pdf(wo, bs.wi);
                 assert!(bs.weight.is_finite() && bs.pdf.is_finite() && pdf.is_finite());
-                assert!((pdf - bs.pdf).abs() <= 1e-3 * pdf.max(1.0), "{b:?} {wo} {pdf} {}", bs.pdf);
+                assert!(
+                    (pdf - bs.pdf).abs() <= 1e-3 * pdf.max(1.0),
+                    "{b:?} {wo} {pdf} {}",
+                    bs.pdf
+                );
                 let want = f / pdf;
                 assert!(
                     (bs.weight - want).abs().max_element() <= 1e-3 * want.max_element().max(1.0),
@@ -87,7 +91,10 @@ fn pdf_integrates_to_at_most_one() {
                 }
             }
             let integral = sum * (PI as f64 / nt as f64) * (2.0 * PI as f64 / np as f64);
-            assert!(integral.is_finite() && integral <= 1.01, "{b:?} {wo}: {integral}");
+            assert!(
+                integral.is_finite() && integral <= 1.01,
+                "{b:?} {wo}: {integral}"
+            );
             if wo.z > 0.3 {
                 // Rough lobes lose the reflections that fall below the horizon (GGX α = 0.5:
                 // 20% at normal incidence; more for Beckmann sampled without visible normals).

@@ -92,8 +92,8 @@ fn image_mean(px: &[Vec3]) -> [f64; 3] {
     s.map(|v| v / px.len().max(1) as f64)
 }
 
-/// Compares `img` (with per-pixel `variance` of its estimate) against `reference`, all
-/// `w × h` row-major, over `block × block` blocks (partial blocks at the edges are left
+/// Compares `img` (with per-pixel `variance` of its estimate) against `reference` (with its
+/// own variance when it is a render too, else `None`), all `w × h` row-major, over `block × block` blocks (partial blocks at the edges are left
 /// out). Blocks whose reference mean (over channels) is below `min_brightness` times the
 /// reference image mean are skipped. `alpha` is the family-wise level of the z-test.
 #[allow(clippy::too_many_arguments)]
@@ -101,6 +101,7 @@ pub fn compare_blocks(
     img: &[Vec3],
     variance: &[Vec3],
     reference: &[Vec3],
+    reference_variance: Option<&[Vec3]>,
     w: u32,
     h: u32,
     block: u32,
@@ -113,6 +114,7 @@ pub fn compare_blocks(
         block_sums(variance, w, h, block),
         block_sums(reference, w, h, block),
     );
+    let srv = reference_variance.map(|v| block_sums(v, w, h, block));
     let rm = image_mean(reference);
     let im = image_mean(img);
     let thresh = min_brightness * (rm[0] + rm[1] + rm[2]) / 3.0;
@@ -125,7 +127,7 @@ pub fn compare_blocks(
         blocks += 1;
         for c in 0..3 {
             let m = si[k][c] / n;
-            let var = sv[k][c] / (n * n);
+            let var = (sv[k][c] + srv.as_ref().map_or(0.0, |v| v[k][c])) / (n * n);
             if r[c] > 0.0 && r[c] > 0.05 * thresh {
                 worst_rel = worst_rel.max(((m - r[c]) / r[c]).abs());
             }
@@ -137,7 +139,11 @@ pub fn compare_blocks(
                 0.0
             };
             if !z.is_finite() || z > worst_z || z.is_nan() {
-                worst_z = if z.is_nan() { f64::INFINITY } else { worst_z.max(z) };
+                worst_z = if z.is_nan() {
+                    f64::INFINITY
+                } else {
+                    worst_z.max(z)
+                };
             }
         }
     }
@@ -174,10 +180,10 @@ mod tests {
     fn identical_images_pass_and_a_scaled_one_fails() {
         let img: Vec<Vec3> = (0..64).map(|i| Vec3::splat(1.0 + (i % 7) as f32)).collect();
         let var = vec![Vec3::splat(1e-4); 64];
-        let r = compare_blocks(&img, &var, &img, 8, 8, 4, 0.05, 0.01);
+        let r = compare_blocks(&img, &var, &img, None, 8, 8, 4, 0.05, 0.01);
         assert!(r.z_test_passes() && r.worst_relative == 0.0 && r.blocks == 4);
         let scaled: Vec<Vec3> = img.iter().map(|p| *p * 1.05).collect();
-        let r = compare_blocks(&scaled, &var, &img, 8, 8, 4, 0.05, 0.01);
+        let r = compare_blocks(&scaled, &var, &img, Some(&var), 8, 8, 4, 0.05, 0.01);
         assert!(!r.z_test_passes());
         assert!((r.worst_relative - 0.05).abs() < 1e-5);
         assert!((r.mean_ratio.x - 1.05).abs() < 1e-5);

@@ -29,7 +29,10 @@ fn err(path: &Path, e: impl std::fmt::Display) -> ImageError {
 
 fn check_len(path: &Path, w: u32, h: u32, px: &[Vec3]) -> Result<(), ImageError> {
     if px.len() != w as usize * h as usize {
-        return Err(err(path, format!("{} pixels for a {w}×{h} image", px.len())));
+        return Err(err(
+            path,
+            format!("{} pixels for a {w}×{h} image", px.len()),
+        ));
     }
     Ok(())
 }
@@ -63,7 +66,11 @@ pub fn read_exr(path: &Path) -> Result<(u32, u32, Vec<Vec3>), ImageError> {
 
 /// The sRGB transfer function of a linear value, clamped to `[0, 1]`.
 fn srgb(x: f32) -> u8 {
-    let x = if x.is_finite() { x.clamp(0.0, 1.0) } else { 0.0 };
+    let x = if x.is_finite() {
+        x.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let v = if x <= 0.003_130_8 {
         12.92 * x
     } else {
@@ -95,7 +102,9 @@ mod tests {
     fn exr_round_trip_and_png() {
         let dir = std::env::temp_dir().join(format!("mcrt-film-io-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("temp dir");
-        let px: Vec<Vec3> = (0..6).map(|i| Vec3::new(i as f32, 0.5, 1e-3 * i as f32)).collect();
+        let px: Vec<Vec3> = (0..6)
+            .map(|i| Vec3::new(i as f32, 0.5, 1e-3 * i as f32))
+            .collect();
         let p = dir.join("t.exr");
         write_exr(&p, 3, 2, &px).expect("write exr");
         let (w, h, back) = read_exr(&p).expect("read exr");

@@ -82,7 +82,10 @@ impl Lights {
         let mut has_delta = false;
         for e in &desc.emitters {
             match e {
-                EmitterDesc::Point { position, intensity } => {
+                EmitterDesc::Point {
+                    position,
+                    intensity,
+                } => {
                     has_delta = true;
                     power.push(4.0 * PI * mean(*intensity).max(0.0));
                     lights.push(Light::Point {
@@ -152,7 +155,13 @@ impl Lights {
     }
 
     /// Chooses a light by power and samples a direction toward it from `from`.
-    pub fn sample(&self, geo: &Geometry, from: &SurfacePoint, u_pick: f32, u: Vec2) -> Option<LightSample> {
+    pub fn sample(
+        &self,
+        geo: &Geometry,
+        from: &SurfacePoint,
+        u_pick: f32,
+        u: Vec2,
+    ) -> Option<LightSample> {
         let (i, u_rest) = self.picker.sample(u_pick)?;
         let pick = self.picker.pmf(i);
         match self.lights[i] {
@@ -175,7 +184,10 @@ impl Lights {
                     delta: false,
                 })
             }
-            Light::Point { position, intensity } => {
+            Light::Point {
+                position,
+                intensity,
+            } => {
                 let d = position - from.p;
                 let d2 = d.length_squared();
                 if !(d2 > 0.0) {

@@ -42,7 +42,10 @@ impl Picker {
         if self.pmf.is_empty() {
             return None;
         }
-        let mut i = self.cdf.partition_point(|&c| c <= u).min(self.pmf.len() - 1);
+        let mut i = self
+            .cdf
+            .partition_point(|&c| c <= u)
+            .min(self.pmf.len() - 1);
         while self.pmf[i] == 0.0 && i > 0 {
             i -= 1;
         }

@@ -35,9 +35,9 @@ pub(crate) mod geo {
     pub use super::standin_geometry::*;
 }
 
-pub use geo::AccelKind;
 #[doc(hidden)]
 pub use geo::cornell_box_standin;
+pub use geo::AccelKind;
 
 use crate::integrator::{DirectIntegrator, Integrator, PathTracer, Strategy};
 use crate::scene::bsdf::{AnyBsdf, Sided};
@@ -127,7 +127,9 @@ fn scene_radius(desc: &SceneDescription) -> f32 {
             ShapeKind::Sphere { center, radius } => (0..8)
                 .map(|i| *center + Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)) * *radius)
                 .collect(),
-            _ => (0..8).map(|i| Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2))).collect(),
+            _ => (0..8)
+                .map(|i| Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)))
+                .collect(),
         };
         for p in pts {
             r = r.max((s.to_world * p.extend(1.0)).xyz().length());
@@ -154,13 +156,20 @@ impl Renderer {
             .unwrap_or_else(|| PathBuf::from("."));
         let geo = Geometry::new(&desc.shapes, &base, opts.accel)
             .map_err(|e| RenderError(format!("geometry: {e}")))?;
-        let lights = Lights::new(desc, &geo, scene_radius(desc))
-            .map_err(|e| RenderError(e.to_string()))?;
+        let lights =
+            Lights::new(desc, &geo, scene_radius(desc)).map_err(|e| RenderError(e.to_string()))?;
         let camera = Camera::new(&desc.sensor).map_err(|e| RenderError(format!("camera: {e}")))?;
-        let bsdfs: Vec<_> = desc.shapes.iter().map(|s| AnyBsdf::from_desc(&s.bsdf)).collect();
+        let bsdfs: Vec<_> = desc
+            .shapes
+            .iter()
+            .map(|s| AnyBsdf::from_desc(&s.bsdf))
+            .collect();
         let strategy = opts.strategy.unwrap_or_default();
         let integrator = match desc.integrator {
-            IntegratorDesc::Path { max_depth, rr_depth } => Integrator::Path(PathTracer {
+            IntegratorDesc::Path {
+                max_depth,
+                rr_depth,
+            } => Integrator::Path(PathTracer {
                 max_depth,
                 rr_depth,
                 strategy,
@@ -221,7 +230,11 @@ impl Renderer {
     /// Renders; `progress(done, total)` is called with sample counts from worker threads,
     /// and setting `cancel` stops early, keeping every sample taken (pixels then report
     /// their own counts).
-    pub fn render(&self, progress: &(dyn Fn(u64, u64) + Sync), cancel: &AtomicBool) -> RenderOutput {
+    pub fn render(
+        &self,
+        progress: &(dyn Fn(u64, u64) + Sync),
+        cancel: &AtomicBool,
+    ) -> RenderOutput {
         let start = Instant::now();
         let params = tiles::LoopParams {
             camera: &self.camera,
@@ -237,7 +250,10 @@ impl Renderer {
         };
         let run = || self.dispatch(&params);
         let (film, stats) = if self.threads > 0 {
-            match rayon::ThreadPoolBuilder::new().num_threads(self.threads).build() {
+            match rayon::ThreadPoolBuilder::new()
+                .num_threads(self.threads)
+                .build()
+            {
                 Ok(pool) => pool.install(run),
                 Err(_) => run(),
             }
@@ -278,10 +294,18 @@ impl Renderer {
     ) -> (Film, tiles::LoopStats) {
         let (geo, lights) = (&self.geo, &self.lights);
         match (self.effects.delta_lights, self.effects.environment) {
-            (false, false) => tiles::render_loop(&SceneView::<B, false, false> { geo, bsdfs, lights }, p),
-            (true, false) => tiles::render_loop(&SceneView::<B, true, false> { geo, bsdfs, lights }, p),
-            (false, true) => tiles::render_loop(&SceneView::<B, false, true> { geo, bsdfs, lights }, p),
-            (true, true) => tiles::render_loop(&SceneView::<B, true, true> { geo, bsdfs, lights }, p),
+            (false, false) => {
+                tiles::render_loop(&SceneView::<B, false, false> { geo, bsdfs, lights }, p)
+            }
+            (true, false) => {
+                tiles::render_loop(&SceneView::<B, true, false> { geo, bsdfs, lights }, p)
+            }
+            (false, true) => {
+                tiles::render_loop(&SceneView::<B, false, true> { geo, bsdfs, lights }, p)
+            }
+            (true, true) => {
+                tiles::render_loop(&SceneView::<B, true, true> { geo, bsdfs, lights }, p)
+            }
         }
     }
 }
@@ -304,6 +328,11 @@ impl RenderOutput {
 
     /// Writes the per-pixel variance of the estimate as EXR.
     pub fn write_variance_exr(&self, path: &Path) -> Result<(), ImageError> {
-        write_exr(path, self.film.width(), self.film.height(), &self.film.variance())
+        write_exr(
+            path,
+            self.film.width(),
+            self.film.height(),
+            &self.film.variance(),
+        )
     }
 }

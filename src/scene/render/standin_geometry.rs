@@ -46,8 +46,18 @@ pub struct ShapeSample {
 
 #[derive(Debug, Clone, Copy)]
 enum Prim {
-    Quad { p0: Vec3, e1: Vec3, e2: Vec3, n: Vec3, area: f32 },
-    Sphere { c: Vec3, r: f32, flip: bool },
+    Quad {
+        p0: Vec3,
+        e1: Vec3,
+        e2: Vec3,
+        n: Vec3,
+        area: f32,
+    },
+    Sphere {
+        c: Vec3,
+        r: f32,
+        flip: bool,
+    },
 }
 
 /// Brute-force geometry.
@@ -64,18 +74,31 @@ fn quad(m: &Mat4, c: Vec3, a: Vec3, b: Vec3, n: Vec3, flip: bool) -> Prim {
     if flip {
         nw = -nw;
     }
-    Prim::Quad { p0, e1, e2, n: nw, area: e1.cross(e2).length() }
+    Prim::Quad {
+        p0,
+        e1,
+        e2,
+        n: nw,
+        area: e1.cross(e2).length(),
+    }
 }
 
 impl Geometry {
-    pub fn new(shapes: &[ShapeDesc], _base: &std::path::Path, _accel: AccelKind) -> Result<Self, String> {
+    pub fn new(
+        shapes: &[ShapeDesc],
+        _base: &std::path::Path,
+        _accel: AccelKind,
+    ) -> Result<Self, String> {
         let mut prims = Vec::new();
         let mut ranges = Vec::new();
         for (i, s) in shapes.iter().enumerate() {
             let start = prims.len();
             let m = &s.to_world;
             match &s.kind {
-                ShapeKind::Rectangle => prims.push((i as u32, quad(m, Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z, s.flip_normals))),
+                ShapeKind::Rectangle => prims.push((
+                    i as u32,
+                    quad(m, Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z, s.flip_normals),
+                )),
                 ShapeKind::Cube => {
                     for ax in 0..3 {
                         for sgn in [-1.0f32, 1.0] {
@@ -89,17 +112,30 @@ impl Geometry {
                 ShapeKind::Sphere { center, radius } => {
                     let c = m.transform_point3(*center);
                     let r = m.transform_vector3(Vec3::X).length() * radius;
-                    prims.push((i as u32, Prim::Sphere { c, r, flip: s.flip_normals }));
+                    prims.push((
+                        i as u32,
+                        Prim::Sphere {
+                            c,
+                            r,
+                            flip: s.flip_normals,
+                        },
+                    ));
                 }
                 other => return Err(format!("stand-in geometry: unsupported {other:?}")),
             }
-            let area = prims[start..].iter().map(|(_, p)| match p {
-                Prim::Quad { area, .. } => *area,
-                Prim::Sphere { r, .. } => 4.0 * PI * r * r,
-            }).sum();
+            let area = prims[start..]
+                .iter()
+                .map(|(_, p)| match p {
+                    Prim::Quad { area, .. } => *area,
+                    Prim::Sphere { r, .. } => 4.0 * PI * r * r,
+                })
+                .sum();
             ranges.push((start, prims.len(), area));
         }
-        Ok(Self { prims, shapes: ranges })
+        Ok(Self {
+            prims,
+            shapes: ranges,
+        })
     }
 
     fn hit_prim(&self, k: usize, ray: &Ray, t_max: f32) -> Option<Hit> {
@@ -107,35 +143,71 @@ impl Geometry {
         match p {
             Prim::Quad { p0, e1, e2, n, .. } => {
                 let dn = ray.dir.dot(n);
-                if dn == 0.0 { return None; }
+                if dn == 0.0 {
+                    return None;
+                }
                 let t = (p0 - ray.origin).dot(n) / dn;
-                if !(t > 0.0 && t < t_max) { return None; }
+                if !(t > 0.0 && t < t_max) {
+                    return None;
+                }
                 let p = ray.origin + ray.dir * t;
                 let q = p - p0;
                 let nn = e1.cross(e2);
                 let w = nn / nn.dot(nn);
                 let a = w.dot(q.cross(e2));
                 let b = w.dot(e1.cross(q));
-                if !(0.0..=1.0).contains(&a) || !(0.0..=1.0).contains(&b) { return None; }
-                Some(Hit { t, p, ng: n, ns: n, uv: Vec2::new(a, b), shape, prim: k as u32 })
+                if !(0.0..=1.0).contains(&a) || !(0.0..=1.0).contains(&b) {
+                    return None;
+                }
+                Some(Hit {
+                    t,
+                    p,
+                    ng: n,
+                    ns: n,
+                    uv: Vec2::new(a, b),
+                    shape,
+                    prim: k as u32,
+                })
             }
             Prim::Sphere { c, r, flip } => {
                 let oc = ray.origin - c;
                 let b = oc.dot(ray.dir);
                 let f = oc - b * ray.dir;
                 let disc = r * r - f.dot(f);
-                if disc < 0.0 { return None; }
+                if disc < 0.0 {
+                    return None;
+                }
                 let sq = disc.sqrt();
                 let q = -b - sq.copysign(b);
                 let (mut t0, mut t1) = (q, oc.dot(oc) - r * r);
                 t1 /= q;
-                if t0 > t1 { std::mem::swap(&mut t0, &mut t1); }
-                let t = if t0 > 0.0 { t0 } else if t1 > 0.0 { t1 } else { return None };
-                if t >= t_max { return None; }
+                if t0 > t1 {
+                    std::mem::swap(&mut t0, &mut t1);
+                }
+                let t = if t0 > 0.0 {
+                    t0
+                } else if t1 > 0.0 {
+                    t1
+                } else {
+                    return None;
+                };
+                if t >= t_max {
+                    return None;
+                }
                 let p = ray.origin + ray.dir * t;
                 let mut n = (p - c) / r;
-                if flip { n = -n; }
-                Some(Hit { t, p, ng: n, ns: n, uv: Vec2::ZERO, shape, prim: k as u32 })
+                if flip {
+                    n = -n;
+                }
+                Some(Hit {
+                    t,
+                    p,
+                    ng: n,
+                    ns: n,
+                    uv: Vec2::ZERO,
+                    shape,
+                    prim: k as u32,
+                })
             }
         }
     }
@@ -160,15 +232,27 @@ impl Geometry {
         self.shapes[shape as usize].2
     }
 
-    pub fn sample_shape(&self, shape: u32, reference: Vec3, u_pick: f32, u: Vec2) -> Option<ShapeSample> {
+    pub fn sample_shape(
+        &self,
+        shape: u32,
+        reference: Vec3,
+        u_pick: f32,
+        u: Vec2,
+    ) -> Option<ShapeSample> {
         let (s, e, area) = self.shapes[shape as usize];
         // pick a primitive by area
         let mut acc = 0.0;
         let mut k = e - 1;
         for j in s..e {
-            let a = match self.prims[j].1 { Prim::Quad { area, .. } => area, Prim::Sphere { r, .. } => 4.0 * PI * r * r };
+            let a = match self.prims[j].1 {
+                Prim::Quad { area, .. } => area,
+                Prim::Sphere { r, .. } => 4.0 * PI * r * r,
+            };
             acc += a / area;
-            if u_pick < acc { k = j; break; }
+            if u_pick < acc {
+                k = j;
+                break;
+            }
         }
         match self.prims[k].1 {
             Prim::Quad { p0, e1, e2, n, .. } => {
@@ -176,8 +260,14 @@ impl Geometry {
                 let d = p - reference;
                 let d2 = d.length_squared();
                 let cos = (d.normalize().dot(n)).abs();
-                if !(cos > 0.0) { return None; }
-                Some(ShapeSample { p, n, pdf: d2 / (cos * area) })
+                if !(cos > 0.0) {
+                    return None;
+                }
+                Some(ShapeSample {
+                    p,
+                    n,
+                    pdf: d2 / (cos * area),
+                })
             }
             Prim::Sphere { c, r, flip } => {
                 let dc = c - reference;
@@ -191,18 +281,29 @@ impl Geometry {
                     let d = p - reference;
                     let cos = d.normalize().dot(nn).abs();
                     let n = if flip { -nn } else { nn };
-                    return Some(ShapeSample { p, n, pdf: d.length_squared() / (cos * area) });
+                    return Some(ShapeSample {
+                        p,
+                        n,
+                        pdf: d.length_squared() / (cos * area),
+                    });
                 }
                 let d = d2.sqrt();
                 let sin2 = r * r / d2;
-                let one_minus_cos = if sin2 < 1e-3 { sin2 * (0.5 + sin2 / 8.0) } else { 1.0 - (1.0 - sin2).sqrt() };
+                let one_minus_cos = if sin2 < 1e-3 {
+                    sin2 * (0.5 + sin2 / 8.0)
+                } else {
+                    1.0 - (1.0 - sin2).sqrt()
+                };
                 let omc = u.x * one_minus_cos;
                 let cos_t = 1.0 - omc;
                 let sin_t = (omc * (2.0 - omc)).max(0.0).sqrt();
                 let (sp, cp) = (2.0 * PI * u.y).sin_cos();
                 let fr = crate::integrator::Frame::from_normal(dc / d);
                 let dir = fr.to_world(Vec3::new(sin_t * cp, sin_t * sp, cos_t));
-                let ray = Ray { origin: reference, dir };
+                let ray = Ray {
+                    origin: reference,
+                    dir,
+                };
                 let oc = reference - c;
                 let b = oc.dot(dir);
                 let f = oc - b * dir;
@@ -211,7 +312,11 @@ impl Geometry {
                 let p = ray.origin + dir * t.max(0.0);
                 let nn = (p - c).normalize();
                 let n = if flip { -nn } else { nn };
-                Some(ShapeSample { p, n, pdf: 1.0 / (2.0 * PI * one_minus_cos) })
+                Some(ShapeSample {
+                    p,
+                    n,
+                    pdf: 1.0 / (2.0 * PI * one_minus_cos),
+                })
             }
         }
     }
@@ -222,7 +327,9 @@ impl Geometry {
             Prim::Quad { n, .. } => {
                 let d = hit.p - reference;
                 let cos = d.normalize().dot(n).abs();
-                if !(cos > 0.0) { return 0.0; }
+                if !(cos > 0.0) {
+                    return 0.0;
+                }
                 d.length_squared() / (cos * area)
             }
             Prim::Sphere { c, r, .. } => {
@@ -233,7 +340,11 @@ impl Geometry {
                     return d.length_squared() / (cos * area);
                 }
                 let sin2 = r * r / d2;
-                let omc = if sin2 < 1e-3 { sin2 * (0.5 + sin2 / 8.0) } else { 1.0 - (1.0 - sin2).sqrt() };
+                let omc = if sin2 < 1e-3 {
+                    sin2 * (0.5 + sin2 / 8.0)
+                } else {
+                    1.0 - (1.0 - sin2).sqrt()
+                };
                 1.0 / (2.0 * PI * omc)
             }
         }
@@ -265,8 +376,16 @@ impl Camera {
             FovAxis::Smaller => w <= h,
             FovAxis::Larger => w >= h,
         };
-        let tan = if on_x { Vec2::new(t, t * h / w) } else { Vec2::new(t * w / h, t) };
-        Ok(Self { to_world: s.to_world, tan, res: Vec2::new(w, h) })
+        let tan = if on_x {
+            Vec2::new(t, t * h / w)
+        } else {
+            Vec2::new(t * w / h, t)
+        };
+        Ok(Self {
+            to_world: s.to_world,
+            tan,
+            res: Vec2::new(w, h),
+        })
     }
 
     pub fn generate_ray(&self, film_px: Vec2) -> Ray {
@@ -283,33 +402,111 @@ impl Camera {
 pub fn cornell_box_standin() -> crate::scene::description::SceneDescription {
     use crate::scene::description::*;
     let m = |a: [f32; 16]| Mat4::from_cols_array(&a).transpose();
-    let white = BsdfDesc::Diffuse { reflectance: Vec3::new(0.885809, 0.698859, 0.666422) };
-    let red = BsdfDesc::Diffuse { reflectance: Vec3::new(0.570068, 0.0430135, 0.0443706) };
-    let green = BsdfDesc::Diffuse { reflectance: Vec3::new(0.105421, 0.37798, 0.076425) };
-    let shape = |kind, to_world, bsdf: &BsdfDesc| ShapeDesc { to_world, bsdf: bsdf.clone(), ..ShapeDesc::new(kind) };
-    let mut light = shape(ShapeKind::Rectangle, m([0.23, 0., 0., 0., 0., 0., -0.19, 0.99, 0., 0.19, 0., 0.01, 0., 0., 0., 1.]), &white);
-    light.emitter = Some(AreaEmitterDesc { radiance: Vec3::new(18.387, 13.9873, 6.75357) });
+    let white = BsdfDesc::Diffuse {
+        reflectance: Vec3::new(0.885809, 0.698859, 0.666422),
+    };
+    let red = BsdfDesc::Diffuse {
+        reflectance: Vec3::new(0.570068, 0.0430135, 0.0443706),
+    };
+    let green = BsdfDesc::Diffuse {
+        reflectance: Vec3::new(0.105421, 0.37798, 0.076425),
+    };
+    let shape = |kind, to_world, bsdf: &BsdfDesc| ShapeDesc {
+        to_world,
+        bsdf: bsdf.clone(),
+        ..ShapeDesc::new(kind)
+    };
+    let mut light = shape(
+        ShapeKind::Rectangle,
+        m([
+            0.23, 0., 0., 0., 0., 0., -0.19, 0.99, 0., 0.19, 0., 0.01, 0., 0., 0., 1.,
+        ]),
+        &white,
+    );
+    light.emitter = Some(AreaEmitterDesc {
+        radiance: Vec3::new(18.387, 13.9873, 6.75357),
+    });
     let shapes = vec![
         light,
-        shape(ShapeKind::Rectangle, m([1., 0., 0., 0., 0., 0., 1., -1., 0., -1., 0., 0., 0., 0., 0., 1.]), &white),
-        shape(ShapeKind::Rectangle, m([1., 0., 0., 0., 0., 0., -1., 1., 0., 1., 0., 0., 0., 0., 0., 1.]), &white),
-        shape(ShapeKind::Rectangle, m([1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., -1., 0., 0., 0., 1.]), &white),
-        shape(ShapeKind::Rectangle, m([0., 0., -1., 1., 0., 1., 0., 0., 1., 0., 0., 0., 0., 0., 0., 1.]), &green),
-        shape(ShapeKind::Rectangle, m([0., 0., 1., -1., 0., 1., 0., 0., -1., 0., 0., 0., 0., 0., 0., 1.]), &red),
-        shape(ShapeKind::Cube, m([0.286891, 0., -0.0877115, 0.335, 0., 0.3, 0., -0.7, 0.0877115, 0., 0.286891, 0.38, 0., 0., 0., 1.]), &white),
-        shape(ShapeKind::Cube, m([0.28491, 0., 0.0939491, -0.33, 0., 0.61, 0., -0.4, -0.0939491, 0., 0.28491, -0.28, 0., 0., 0., 1.]), &white),
+        shape(
+            ShapeKind::Rectangle,
+            m([
+                1., 0., 0., 0., 0., 0., 1., -1., 0., -1., 0., 0., 0., 0., 0., 1.,
+            ]),
+            &white,
+        ),
+        shape(
+            ShapeKind::Rectangle,
+            m([
+                1., 0., 0., 0., 0., 0., -1., 1., 0., 1., 0., 0., 0., 0., 0., 1.,
+            ]),
+            &white,
+        ),
+        shape(
+            ShapeKind::Rectangle,
+            m([
+                1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., -1., 0., 0., 0., 1.,
+            ]),
+            &white,
+        ),
+        shape(
+            ShapeKind::Rectangle,
+            m([
+                0., 0., -1., 1., 0., 1., 0., 0., 1., 0., 0., 0., 0., 0., 0., 1.,
+            ]),
+            &green,
+        ),
+        shape(
+            ShapeKind::Rectangle,
+            m([
+                0., 0., 1., -1., 0., 1., 0., 0., -1., 0., 0., 0., 0., 0., 0., 1.,
+            ]),
+            &red,
+        ),
+        shape(
+            ShapeKind::Cube,
+            m([
+                0.286891, 0., -0.0877115, 0.335, 0., 0.3, 0., -0.7, 0.0877115, 0., 0.286891, 0.38,
+                0., 0., 0., 1.,
+            ]),
+            &white,
+        ),
+        shape(
+            ShapeKind::Cube,
+            m([
+                0.28491, 0., 0.0939491, -0.33, 0., 0.61, 0., -0.4, -0.0939491, 0., 0.28491, -0.28,
+                0., 0., 0., 1.,
+            ]),
+            &white,
+        ),
     ];
-    let to_world = Mat4::from_cols(Vec3::new(-1., 0., 0.).extend(0.), Vec3::Y.extend(0.), Vec3::new(0., 0., -1.).extend(0.), Vec3::new(0., 0., 3.9).extend(1.));
+    let to_world = Mat4::from_cols(
+        Vec3::new(-1., 0., 0.).extend(0.),
+        Vec3::Y.extend(0.),
+        Vec3::new(0., 0., -1.).extend(0.),
+        Vec3::new(0., 0., 3.9).extend(1.),
+    );
     SceneDescription {
-        integrator: IntegratorDesc::Path { max_depth: -1, rr_depth: 5 },
+        integrator: IntegratorDesc::Path {
+            max_depth: -1,
+            rr_depth: 5,
+        },
         sensor: SensorDesc {
             fov: 39.3077,
             fov_axis: FovAxis::Smaller,
             near_clip: 0.001,
             far_clip: 100.0,
             to_world,
-            film: FilmDesc { width: 256, height: 256, filter: FilterDesc::Box },
-            sampler: SamplerDesc { kind: SamplerKind::Independent, sample_count: 64, seed: 0 },
+            film: FilmDesc {
+                width: 256,
+                height: 256,
+                filter: FilterDesc::Box,
+            },
+            sampler: SamplerDesc {
+                kind: SamplerKind::Independent,
+                sample_count: 64,
+                seed: 0,
+            },
         },
         shapes,
         emitters: vec![],

@@ -64,10 +64,14 @@ fn render_tile<S: Scene>(
             let mut acc = PixelAccum::default();
             for s in s0..s1 {
                 let mut rng = PixelRng::new(p.seed, index as u64, s as u64);
-                let off = p.filter.sample(crate::integrator::SampleSource::next_2d(&mut rng));
+                let off = p
+                    .filter
+                    .sample(crate::integrator::SampleSource::next_2d(&mut rng));
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
                 let ray = p.camera.generate_ray(film);
-                let r = p.integrator.li(scene, ray.origin, ray.dir, p.t_max, &mut rng);
+                let r = p
+                    .integrator
+                    .li(scene, ray.origin, ray.dir, p.t_max, &mut rng);
                 rays += r.rays as u64;
                 let v = r.radiance;
                 acc.add(if v.is_finite() { v } else { glam::Vec3::ZERO });
