@@ -25,8 +25,9 @@
 
 use mcrt::glam::{DVec3, Vec2, Vec3};
 use mcrt::sampling::warp::{
-    CosineHemisphere, InvertibleWarp, PowerCosineHemisphere, ThetaOverSinHemisphere, UniformCone,
-    UniformDisk, UniformDiskConcentric, UniformHemisphere, UniformSphere, UniformTriangle, Warp,
+    triangle_area, triangle_area_pdf, triangle_point, CosineHemisphere, InvertibleWarp,
+    PowerCosineHemisphere, ThetaOverSinHemisphere, UniformCone, UniformDisk, UniformDiskConcentric,
+    UniformHemisphere, UniformSphere, UniformTriangle, Warp,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
@@ -478,4 +479,103 @@ fn extremes_are_accurate_to_f32() {
     );
     println!("power cosine 1e6: max rel. error of theta {pt:.2e}, of pdf {pp:.2e}");
     assert!(pt <= 1e-6 && pp <= 1e-5, "{pt} {pp}");
+}
+
+/// Any finite f32, with a bias towards 0, ±1 and huge magnitudes.
+fn any_finite() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        1 => Just(0.0f32),
+        1 => Just(1.0f32),
+        1 => Just(-1.0f32),
+        1 => Just(f32::MAX),
+        1 => Just(-f32::MAX),
+        2 => -1e30f32..1e30,
+        4 => -2.0f32..2.0,
+        2 => -1e-20f32..1e-20,
+    ]
+}
+
+fn any_vec3() -> impl Strategy<Value = Vec3> {
+    (any_finite(), any_finite(), any_finite()).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+}
+
+/// pdf and invert of arbitrary finite points (not unit, not in the support): pdf finite and
+/// ≥ 0, invert in [0, 1)².
+fn check_any_point<W: InvertibleWarp>(w: &W, p: W::Point) -> Result<(), TestCaseError>
+where
+    W::Point: Point,
+{
+    let pdf = w.pdf(p);
+    prop_assert!(pdf.is_finite() && pdf >= 0.0, "pdf {pdf} at {p:?}");
+    let u = w.invert(p);
+    prop_assert!(
+        u.is_finite() && u.min_element() >= 0.0 && u.max_element() < 1.0,
+        "{u} at {p:?}"
+    );
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(2048))]
+
+    #[test]
+    fn pdf_and_invert_never_nan(v in any_vec3()) {
+        let p2 = v.truncate();
+        check_any_point(&UniformDisk, p2)?;
+        check_any_point(&UniformDiskConcentric, p2)?;
+        check_any_point(&UniformTriangle, p2)?;
+        check_any_point(&UniformHemisphere, v)?;
+        check_any_point(&CosineHemisphere, v)?;
+        check_any_point(&UniformSphere, v)?;
+        check_any_point(&ThetaOverSinHemisphere, v)?;
+        for theta in CONE_ANGLES {
+            check_any_point(&UniformCone::from_angle(theta).unwrap(), v)?;
+        }
+        for n in EXPONENTS {
+            check_any_point(&PowerCosineHemisphere::new(n).unwrap(), v)?;
+        }
+    }
+
+    /// Triangles in 3D, slivers and degenerate ones included: the sampled point is finite and
+    /// on the triangle (within its bounding box), and the area pdf is finite and ≥ 0, > 0
+    /// exactly when the area (in f64) is positive and its inverse fits f32.
+    #[test]
+    fn triangles_in_3d(a in any_vec3(), b in any_vec3(), c in any_vec3(), u in u_any()) {
+        // Keep the corners where their differences cannot overflow.
+        let clamp = |v: Vec3| v.clamp(Vec3::splat(-1e18), Vec3::splat(1e18));
+        let (a, b, c) = (clamp(a), clamp(b), clamp(c));
+        let bary = UniformTriangle.sample(u);
+        let p = triangle_point(a, b, c, bary);
+        prop_assert!(p.is_finite());
+        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+        let slack = (hi - lo) * 1e-5 + Vec3::splat(1e-30);
+        prop_assert!(p.cmpge(lo - slack).all() && p.cmple(hi + slack).all(), "{p} outside");
+        let pdf = triangle_area_pdf(a, b, c);
+        let area = f64::from(triangle_area(a, b, c));
+        prop_assert!(pdf.is_finite() && pdf >= 0.0 && area.is_finite() && area >= 0.0);
+        if pdf > 0.0 {
+            let rel = (f64::from(pdf) * area - 1.0).abs();
+            prop_assert!(rel <= 1e-5, "pdf {pdf} area {area}");
+        }
+    }
+
+    /// A sliver: the third corner 10⁻²⁰ off the base line.
+    #[test]
+    fn sliver_triangles(t in 0.0f32..1.0, u in u_any()) {
+        let (a, b) = (Vec3::ZERO, Vec3::new(1.0, 0.0, 0.0));
+        let c = Vec3::new(t, 1e-20, 0.0);
+        let p = triangle_point(a, b, c, UniformTriangle.sample(u));
+        let pdf = triangle_area_pdf(a, b, c);
+        prop_assert!(p.is_finite() && pdf.is_finite() && pdf > 0.0);
+        prop_assert!(((f64::from(pdf) - 2e20) / 2e20).abs() <= 1e-6, "{pdf}");
+    }
+}
+
+#[test]
+fn cone_from_cosine_matches_from_angle() {
+    let a = UniformCone::new(0.5).unwrap();
+    let b = UniformCone::from_angle(std::f32::consts::FRAC_PI_3).unwrap();
+    let (x, y) = (a.one_minus_cos_theta_max(), b.one_minus_cos_theta_max());
+    assert!(x.is_finite() && y.is_finite() && (x - y).abs() <= 1e-7);
+    assert!((a.solid_angle() - std::f32::consts::PI).abs() <= 1e-6);
 }
