@@ -579,3 +579,73 @@ fn cone_from_cosine_matches_from_angle() {
     assert!(x.is_finite() && y.is_finite() && (x - y).abs() <= 1e-7);
     assert!((a.solid_angle() - std::f32::consts::PI).abs() <= 1e-6);
 }
+
+/// Largest |pdf(sample(u)) · J(u) − 1| over a 101 × 101 grid of u in [0.01, 0.99]² (skipping
+/// the concentric diagonals as `check_jacobian` does).
+fn max_jacobian_error<W: Warp>(w: &W, concentric: bool) -> f64
+where
+    W::Point: Point,
+{
+    let n = 101;
+    let mut worst = 0.0f64;
+    for i in 0..n {
+        for j in 0..n {
+            let f = |k: usize| JAC_MARGIN + (1.0 - 2.0 * JAC_MARGIN) * k as f32 / (n - 1) as f32;
+            let u = Vec2::new(f(i), f(j));
+            let (a, b) = (2.0 * f64::from(u.x) - 1.0, 2.0 * f64::from(u.y) - 1.0);
+            if concentric && (a.abs() - b.abs()).abs() < 8.0 * JAC_H {
+                continue;
+            }
+            let product = f64::from(w.pdf(w.sample(u))) * numerical_jacobian(w, u);
+            assert!(product.is_finite());
+            worst = worst.max((product - 1.0).abs());
+        }
+    }
+    worst
+}
+
+#[test]
+fn jacobian_identity_on_a_grid() {
+    let mut rows = vec![
+        (
+            "disk polar".to_string(),
+            max_jacobian_error(&UniformDisk, false),
+        ),
+        (
+            "disk concentric".into(),
+            max_jacobian_error(&UniformDiskConcentric, true),
+        ),
+        (
+            "triangle".into(),
+            max_jacobian_error(&UniformTriangle, false),
+        ),
+        (
+            "uniform hemisphere".into(),
+            max_jacobian_error(&UniformHemisphere, false),
+        ),
+        (
+            "cosine hemisphere".into(),
+            max_jacobian_error(&CosineHemisphere, true),
+        ),
+        (
+            "theta over sin".into(),
+            max_jacobian_error(&ThetaOverSinHemisphere, false),
+        ),
+        ("sphere".into(), max_jacobian_error(&UniformSphere, false)),
+    ];
+    for theta in CONE_ANGLES {
+        let cone = UniformCone::from_angle(theta).unwrap();
+        rows.push((format!("cone {theta}"), max_jacobian_error(&cone, false)));
+    }
+    for n in EXPONENTS {
+        let lobe = PowerCosineHemisphere::new(n).unwrap();
+        rows.push((
+            format!("power cosine {n}"),
+            max_jacobian_error(&lobe, false),
+        ));
+    }
+    for (name, err) in &rows {
+        println!("max |pdf * J - 1|: {name:>20}: {err:.2e}");
+        assert!(err.is_finite() && *err <= JAC_TOL, "{name}: {err}");
+    }
+}

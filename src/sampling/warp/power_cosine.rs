@@ -91,7 +91,7 @@ impl Warp for PowerCosineHemisphere {
     type Point = Vec3;
 
     fn sample(&self, u: Vec2) -> Vec3 {
-        let l = u.x.ln() / (self.exponent + 1.0);
+        let l = u.x.max(0.0).ln() / (self.exponent + 1.0);
         let t = -l.exp_m1();
         direction(sin_from_one_minus_cos(t), l.exp(), u.y)
     }
@@ -106,7 +106,7 @@ impl Warp for PowerCosineHemisphere {
     }
 
     fn sample_with_pdf(&self, u: Vec2) -> (Vec3, f32) {
-        let l = u.x.ln() / (self.exponent + 1.0);
+        let l = u.x.max(0.0).ln() / (self.exponent + 1.0);
         let t = -l.exp_m1();
         let w = direction(sin_from_one_minus_cos(t), l.exp(), u.y);
         (w, self.norm * self.cos_pow_n(l))
