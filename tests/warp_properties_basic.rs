@@ -3,8 +3,8 @@
 //! the Jacobian identity pdf(sample(u)) · J(u) = 1, for u drawn freely and pinned to the edges
 //! {0, 0.5, 1 − 2⁻²⁴}, at parameters that include the extremes.
 //!
-//! Tolerances (measured by `round_trip_accuracy_is_within_tolerance`, run with
-//! `--nocapture` to print them):
+//! Tolerances (measured in `tests/warp_accuracy_basic.rs`; run it with `--nocapture` to print
+//! the tables):
 //! - interior round trip `invert(sample(u)) ≈ u` for u ∈ [10⁻³, 1 − 10⁻³]²: `4e-6` absolute
 //!   (u₂ compared on the circle where it is an azimuth), i.e. 64 ulps of 1. f32 resolves u to
 //!   6·10⁻⁸; the inverses add a few roundings (√, atan2, ln/exp), amplified where the
@@ -23,6 +23,8 @@
 //!   onto the sphere but ignores the rounding noise of z near the pole (z of a 10⁻⁴ rad cone
 //!   is always 1.0 in f32).
 
+mod warp_basic_support;
+
 use mcrt::glam::{DVec3, Vec2, Vec3};
 use mcrt::sampling::warp::{
     triangle_area, triangle_area_pdf, triangle_point, CosineHemisphere, InvertibleWarp,
@@ -32,23 +34,10 @@ use mcrt::sampling::warp::{
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
 use std::f64::consts::PI;
+use warp_basic_support::*;
 
 const ONE_MINUS: f32 = 1.0 - 1.0 / 16_777_216.0;
-const INTERIOR: f32 = 1e-3;
-const RT_TOL: f64 = 4e-6;
 const EDGE_TOL: f64 = 1e-5;
-const JAC_H: f64 = 1e-3;
-const JAC_MARGIN: f32 = 0.01;
-const JAC_TOL: f64 = 1e-2;
-
-const EXPONENTS: [f32; 5] = [0.0, 1.0, 10.0, 1e3, 1e6];
-const CONE_ANGLES: [f32; 5] = [
-    1e-4,
-    1e-2,
-    1.0,
-    std::f32::consts::FRAC_PI_2,
-    std::f32::consts::PI,
-];
 
 fn config(cases: u32) -> Config {
     Config {
@@ -75,30 +64,6 @@ fn u_any() -> impl Strategy<Value = Vec2> {
 
 fn u_jacobian() -> impl Strategy<Value = Vec2> {
     (JAC_MARGIN..1.0 - JAC_MARGIN, JAC_MARGIN..1.0 - JAC_MARGIN).prop_map(|(a, b)| Vec2::new(a, b))
-}
-
-/// A point of a warp's domain, seen in f64 3D (planar points get z = 0).
-trait Point: Copy + std::fmt::Debug {
-    fn d3(self) -> DVec3;
-    fn planar() -> bool;
-}
-
-impl Point for Vec2 {
-    fn d3(self) -> DVec3 {
-        DVec3::new(self.x.into(), self.y.into(), 0.0)
-    }
-    fn planar() -> bool {
-        true
-    }
-}
-
-impl Point for Vec3 {
-    fn d3(self) -> DVec3 {
-        self.as_dvec3()
-    }
-    fn planar() -> bool {
-        false
-    }
 }
 
 /// What the test knows of a warp independently of its code.
@@ -131,10 +96,6 @@ fn spec<P>(name: impl Into<String>, inside: impl Fn(DVec3) -> bool + 'static) ->
 
 fn unit(p: DVec3) -> bool {
     (p.length() - 1.0).abs() <= 1e-5
-}
-
-fn angle_to_z(p: DVec3) -> f64 {
-    p.x.hypot(p.y).atan2(p.z)
 }
 
 fn disk_spec(name: &str, concentric: bool) -> Spec<Vec2> {
@@ -173,11 +134,6 @@ fn power_spec(n: f32) -> Spec<Vec3> {
     let mut s = hemisphere_spec(&format!("power cosine {n}"));
     s.scale = (1.0 / (f64::from(n) + 1.0).sqrt()).min(1.0);
     s
-}
-
-fn circular_diff(a: f64, b: f64) -> f64 {
-    let d = (a - b).abs();
-    d.min(1.0 - d)
 }
 
 /// Every property that needs one u.
@@ -251,33 +207,12 @@ where
     worst
 }
 
-/// |det| of the numerical Jacobian of `w` at `u` (central differences, f64).
-fn numerical_jacobian<W: Warp>(w: &W, u: Vec2) -> f64
-where
-    W::Point: Point,
-{
-    let at = |du1: f64, du2: f64| {
-        let v = Vec2::new((f64::from(u.x) + du1) as f32, (f64::from(u.y) + du2) as f32);
-        w.sample(v).d3()
-    };
-    let d1 = (at(JAC_H, 0.0) - at(-JAC_H, 0.0)) / (2.0 * JAC_H);
-    let d2 = (at(0.0, JAC_H) - at(0.0, -JAC_H)) / (2.0 * JAC_H);
-    if W::Point::planar() {
-        (d1.x * d2.y - d1.y * d2.x).abs()
-    } else {
-        d1.cross(d2).dot(at(0.0, 0.0)).abs()
-    }
-}
-
 fn check_jacobian<W: Warp>(w: &W, s: &Spec<W::Point>, u: Vec2) -> Result<(), TestCaseError>
 where
     W::Point: Point,
 {
-    if s.concentric {
-        let (a, b) = (2.0 * f64::from(u.x) - 1.0, 2.0 * f64::from(u.y) - 1.0);
-        if (a.abs() - b.abs()).abs() < 8.0 * JAC_H {
-            return Ok(());
-        }
+    if s.concentric && near_concentric_diagonal(u) {
+        return Ok(());
     }
     let j = numerical_jacobian(w, u);
     let pdf = f64::from(w.pdf(w.sample(u)));
@@ -358,127 +293,6 @@ proptest! {
         let pdf = f64::from(cone.pdf(w));
         prop_assert!(pdf.is_finite() && ((pdf - reference) / reference).abs() <= 1e-3, "{pdf}");
     }
-}
-
-/// Largest interior round-trip error of one warp over a 257 × 257 grid of u in
-/// [10⁻³, 1 − 10⁻³]².
-fn max_round_trip_error<W: InvertibleWarp>(w: &W, periodic_u2: bool) -> f64 {
-    let n = 257;
-    let mut worst = 0.0f64;
-    for i in 0..n {
-        for j in 0..n {
-            let f = |k: usize| INTERIOR + (1.0 - 2.0 * INTERIOR) * k as f32 / (n - 1) as f32;
-            let u = Vec2::new(f(i), f(j));
-            let back = w.invert(w.sample(u));
-            assert!(back.is_finite());
-            let e2 = if periodic_u2 {
-                circular_diff(back.y.into(), u.y.into())
-            } else {
-                f64::from((back.y - u.y).abs())
-            };
-            worst = worst.max(f64::from((back.x - u.x).abs())).max(e2);
-        }
-    }
-    worst
-}
-
-#[test]
-fn round_trip_accuracy_is_within_tolerance() {
-    let mut rows = vec![
-        (
-            "disk polar".to_string(),
-            max_round_trip_error(&UniformDisk, true),
-        ),
-        (
-            "disk concentric".into(),
-            max_round_trip_error(&UniformDiskConcentric, false),
-        ),
-        (
-            "triangle".into(),
-            max_round_trip_error(&UniformTriangle, false),
-        ),
-        (
-            "uniform hemisphere".into(),
-            max_round_trip_error(&UniformHemisphere, true),
-        ),
-        (
-            "cosine hemisphere".into(),
-            max_round_trip_error(&CosineHemisphere, false),
-        ),
-        (
-            "theta over sin".into(),
-            max_round_trip_error(&ThetaOverSinHemisphere, true),
-        ),
-        ("sphere".into(), max_round_trip_error(&UniformSphere, true)),
-    ];
-    for theta in CONE_ANGLES {
-        let cone = UniformCone::from_angle(theta).unwrap();
-        rows.push((format!("cone {theta}"), max_round_trip_error(&cone, true)));
-    }
-    for n in EXPONENTS {
-        let lobe = PowerCosineHemisphere::new(n).unwrap();
-        rows.push((
-            format!("power cosine {n}"),
-            max_round_trip_error(&lobe, true),
-        ));
-    }
-    for (name, err) in &rows {
-        println!("round trip max |invert(sample(u)) - u|: {name:>20}: {err:.2e}");
-        assert!(err.is_finite() && *err <= RT_TOL, "{name}: {err}");
-    }
-}
-
-/// Accuracy at the extremes against f64 references, over a 257 × 257 grid of u in
-/// [10⁻³, 1 − 10⁻³]²: the largest relative error of the sampled polar angle θ and of the pdf
-/// at the sample. Printed with `--nocapture`; the figures are quoted in the derivations.
-fn extreme_errors<W: Warp<Point = Vec3>>(
-    w: &W,
-    theta_ref: impl Fn(f64) -> f64,
-    pdf_ref: impl Fn(f64) -> f64,
-) -> (f64, f64) {
-    let n = 257;
-    let (mut worst_theta, mut worst_pdf) = (0.0f64, 0.0f64);
-    for i in 0..n {
-        let u1 = INTERIOR + (1.0 - 2.0 * INTERIOR) * i as f32 / (n - 1) as f32;
-        for j in 0..n {
-            let u2 = INTERIOR + (1.0 - 2.0 * INTERIOR) * j as f32 / (n - 1) as f32;
-            let w_ = w.sample(Vec2::new(u1, u2));
-            let theta = angle_to_z(w_.as_dvec3());
-            let t_ref = theta_ref(f64::from(u1));
-            let pdf = f64::from(w.pdf(w_));
-            let p_ref = pdf_ref(t_ref);
-            assert!(theta.is_finite() && pdf.is_finite());
-            worst_theta = worst_theta.max(((theta - t_ref) / t_ref).abs());
-            worst_pdf = worst_pdf.max(((pdf - p_ref) / p_ref).abs());
-        }
-    }
-    (worst_theta, worst_pdf)
-}
-
-#[test]
-fn extremes_are_accurate_to_f32() {
-    let theta_max = 1e-4f32;
-    let omc = 2.0 * (f64::from(theta_max) / 2.0).sin().powi(2);
-    let cone = UniformCone::from_angle(theta_max).unwrap();
-    // 1 − cos θ = u₁ (1 − cos θ_max)  ⇒  θ = 2 asin(√(u₁ (1 − cos θ_max)/2)).
-    let (ct, cp) = extreme_errors(
-        &cone,
-        |u1| 2.0 * (u1 * omc / 2.0).sqrt().asin(),
-        |_| 1.0 / (2.0 * PI * omc),
-    );
-    println!("cone 1e-4 rad: max rel. error of theta {ct:.2e}, of pdf {cp:.2e}");
-    assert!(ct <= 1e-6 && cp <= 1e-6, "{ct} {cp}");
-
-    let n = 1e6f64;
-    let lobe = PowerCosineHemisphere::new(n as f32).unwrap();
-    // cos θ = u₁^{1/(n+1)}  ⇒  1 − cos θ = −expm1(ln u₁/(n + 1)).
-    let (pt, pp) = extreme_errors(
-        &lobe,
-        |u1| 2.0 * ((-(u1.ln() / (n + 1.0)).exp_m1()) / 2.0).sqrt().asin(),
-        |theta: f64| (n + 1.0) / (2.0 * PI) * theta.cos().powf(n),
-    );
-    println!("power cosine 1e6: max rel. error of theta {pt:.2e}, of pdf {pp:.2e}");
-    assert!(pt <= 1e-6 && pp <= 1e-5, "{pt} {pp}");
 }
 
 /// Any finite f32, with a bias towards 0, ±1 and huge magnitudes.
@@ -568,84 +382,5 @@ proptest! {
         let pdf = triangle_area_pdf(a, b, c);
         prop_assert!(p.is_finite() && pdf.is_finite() && pdf > 0.0);
         prop_assert!(((f64::from(pdf) - 2e20) / 2e20).abs() <= 1e-6, "{pdf}");
-    }
-}
-
-#[test]
-fn cone_from_cosine_matches_from_angle() {
-    let a = UniformCone::new(0.5).unwrap();
-    let b = UniformCone::from_angle(std::f32::consts::FRAC_PI_3).unwrap();
-    let (x, y) = (a.one_minus_cos_theta_max(), b.one_minus_cos_theta_max());
-    assert!(x.is_finite() && y.is_finite() && (x - y).abs() <= 1e-7);
-    assert!((a.solid_angle() - std::f32::consts::PI).abs() <= 1e-6);
-}
-
-/// Largest |pdf(sample(u)) · J(u) − 1| over a 101 × 101 grid of u in [0.01, 0.99]² (skipping
-/// the concentric diagonals as `check_jacobian` does).
-fn max_jacobian_error<W: Warp>(w: &W, concentric: bool) -> f64
-where
-    W::Point: Point,
-{
-    let n = 101;
-    let mut worst = 0.0f64;
-    for i in 0..n {
-        for j in 0..n {
-            let f = |k: usize| JAC_MARGIN + (1.0 - 2.0 * JAC_MARGIN) * k as f32 / (n - 1) as f32;
-            let u = Vec2::new(f(i), f(j));
-            let (a, b) = (2.0 * f64::from(u.x) - 1.0, 2.0 * f64::from(u.y) - 1.0);
-            if concentric && (a.abs() - b.abs()).abs() < 8.0 * JAC_H {
-                continue;
-            }
-            let product = f64::from(w.pdf(w.sample(u))) * numerical_jacobian(w, u);
-            assert!(product.is_finite());
-            worst = worst.max((product - 1.0).abs());
-        }
-    }
-    worst
-}
-
-#[test]
-fn jacobian_identity_on_a_grid() {
-    let mut rows = vec![
-        (
-            "disk polar".to_string(),
-            max_jacobian_error(&UniformDisk, false),
-        ),
-        (
-            "disk concentric".into(),
-            max_jacobian_error(&UniformDiskConcentric, true),
-        ),
-        (
-            "triangle".into(),
-            max_jacobian_error(&UniformTriangle, false),
-        ),
-        (
-            "uniform hemisphere".into(),
-            max_jacobian_error(&UniformHemisphere, false),
-        ),
-        (
-            "cosine hemisphere".into(),
-            max_jacobian_error(&CosineHemisphere, true),
-        ),
-        (
-            "theta over sin".into(),
-            max_jacobian_error(&ThetaOverSinHemisphere, false),
-        ),
-        ("sphere".into(), max_jacobian_error(&UniformSphere, false)),
-    ];
-    for theta in CONE_ANGLES {
-        let cone = UniformCone::from_angle(theta).unwrap();
-        rows.push((format!("cone {theta}"), max_jacobian_error(&cone, false)));
-    }
-    for n in EXPONENTS {
-        let lobe = PowerCosineHemisphere::new(n).unwrap();
-        rows.push((
-            format!("power cosine {n}"),
-            max_jacobian_error(&lobe, false),
-        ));
-    }
-    for (name, err) in &rows {
-        println!("max |pdf * J - 1|: {name:>20}: {err:.2e}");
-        assert!(err.is_finite() && *err <= JAC_TOL, "{name}: {err}");
     }
 }
