@@ -7,7 +7,7 @@ use mcrt::scene::description::{
     BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
     SceneDescription, ShapeKind,
 };
-use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError, SceneErrorKind};
+use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError};
 use std::path::Path;
 
 const CORNELL: &str = "tests/data/cornell-box.xml";
@@ -82,7 +82,10 @@ fn veach_plates_are_ggx_mirrors_of_rising_roughness() {
         assert!(s.emitter.is_none());
     }
     let m = d.shapes[0].to_world;
-    assert_eq!(m.row(1), mcrt::glam::Vec4::new(0., 0.048321, 0.996133, -1.9));
+    assert_eq!(
+        m.row(1),
+        mcrt::glam::Vec4::new(0., 0.048321, 0.996133, -1.9)
+    );
 }
 
 #[test]
@@ -126,7 +129,10 @@ fn veach_walls_compose_transforms_in_mitsuba_order() {
     let expected = Mat4::from_translation(Vec3::new(0.0, 0.0, -4.0))
         * Mat4::from_scale(Vec3::new(20.0, 10.0, 1.0));
     assert_mat_close(back.to_world, expected, 0.0);
-    assert_eq!(back.to_world.transform_point3(Vec3::new(1., 1., 0.)), Vec3::new(20., 10., -4.));
+    assert_eq!(
+        back.to_world.transform_point3(Vec3::new(1., 1., 0.)),
+        Vec3::new(20., 10., -4.)
+    );
     let floor = &d.shapes[9];
     // The rectangle's +z normal is rotated to +y, and the floor sits at y = −2.5.
     let n = floor.to_world.transform_vector3(Vec3::Z);
@@ -243,10 +249,16 @@ fn materials_emitters_and_integrators() {
             ..
         }
     ));
-    assert!(matches!(d.shapes[1].bsdf, BsdfDesc::Dielectric { int_ior, ext_ior, .. }
-        if int_ior == 1.333 && ext_ior == 1.0));
+    assert!(
+        matches!(d.shapes[1].bsdf, BsdfDesc::Dielectric { int_ior, ext_ior, .. }
+        if int_ior == 1.333 && ext_ior == 1.0)
+    );
     assert!(d.shapes[1].flip_normals);
-    let ShapeKind::Obj { filename, face_normals } = &d.shapes[2].kind else {
+    let ShapeKind::Obj {
+        filename,
+        face_normals,
+    } = &d.shapes[2].kind
+    else {
         panic!()
     };
     assert_eq!(filename, Path::new("tests/data/cornell-box.xml"));

@@ -57,12 +57,28 @@ fn unknown_element_attribute_plugin_and_parameter() {
     check(&e, 2, "<shape type=\"cube\">", "\"size\"");
 
     let e = err("\n<bsdf type=\"plastic\"/>");
-    assert!(matches!(e.kind, SceneErrorKind::UnknownPlugin { .. }), "{e}");
-    check(&e, 3, "<bsdf type=\"plastic\">", "unknown bsdf plugin type \"plastic\"");
+    assert!(
+        matches!(e.kind, SceneErrorKind::UnknownPlugin { .. }),
+        "{e}"
+    );
+    check(
+        &e,
+        3,
+        "<bsdf type=\"plastic\">",
+        "unknown bsdf plugin type \"plastic\"",
+    );
 
     let e = err("<sensor type=\"perspective\">\n<float name=\"fvo\" value=\"40\"/>\n</sensor>");
-    assert!(matches!(e.kind, SceneErrorKind::UnknownParameter { .. }), "{e}");
-    check(&e, 3, "<float name=\"fvo\">", "unknown parameter \"fvo\" for sensor \"perspective\"");
+    assert!(
+        matches!(e.kind, SceneErrorKind::UnknownParameter { .. }),
+        "{e}"
+    );
+    check(
+        &e,
+        3,
+        "<float name=\"fvo\">",
+        "unknown parameter \"fvo\" for sensor \"perspective\"",
+    );
 }
 
 #[test]
@@ -73,10 +89,19 @@ fn wrong_types_and_malformed_values() {
 
     let cases = [
         ("<float name=\"fov\" value=\"4o\"/>", "<float name=\"fov\">"),
-        ("<integer name=\"x\" value=\"1.5\"/>", "<integer name=\"x\">"),
-        ("<boolean name=\"x\" value=\"yes\"/>", "<boolean name=\"x\">"),
+        (
+            "<integer name=\"x\" value=\"1.5\"/>",
+            "<integer name=\"x\">",
+        ),
+        (
+            "<boolean name=\"x\" value=\"yes\"/>",
+            "<boolean name=\"x\">",
+        ),
         ("<rgb name=\"x\" value=\"1, 2\"/>", "<rgb name=\"x\">"),
-        ("<point name=\"x\" value=\"1 2 nan\"/>", "<point name=\"x\">"),
+        (
+            "<point name=\"x\" value=\"1 2 nan\"/>",
+            "<point name=\"x\">",
+        ),
         ("<float name=\"x\" value=\"inf\"/>", "<float name=\"x\">"),
     ];
     for (prop, element) in cases {
@@ -91,16 +116,27 @@ fn wrong_types_and_malformed_values() {
 
 #[test]
 fn undefined_parameter_and_reference() {
-    let e = err("<integrator type=\"path\">\n<integer name=\"max_depth\" value=\"$depth\"/></integrator>");
-    assert!(matches!(e.kind, SceneErrorKind::UndefinedParameter(_)), "{e}");
+    let e = err(
+        "<integrator type=\"path\">\n<integer name=\"max_depth\" value=\"$depth\"/></integrator>",
+    );
+    assert!(
+        matches!(e.kind, SceneErrorKind::UndefinedParameter(_)),
+        "{e}"
+    );
     check(&e, 3, "<integer name=\"max_depth\">", "$depth");
 
     let e = err("<shape type=\"cube\">\n<ref id=\"nowhere\"/></shape>");
-    assert!(matches!(e.kind, SceneErrorKind::UndefinedReference(_)), "{e}");
+    assert!(
+        matches!(e.kind, SceneErrorKind::UndefinedReference(_)),
+        "{e}"
+    );
     check(&e, 3, "<ref id=\"nowhere\">", "nowhere");
 
     let e = err("<shape type=\"cube\" id=\"c\"/>\n<shape type=\"cube\"><ref id=\"c\"/></shape>");
-    assert!(matches!(e.kind, SceneErrorKind::UndefinedReference(_)), "{e}");
+    assert!(
+        matches!(e.kind, SceneErrorKind::UndefinedReference(_)),
+        "{e}"
+    );
     check(&e, 3, "<ref id=\"c\">", "not a <bsdf>");
 
     let e = err("<bsdf type=\"diffuse\" id=\"a\"/>\n<bsdf type=\"diffuse\" id=\"a\"/>");
@@ -147,7 +183,10 @@ fn unsupported_and_misplaced() {
 #[test]
 fn duplicate_parameter_and_second_sensor() {
     let e = err("<shape type=\"sphere\"><float name=\"radius\" value=\"1\"/>\n<float name=\"radius\" value=\"2\"/></shape>");
-    assert!(matches!(e.kind, SceneErrorKind::DuplicateParameter(_)), "{e}");
+    assert!(
+        matches!(e.kind, SceneErrorKind::DuplicateParameter(_)),
+        "{e}"
+    );
     check(&e, 3, "<float name=\"radius\">", "given twice");
     let e = err("<sensor type=\"perspective\"/>\n<sensor type=\"perspective\"/>");
     check(&e, 3, "<sensor type=\"perspective\">", "second <sensor>");

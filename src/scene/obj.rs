@@ -90,9 +90,7 @@ impl Reader {
     }
 
     fn face<'a>(&mut self, words: impl Iterator<Item = &'a str>) -> Result<(), String> {
-        let corners: Vec<u32> = words
-            .map(|w| self.corner(w))
-            .collect::<Result<_, _>>()?;
+        let corners: Vec<u32> = words.map(|w| self.corner(w)).collect::<Result<_, _>>()?;
         if corners.len() < 3 {
             return Err(format!(
                 "a face needs at least 3 vertices, found {}",

@@ -24,9 +24,16 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<IntegratorDesc> {
         }
         "direct" => {
             let max = u32::MAX as i64;
-            let shading = p.int_in("shading_samples", 1, max)?.unwrap_or(1);
-            let emitter = p.int_in("emitter_samples", 1, max)?.unwrap_or(shading);
+            let shading = p.int_in("shading_samples", 0, max)?.unwrap_or(1);
+            let emitter = p.int_in("emitter_samples", 0, max)?.unwrap_or(shading);
             let bsdf = p.int_in("bsdf_samples", 0, max)?.unwrap_or(shading);
+            if emitter == 0 && bsdf == 0 {
+                return Err(p.invalid(
+                    "emitter_samples",
+                    e,
+                    "and bsdf_samples cannot both be zero",
+                ));
+            }
             hide_emitters(ctx, e, &mut p)?;
             IntegratorDesc::Direct {
                 emitter_samples: emitter as u32,

@@ -55,6 +55,17 @@ pub(crate) fn read_tree(
         allow_dtd: false,
         nodes_limit: 10_000_000,
     };
+    // roxmltree parses nested elements recursively: refuse deep nesting before it does.
+    if let Some(offset) = too_deep(xml) {
+        let (line, column) = line_column(xml, offset);
+        return Err(SceneError::new(
+            file,
+            Some(line),
+            Some(column),
+            None,
+            SceneErrorKind::Xml(format!("elements nested deeper than {MAX_DEPTH}")),
+        ));
+    }
     let doc = roxmltree::Document::parse_with_options(xml, opts).map_err(|e| {
         let pos = e.pos();
         SceneError::new(
@@ -96,6 +107,73 @@ pub(crate) fn read_tree(
             Err(m) => err(SceneErrorKind::Version(m)),
         },
     }
+}
+
+/// The byte offset of the first start tag nested deeper than [`MAX_DEPTH`], by a scan
+/// that skips comments, CDATA, processing instructions and quoted attribute values.
+fn too_deep(xml: &str) -> Option<usize> {
+    let b = xml.as_bytes();
+    let skip_to = |from: usize, end: &str| {
+        xml[from..]
+            .find(end)
+            .map_or(b.len(), |k| from + k + end.len())
+    };
+    let (mut i, mut depth) = (0usize, 0usize);
+    while i < b.len() {
+        if b[i] != b'<' {
+            i += 1;
+            continue;
+        }
+        let rest = &xml[i..];
+        if rest.starts_with("<!--") {
+            i = skip_to(i, "-->");
+        } else if rest.starts_with("<![CDATA[") {
+            i = skip_to(i, "]]>");
+        } else if rest.starts_with("<?") {
+            i = skip_to(i, "?>");
+        } else if rest.starts_with("</") {
+            depth = depth.saturating_sub(1);
+            i = skip_to(i, ">");
+        } else {
+            let start = i;
+            let (end, self_closing) = tag_end(b, i + 1);
+            if !self_closing {
+                depth += 1;
+                if depth > MAX_DEPTH + 1 {
+                    return Some(start);
+                }
+            }
+            i = end;
+        }
+    }
+    None
+}
+
+/// The index after the `>` closing a start tag that begins at `i`, and whether it is
+/// self-closing (`/>`). Quoted values may contain `>`.
+fn tag_end(b: &[u8], mut i: usize) -> (usize, bool) {
+    let mut quote: Option<u8> = None;
+    while i < b.len() {
+        match (quote, b[i]) {
+            (Some(q), c) if c == q => quote = None,
+            (None, b'"' | b'\'') => quote = Some(b[i]),
+            (None, b'>') => return (i + 1, i > 0 && b[i - 1] == b'/'),
+            _ => {}
+        }
+        i += 1;
+    }
+    (b.len(), false)
+}
+
+/// 1-based line and column (in characters) of a byte offset.
+fn line_column(xml: &str, offset: usize) -> (u32, u32) {
+    let before = &xml[..offset.min(xml.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(col).unwrap_or(u32::MAX),
+    )
 }
 
 /// Accepts `major.minor.patch` with major 2 or more (older files need Mitsuba's
@@ -231,6 +309,24 @@ impl Reader<'_, '_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn deep_nesting_is_refused_before_parsing() {
+        let deep = |n: usize| {
+            format!(
+                "<scene version=\"3.0.0\">{}{}</scene>",
+                "<a>".repeat(n),
+                "</a>".repeat(n)
+            )
+        };
+        assert_eq!(too_deep(&deep(MAX_DEPTH)), None);
+        assert!(too_deep(&deep(MAX_DEPTH + 1)).is_some());
+        let e = read_tree(&deep(1_000_000), None, &[]).unwrap_err();
+        assert!(matches!(e.kind, SceneErrorKind::Xml(_)), "{e}");
+        let flat = "<s>\n<!-- <a><a> --><b x=\">\"/><c/></s>";
+        assert_eq!(too_deep(flat), None);
+        assert_eq!(line_column(flat, 4), (2, 1));
+    }
 
     #[test]
     fn versions() {
