@@ -265,3 +265,39 @@ fn materials_emitters_and_integrators() {
     assert!(!face_normals);
     assert_eq!(d.emitters.len(), 3);
 }
+
+#[test]
+fn cornell_box_direct_lighting_define() {
+    let mut parsed = load(CORNELL, &[("max_depth", "2")]);
+    parsed.source = None;
+    assert_eq!(parsed, cornell_box_with(64, 256, 2));
+}
+
+#[test]
+fn obj_shapes_resolve_against_the_scene_folder_and_read() {
+    let dir = std::env::temp_dir().join(format!("mcrt-loader-obj-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("meshes")).unwrap();
+    let obj = "# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
+    std::fs::write(dir.join("meshes/quad.obj"), obj).unwrap();
+    let scene = r#"<scene version="3.0.0"><shape type="obj">
+        <string name="filename" value="meshes/quad.obj"/>
+        <boolean name="face_normals" value="true"/>
+    </shape></scene>"#;
+    std::fs::write(dir.join("scene.xml"), scene).unwrap();
+    let d = load_scene(&dir.join("scene.xml"), &[]).unwrap();
+    let ShapeKind::Obj {
+        filename,
+        face_normals,
+    } = &d.shapes[0].kind
+    else {
+        panic!("{:?}", d.shapes[0].kind)
+    };
+    assert!(*face_normals);
+    assert_eq!(filename, &dir.join("meshes/quad.obj"));
+    let mesh = mcrt::scene::obj::read_obj(filename).unwrap();
+    assert_eq!(mesh.indices, vec![[0, 1, 2], [0, 2, 3]]);
+    assert_eq!(mesh.normals, vec![Vec3::Z; 4]);
+    let missing = mcrt::scene::obj::read_obj(&dir.join("nope.obj")).unwrap_err();
+    assert!(missing.to_string().contains("nope.obj"), "{missing}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -55,7 +55,8 @@ pub(crate) fn read_bsdf(ctx: &Ctx, e: &Elem) -> Res<BsdfDesc> {
             specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
         },
         "roughconductor" => {
-            let distribution = match p.string("distribution")?.as_deref() {
+            let distribution = p.string("distribution")?.map(|d| d.to_ascii_lowercase());
+            let distribution = match distribution.as_deref() {
                 None | Some("beckmann") => MicrofacetKind::Beckmann,
                 Some("ggx") => MicrofacetKind::Ggx,
                 Some(other) => {
