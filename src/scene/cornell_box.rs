@@ -138,3 +138,26 @@ fn shape(id: &str, kind: ShapeKind, m: [f32; 16], bsdf: &BsdfDesc) -> ShapeDesc 
     s.bsdf = bsdf.clone();
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn light_faces_down_and_boxes_stand_on_the_floor() {
+        let s = cornell_box();
+        let light = &s.shapes[0];
+        assert!(light.emitter.is_some());
+        let n = light.to_world.transform_vector3(Vec3::Z).normalize();
+        assert!(n.is_finite() && (n - Vec3::NEG_Y).length() < 1e-6, "{n}");
+        for b in &s.shapes[6..] {
+            let bottom = b.to_world.transform_point3(Vec3::new(-1.0, -1.0, -1.0)).y;
+            assert!(
+                bottom.is_finite() && (bottom + 1.0).abs() < 1e-6,
+                "{bottom}"
+            );
+        }
+        let floor_normal = s.shapes[1].to_world.transform_vector3(Vec3::Z);
+        assert!((floor_normal - Vec3::Y).length() < 1e-6);
+    }
+}
