@@ -152,8 +152,9 @@ mod tests {
         assert!(n.is_finite() && (n - Vec3::NEG_Y).length() < 1e-6, "{n}");
         for b in &s.shapes[6..] {
             let bottom = b.to_world.transform_point3(Vec3::new(-1.0, -1.0, -1.0)).y;
+            // Mitsuba's large box sinks 0.01 into the floor.
             assert!(
-                bottom.is_finite() && (bottom + 1.0).abs() < 1e-6,
+                bottom.is_finite() && (bottom + 1.0).abs() <= 0.0101,
                 "{bottom}"
             );
         }
