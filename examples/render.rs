@@ -11,7 +11,7 @@
 
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrt::integrator::Strategy;
-use mcrt::scene::description::{IntegratorDesc, SceneDescription};
+use mcrt::scene::description::SceneDescription;
 use mcrt::scene::render::{AccelKind, RenderOptions, Renderer};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -91,22 +91,13 @@ fn parse_args() -> Result<Args, String> {
 
 /// The built-in Cornell box, with the defines that its XML file declares applied.
 fn builtin(defines: &[(String, String)]) -> Result<SceneDescription, String> {
-    let mut d = mcrt::scene::render::cornell_box_standin();
+    let (mut spp, mut res, mut max_depth) = (64u32, 256u32, -1i32);
     for (k, v) in defines {
         let bad = || format!("-D {k}={v}: not a valid integer");
         match k.as_str() {
-            "spp" => d.sensor.sampler.sample_count = v.parse().map_err(|_| bad())?,
-            "res" => {
-                let r: u32 = v.parse().map_err(|_| bad())?;
-                d.sensor.film.width = r;
-                d.sensor.film.height = r;
-            }
-            "max_depth" => {
-                let m: i32 = v.parse().map_err(|_| bad())?;
-                if let IntegratorDesc::Path { max_depth, .. } = &mut d.integrator {
-                    *max_depth = m;
-                }
-            }
+            "spp" => spp = v.parse().map_err(|_| bad())?,
+            "res" => res = v.parse().map_err(|_| bad())?,
+            "max_depth" => max_depth = v.parse().map_err(|_| bad())?,
             _ => {
                 return Err(format!(
                     "-D {k}: the Cornell box has no parameter '{k}' (spp, res, max_depth)"
@@ -114,14 +105,29 @@ fn builtin(defines: &[(String, String)]) -> Result<SceneDescription, String> {
             }
         }
     }
-    Ok(d)
+    Ok(mcrt::scene::cornell_box::cornell_box_with(
+        spp, res, max_depth,
+    ))
 }
 
-fn load(path: &std::path::Path, _defines: &[(String, String)]) -> Result<SceneDescription, String> {
-    Err(format!(
-        "{}: the scene loader is not in this build yet",
-        path.display()
-    ))
+fn load(path: &std::path::Path, defines: &[(String, String)]) -> Result<SceneDescription, String> {
+    let mut desc = mcrt::scene::loader::load_scene(path, defines).map_err(|e| e.to_string())?;
+    black_default_on_emitters(&mut desc);
+    Ok(desc)
+}
+
+/// Mitsuba 3 gives an emitting shape without a BSDF a *black* diffuse BSDF (reflectance 0),
+/// not the usual 0.5. TEMPORARY, until the loader applies that rule itself: an emitter whose
+/// BSDF equals the default is taken to have none.
+fn black_default_on_emitters(desc: &mut SceneDescription) {
+    use mcrt::scene::description::BsdfDesc;
+    for s in &mut desc.shapes {
+        if s.emitter.is_some() && s.bsdf == BsdfDesc::default() {
+            s.bsdf = BsdfDesc::Diffuse {
+                reflectance: mcrt::glam::Vec3::ZERO,
+            };
+        }
+    }
 }
 
 fn run() -> Result<(), String> {

@@ -55,17 +55,13 @@ fn all_agree(desc: &SceneDescription, spp: u32) {
 
 #[test]
 fn cornell_box_strategies_agree() {
-    let mut desc = mcrt::scene::render::cornell_box_standin();
-    desc.sensor.film.width = 64;
-    desc.sensor.film.height = 64;
+    let desc = mcrt::scene::cornell_box::cornell_box_with(64, 64, -1);
     all_agree(&desc, 64);
 }
 
 #[test]
 fn cornell_box_direct_strategies_agree() {
-    let mut desc = mcrt::scene::render::cornell_box_standin();
-    desc.sensor.film.width = 64;
-    desc.sensor.film.height = 64;
+    let mut desc = mcrt::scene::cornell_box::cornell_box_with(64, 64, -1);
     desc.integrator = IntegratorDesc::Direct {
         emitter_samples: 2,
         bsdf_samples: 1,

@@ -1,7 +1,7 @@
 //! Lambertian reflection (Mitsuba's `diffuse`), one-sided.
 
-use super::standin::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::integrator::{Bsdf, BsdfFlags, BsdfSample};
+use crate::sampling::warp::{CosineHemisphere, Warp};
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
@@ -35,7 +35,7 @@ impl Bsdf for Diffuse {
         if wo.z <= 0.0 {
             return 0.0;
         }
-        cosine_hemisphere_pdf(wi)
+        CosineHemisphere.pdf(wi)
     }
 
     #[inline]
@@ -52,8 +52,7 @@ impl Bsdf for Diffuse {
         if wo.z <= 0.0 {
             return None;
         }
-        let wi = cosine_hemisphere(u2);
-        let pdf = cosine_hemisphere_pdf(wi);
+        let (wi, pdf) = CosineHemisphere.sample_with_pdf(u2);
         if !(pdf > 0.0) {
             return None;
         }

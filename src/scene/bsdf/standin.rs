@@ -1,22 +1,8 @@
-//! Temporary stand-ins for the warps (`CosineHemisphere`, `Ggx`, `Beckmann`, `GgxVisible`)
-//! until branches warps-basic and warps-microfacet land; deleted then.
+//! Temporary stand-in for the microfacet warps (`Ggx`, `Beckmann`, `GgxVisible`,
+//! `BeckmannVisible`) until branch warps-microfacet lands; deleted then.
 
 use glam::{Vec2, Vec3};
-use std::f32::consts::{FRAC_1_PI, PI};
-
-/// Cosine-weighted hemisphere (Malley's method on a polar disk); pdf cos θ / π per sr.
-pub(crate) fn cosine_hemisphere(u: Vec2) -> Vec3 {
-    let r = u.x.sqrt();
-    let phi = 2.0 * PI * u.y;
-    let (s, c) = phi.sin_cos();
-    let (x, y) = (r * c, r * s);
-    Vec3::new(x, y, (1.0 - x * x - y * y).max(0.0).sqrt())
-}
-
-/// Density of [`cosine_hemisphere`] per unit solid angle.
-pub(crate) fn cosine_hemisphere_pdf(w: Vec3) -> f32 {
-    w.z.max(0.0) * FRAC_1_PI
-}
+use std::f32::consts::PI;
 
 /// Isotropic microfacet distribution with Mitsuba's Smith G1.
 #[derive(Debug, Clone, Copy, PartialEq)]

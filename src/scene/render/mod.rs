@@ -35,8 +35,6 @@ pub(crate) mod geo {
     pub use super::standin_geometry::*;
 }
 
-#[doc(hidden)]
-pub use geo::cornell_box_standin;
 pub use geo::AccelKind;
 
 use crate::integrator::{DirectIntegrator, Integrator, PathTracer, Strategy};
