@@ -63,7 +63,7 @@ impl PiecewiseConstant2D {
     /// for a negative, NaN or infinite value, [`SamplingError::ZeroTable`] when every value
     /// is 0.
     pub fn new(values: &[f32], width: usize, height: usize) -> Result<Self, SamplingError> {
-        let expected = width.checked_mul(height).unwrap_or(usize::MAX);
+        let expected = width.saturating_mul(height);
         if values.len() != expected {
             return Err(SamplingError::ShapeMismatch {
                 expected,
