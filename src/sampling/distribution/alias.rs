@@ -2,7 +2,7 @@
 
 use glam::Vec2;
 
-use super::piecewise_1d::{clamp_unit, validate_table};
+use super::piecewise_1d::{clamp_unit, drop_underflowing, validate_table};
 use crate::sampling::SamplingError;
 
 /// One column of the table: keep the column's own index with probability `keep`, else
@@ -19,7 +19,8 @@ struct Column {
 /// Each of the `n` equally likely columns holds its own index with probability `keep` and
 /// an alias otherwise; one uniform `u` picks the column (`⌊u n⌋`) and its fractional part
 /// `u n − ⌊u n⌋` is the coin. Built in `f64` in O(n). An index whose weight is zero is never
-/// returned, for any `u ∈ [0,1)`.
+/// returned, for any `u ∈ [0,1)`; nor is one whose probability underflows `f32` (below
+/// about 10⁻⁴⁵ of the total), which counts as zero.
 ///
 /// **Resolution.** A single `f32` sample value has at most 2²⁴ distinct values, so the
 /// probabilities are realised to about 2⁻²⁴ absolute: with 10⁶ entries the coin has only a
@@ -53,11 +54,14 @@ impl AliasTable {
     /// negative, NaN or infinite weight, [`SamplingError::ZeroTable`] when every weight is 0.
     pub fn new(weights: &[f32]) -> Result<Self, SamplingError> {
         validate_table(weights)?;
-        let total: f64 = weights.iter().map(|&w| f64::from(w)).sum();
-        if total <= 0.0 {
+        let mut w: Vec<f64> = weights.iter().map(|&x| f64::from(x)).collect();
+        let sum: f64 = w.iter().sum();
+        if sum <= 0.0 {
             return Err(SamplingError::ZeroTable);
         }
-        let pmf: Vec<f64> = weights.iter().map(|&w| f64::from(w) / total).collect();
+        drop_underflowing(&mut w, 1.0 / sum);
+        let total: f64 = w.iter().sum();
+        let pmf: Vec<f64> = w.iter().map(|&x| x / total).collect();
         Ok(Self {
             columns: build_columns(&pmf),
             pmf,

@@ -14,6 +14,9 @@ pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 /// binary search. A bin whose value is zero is never sampled, for any `u ∈ [0,1)`, and a
 /// sample always lies inside the bin reported with it and strictly below `max`.
 ///
+/// Entries so small against the total that their density underflows `f32` (below about
+/// 10⁻⁴⁵) count as zero: they are never sampled and their pdf is 0.
+///
 /// The bins must be wider than an `f32` step on `[min, max)` (about 2²⁴ bins on `[0,1)`)
 /// for every bin to hold a representable sample; narrower tables still never return a
 /// zero bin, but the sample may then sit one `f32` step outside its bin.
@@ -70,27 +73,28 @@ impl PiecewiseConstant1D {
 
     /// Builds from entries already known to be finite and `>= 0`, not all zero.
     pub(crate) fn from_validated(
-        func: Vec<f64>,
+        mut func: Vec<f64>,
         min: f32,
         max: f32,
     ) -> Result<Self, SamplingError> {
         crate::sampling::error::check_param("min", min, "finite", |_| true)?;
         crate::sampling::error::check_param("max", max, "finite and > min", |m| m > min)?;
-        let mut cdf = Vec::with_capacity(func.len() + 1);
-        let mut sum = 0.0_f64;
-        cdf.push(sum);
-        for &v in &func {
-            sum += v;
-            cdf.push(sum);
+        let range = f64::from(max) - f64::from(min);
+        let sum: f64 = func.iter().sum();
+        if sum <= 0.0 {
+            return Err(SamplingError::ZeroTable);
         }
+        let n = func.len() as f64;
+        drop_underflowing(&mut func, n / (sum * range));
+        let cdf = running_sums(&func);
+        let total = cdf[func.len()];
         let last_nonzero = func
             .iter()
             .rposition(|&v| v > 0.0)
             .ok_or(SamplingError::ZeroTable)?;
-        let range = f64::from(max) - f64::from(min);
-        let pdf_scale = func.len() as f64 / (sum * range);
+        let pdf_scale = func.len() as f64 / (total * range);
         let peak = func.iter().fold(0.0_f64, |m, &v| m.max(v)) * pdf_scale;
-        if !(peak as f32).is_finite() || !sum.is_finite() {
+        if !((peak as f32).is_finite() && total.is_finite()) {
             return Err(SamplingError::InvalidParameter {
                 name: "max - min",
                 value: range,
@@ -254,6 +258,28 @@ pub(crate) fn validate_table(values: &[f32]) -> Result<(), SamplingError> {
         }),
         None => Ok(()),
     }
+}
+
+/// Sets to zero the entries whose density `v · scale` underflows `f32` (below about
+/// 10⁻⁴⁵): they could never be reported with a positive pdf, so they are never sampled.
+pub(crate) fn drop_underflowing(func: &mut [f64], scale: f64) {
+    for v in func.iter_mut() {
+        if (*v * scale) as f32 == 0.0 {
+            *v = 0.0;
+        }
+    }
+}
+
+/// `[0, f₀, f₀ + f₁, …]`: the unnormalised CDF at the bin edges.
+fn running_sums(func: &[f64]) -> Vec<f64> {
+    let mut cdf = Vec::with_capacity(func.len() + 1);
+    let mut sum = 0.0_f64;
+    cdf.push(sum);
+    for &v in func {
+        sum += v;
+        cdf.push(sum);
+    }
+    cdf
 }
 
 /// Clamps a sample value into `[0, 1 − 2⁻²⁴]`; NaN becomes 0.

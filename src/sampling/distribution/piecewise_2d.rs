@@ -3,7 +3,7 @@
 
 use glam::Vec2;
 
-use super::piecewise_1d::{validate_table, PiecewiseConstant1D};
+use super::piecewise_1d::{drop_underflowing, validate_table, PiecewiseConstant1D};
 use crate::sampling::SamplingError;
 
 /// A piecewise-constant density on `[0,1)²` proportional to a `width × height` table stored
@@ -15,7 +15,8 @@ use crate::sampling::SamplingError;
 /// marginal/conditional method: `v` is drawn from the marginal density of the rows (row sums)
 /// with `u.y`, then `u` from the chosen row's conditional density with `u.x` (see
 /// `docs/derivations/distributions.md`). Rows that are all zero are allowed (they are never
-/// chosen); no zero-valued cell is ever sampled.
+/// chosen); no zero-valued cell is ever sampled. Cells whose density underflows `f32`
+/// (below about 10⁻⁴⁵) count as zero.
 ///
 /// **Environment maps.** For a latitude–longitude map with `u = φ / 2π` and `v = θ / π`,
 /// the density of the direction per unit solid angle is `p(ω) = p(u, v) / (2π² sin θ)`
@@ -43,8 +44,8 @@ pub struct PiecewiseConstant2D {
     conditional: Vec<Option<PiecewiseConstant1D>>,
     /// The marginal distribution of the rows (proportional to row sums).
     marginal: PiecewiseConstant1D,
-    /// The table, row-major.
-    values: Vec<f32>,
+    /// The table, row-major (entries whose density underflows `f32` set to 0).
+    values: Vec<f64>,
     /// Columns.
     width: usize,
     /// Rows.
@@ -71,14 +72,19 @@ impl PiecewiseConstant2D {
             });
         }
         validate_table(values)?;
+        let mut cells: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
+        let sum: f64 = cells.iter().sum();
+        if sum <= 0.0 {
+            return Err(SamplingError::ZeroTable);
+        }
+        drop_underflowing(&mut cells, expected as f64 / sum);
         let mut conditional = Vec::with_capacity(height);
         let mut row_sums = Vec::with_capacity(height);
-        for row in values.chunks_exact(width) {
-            let func: Vec<f64> = row.iter().map(|&v| f64::from(v)).collect();
-            let sum: f64 = func.iter().sum();
-            row_sums.push(sum);
-            conditional.push(if sum > 0.0 {
-                Some(PiecewiseConstant1D::from_validated(func, 0.0, 1.0)?)
+        for row in cells.chunks_exact(width) {
+            let row_sum: f64 = row.iter().sum();
+            row_sums.push(row_sum);
+            conditional.push(if row_sum > 0.0 {
+                Some(PiecewiseConstant1D::from_validated(row.to_vec(), 0.0, 1.0)?)
             } else {
                 None
             });
@@ -88,7 +94,7 @@ impl PiecewiseConstant2D {
         Ok(Self {
             conditional,
             marginal,
-            values: values.to_vec(),
+            values: cells,
             width,
             height,
             pdf_scale,
@@ -150,7 +156,7 @@ impl PiecewiseConstant2D {
         if x >= self.width || y >= self.height {
             return 0.0;
         }
-        f64::from(self.values[y * self.width + x]) / self.marginal.total()
+        self.values[y * self.width + x] / self.marginal.total()
     }
 
     /// The cell `[column, row]` holding `p`, or `None` outside `[0,1)²`.
@@ -186,7 +192,7 @@ impl PiecewiseConstant2D {
 
     /// The density per unit area in cell (`x`, `y`).
     fn pdf_of_cell(&self, x: usize, y: usize) -> f32 {
-        (f64::from(self.values[y * self.width + x]) * self.pdf_scale) as f32
+        (self.values[y * self.width + x] * self.pdf_scale) as f32
     }
 }
 
