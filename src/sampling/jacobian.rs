@@ -112,10 +112,14 @@ impl WarpPoint for Vec3 {
 /// A good default step for [`numerical_jacobian`]: 2⁻⁹ ≈ 1.95·10⁻³.
 ///
 /// Central differences of an `f32` warp have truncation error `O(h²)` and rounding error
-/// about `ε₃₂ / h ≈ 6·10⁻⁸ / h` relative to the output's scale; 2⁻⁹ balances them near
-/// `(ε₃₂)^(2/3)`, so `J` is good to about 10⁻⁴ relative for a warp whose derivatives are
-/// of order 1 (tests should allow 10⁻³). Warps with steep derivatives (narrow lobes, high
-/// exponents) need a smaller step and a looser tolerance.
+/// about `ε₃₂ / h ≈ 6·10⁻⁸ / h` relative to the output's scale; 2⁻⁹ balances them for
+/// derivatives of order 1. Measured on a 400 × 400 grid of cell centres with
+/// `u₁ ∈ (0.05, 0.95)`: `max |pdf · J − 1|` is 1.6·10⁻⁴ for the polar disk map and
+/// 1.5·10⁻⁴ for the uniform sphere map, so tests can allow 10⁻³. Near a singular point of
+/// square-root type (`√u₁` at `u₁ = 0`, the sphere's poles) at distance `s`, the truncation
+/// error grows like `0.1 · (h / s)²` (4·10⁻² at `s = h`): keep `s ≥ 10 h` for 10⁻³. Warps
+/// with steep derivatives (narrow lobes, high exponents) need a smaller step and a looser
+/// tolerance.
 pub const DEFAULT_JACOBIAN_STEP: f64 = 1.0 / 512.0;
 
 /// `J(u) = sqrt(det(DᵀD))` of `w.sample` at `u`, by central differences with step `h`,
@@ -124,12 +128,15 @@ pub const DEFAULT_JACOBIAN_STEP: f64 = 1.0 / 512.0;
 ///
 /// Returns `None` when `h` is not finite and positive, when `u` lies within `h` of the
 /// square's edges (`u.x` or `u.y` outside `[h, 1 − h)`, so the stencil would leave
-/// `[0,1)`), or when an output is not finite. Seams and singular points are the caller's
-/// to skip: the stencil must not straddle a seam (the concentric disk's diagonals
-/// `u.x = u.y` and `u.x = 1 − u.y`, the `φ = 0` cut of polar maps is fine since it is an
-/// edge of the square), and near a singular point (`√u₁` at `u₁ = 0`) the truncation error
-/// grows like `h² / u₁²`; filter `u` beforehand, or use
-/// [`numerical_jacobian_excluding`]. See [`DEFAULT_JACOBIAN_STEP`] for the accuracy.
+/// `[0,1)`), or when an output is not finite.
+///
+/// Seams and singular points are the caller's to skip: the stencil must not straddle a
+/// seam where the map's derivative jumps (the concentric disk's diagonals `u.x = u.y` and
+/// `u.x = 1 − u.y`, and its centre; the `φ = 0` cut of polar maps lies on the square's edge
+/// `u₂ = 0`, which the edge rule already skips), and near a singular point (`√u₁` at
+/// `u₁ = 0`, the poles of sphere maps) the truncation error grows like `(h / s)²` at
+/// distance `s`. Filter `u` beforehand, or use [`numerical_jacobian_excluding`]. See
+/// [`DEFAULT_JACOBIAN_STEP`] for the accuracy.
 #[must_use]
 pub fn numerical_jacobian<W>(w: &W, u: Vec2, h: f64) -> Option<f64>
 where

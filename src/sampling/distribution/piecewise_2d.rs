@@ -190,6 +190,13 @@ impl PiecewiseConstant2D {
         &self.marginal
     }
 
+    /// The conditional distribution of row `y` (over `u`), or `None` for an all-zero row or
+    /// past the end.
+    #[must_use]
+    pub fn conditional(&self, y: usize) -> Option<&PiecewiseConstant1D> {
+        self.conditional.get(y)?.as_ref()
+    }
+
     /// The density per unit area in cell (`x`, `y`).
     fn pdf_of_cell(&self, x: usize, y: usize) -> f32 {
         (self.values[y * self.width + x] * self.pdf_scale) as f32
