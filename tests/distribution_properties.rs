@@ -302,3 +302,48 @@ fn piecewise_frequencies_match_masses() {
         }
     }
 }
+
+/// A 2D table shaped like a lat-long environment map with a small bright sun: samples land
+/// in the sun as often as its mass says, and never in a zero cell (the poles' rows are 0).
+#[test]
+fn environment_map_with_a_sun() {
+    let (w, h) = (512usize, 256usize);
+    let mut v = vec![0.0f32; w * h];
+    for y in 0..h {
+        let sin_theta = (std::f32::consts::PI * (y as f32 + 0.5) / h as f32).sin();
+        for x in 0..w {
+            let sun = (300..302).contains(&x) && (60..62).contains(&y);
+            v[y * w + x] = if y == 0 || y == h - 1 {
+                0.0
+            } else if sun {
+                1e5
+            } else {
+                0.2
+            } * sin_theta;
+        }
+    }
+    let d = PiecewiseConstant2D::new(&v, w, h).unwrap();
+    let sun_mass: f64 = [(300, 60), (301, 60), (300, 61), (301, 61)]
+        .iter()
+        .map(|&(x, y)| d.cell_mass(x, y))
+        .sum();
+    let mut rng = rand_pcg::Pcg32::seed_from_u64(11);
+    let n = 200_000;
+    let mut in_sun = 0usize;
+    for _ in 0..n {
+        let (p, pdf, [x, y]) = d.sample(Vec2::new(rng.random(), rng.random()));
+        assert!(v[y * w + x] > 0.0 && pdf.is_finite() && pdf > 0.0 && p.is_finite());
+        let sin_theta = (std::f32::consts::PI * p.y).sin();
+        let pdf_omega = mcrt::sampling::jacobian::solid_angle_pdf_from_lat_long(pdf, sin_theta);
+        assert!(pdf_omega.is_finite() && pdf_omega > 0.0);
+        in_sun += usize::from((300..302).contains(&x) && (60..62).contains(&y));
+    }
+    let (mean, sd) = (
+        n as f64 * sun_mass,
+        (n as f64 * sun_mass * (1.0 - sun_mass)).sqrt(),
+    );
+    assert!(
+        sun_mass > 0.5 && (in_sun as f64 - mean).abs() <= 5.0 * sd,
+        "{in_sun} vs {mean}"
+    );
+}
