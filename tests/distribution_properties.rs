@@ -88,6 +88,23 @@ proptest! {
     }
 
     #[test]
+    fn pc1d_on_random_intervals(values in table(100), min in -1e4f32..1e4, width in 1e-3f32..1e4, u in unit()) {
+        let max = min + width;
+        let Ok(d) = PiecewiseConstant1D::new_on(&values, min, max) else {
+            // Only bins narrower than the f32 spacing are rejected.
+            let spacing = min.abs().max(max.abs()) * f32::EPSILON;
+            prop_assert!((max - min) / (values.len() as f32) < spacing);
+            return Ok(());
+        };
+        let (x, pdf, i) = d.sample(u);
+        prop_assert!(x.is_finite() && x >= min && x < max, "{x} outside [{min}, {max})");
+        prop_assert!(values[i] > 0.0);
+        prop_assert_eq!(d.bin_of(x), Some(i));
+        prop_assert!(pdf.is_finite() && pdf > 0.0 && pdf == d.pdf(x));
+        prop_assert!(finite_close(pdf, values[i] / d.integral(), 1e-5));
+    }
+
+    #[test]
     fn pc1d_extreme_dynamic_range(
         values in prop::collection::vec(prop_oneof![Just(0.0f32), Just(1e-38f32), Just(1e30f32), 0.0f32..1.0], 1..64),
         u in unit(),

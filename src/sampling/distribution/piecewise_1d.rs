@@ -17,9 +17,8 @@ pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 /// Entries so small against the total that their density underflows `f32` (below about
 /// 10⁻⁴⁵) count as zero: they are never sampled and their pdf is 0.
 ///
-/// The bins must be wider than an `f32` step on `[min, max)` (about 2²⁴ bins on `[0,1)`)
-/// for every bin to hold a representable sample; narrower tables still never return a
-/// zero bin, but the sample may then sit one `f32` step outside its bin.
+/// Every bin must be at least one `f32` step wide, so that it holds a sample: at most 2²⁴
+/// bins on `[0, 1)`, fewer on intervals far from 0 (the constructors check).
 ///
 /// Reference: Pharr, Jakob & Humphreys, 2023, *Physically Based Rendering* (4th ed.),
 /// section A.5, "Sampling piecewise-constant functions".
@@ -64,7 +63,8 @@ impl PiecewiseConstant1D {
     ///
     /// # Errors
     /// As [`new`](Self::new), and [`SamplingError::InvalidParameter`] when `min` or `max` is
-    /// not finite, `max <= min`, or the density would overflow `f32`.
+    /// not finite, `max <= min`, a bin would be narrower than the `f32` spacing on the
+    /// interval, or the density would overflow `f32`.
     pub fn new_on(values: &[f32], min: f32, max: f32) -> Result<Self, SamplingError> {
         validate_table(values)?;
         let func = values.iter().map(|&v| f64::from(v)).collect();
@@ -80,6 +80,7 @@ impl PiecewiseConstant1D {
         crate::sampling::error::check_param("min", min, "finite", |_| true)?;
         crate::sampling::error::check_param("max", max, "finite and > min", |m| m > min)?;
         let range = f64::from(max) - f64::from(min);
+        check_bin_width(func.len(), min, max)?;
         let sum: f64 = func.iter().sum();
         if sum <= 0.0 {
             return Err(SamplingError::ZeroTable);
@@ -260,6 +261,22 @@ pub(crate) fn validate_table(values: &[f32]) -> Result<(), SamplingError> {
     }
 }
 
+/// Rejects bins narrower than the `f32` spacing on `[min, max)`: such a bin may hold no
+/// `f32` at all, so a sample could not be placed inside it.
+fn check_bin_width(n: usize, min: f32, max: f32) -> Result<(), SamplingError> {
+    let m = min.abs().max(max.abs());
+    let spacing = f64::from(m) - f64::from(m.next_down());
+    if (f64::from(max) - f64::from(min)) / n as f64 >= spacing {
+        Ok(())
+    } else {
+        Err(SamplingError::InvalidParameter {
+            name: "values.len()",
+            value: n as f64,
+            expected: "at most (max - min) / (f32 spacing at max(|min|, |max|)) bins",
+        })
+    }
+}
+
 /// Sets to zero the entries whose density `v · scale` underflows `f32` (below about
 /// 10⁻⁴⁵): they could never be reported with a positive pdf, so they are never sampled.
 pub(crate) fn drop_underflowing(func: &mut [f64], scale: f64) {
@@ -311,6 +328,9 @@ mod tests {
         }
         assert!(PiecewiseConstant1D::new_on(&[1.0], 1.0, 1.0).is_err());
         assert!(PiecewiseConstant1D::new_on(&[1.0], 0.0, f32::NAN).is_err());
+        // Bins of 10⁻³ near 10⁶, where f32 steps are 0.0625: rejected.
+        assert!(PiecewiseConstant1D::new_on(&[1.0; 1000], 1e6, 1e6 + 1.0).is_err());
+        assert!(PiecewiseConstant1D::new_on(&[1.0; 16], 1e6, 1e6 + 1.0).is_ok());
     }
 
     #[test]

@@ -62,7 +62,8 @@ impl PiecewiseConstant2D {
     /// [`SamplingError::ShapeMismatch`] when `values.len() != width · height`,
     /// [`SamplingError::EmptyTable`] for a zero dimension, [`SamplingError::InvalidEntry`]
     /// for a negative, NaN or infinite value, [`SamplingError::ZeroTable`] when every value
-    /// is 0.
+    /// is 0, [`SamplingError::InvalidParameter`] when `width` or `height` exceeds 2²⁴ (a
+    /// cell would be narrower than an `f32` step).
     pub fn new(values: &[f32], width: usize, height: usize) -> Result<Self, SamplingError> {
         let expected = width.saturating_mul(height);
         if values.len() != expected {
