@@ -11,6 +11,29 @@
 //! `>= 0` for finite inputs `>= 0`: where the Jacobian is zero or infinite (a grazing light,
 //! a sample at the pole or the centre) it returns 0, and a result beyond `f32` range is
 //! clamped to `f32::MAX`. NaN inputs give 0.
+//!
+//! ```
+//! use mcrt::glam::Vec2;
+//! use mcrt::sampling::jacobian::{jacobian_identity_error, DEFAULT_JACOBIAN_STEP};
+//! use mcrt::sampling::warp::Warp;
+//!
+//! /// A user's warp: the rectangle [0, 2] × [0, 3], pdf 1/6 per unit area.
+//! struct Rect;
+//! impl Warp for Rect {
+//!     type Point = Vec2;
+//!     fn sample(&self, u: Vec2) -> Vec2 {
+//!         Vec2::new(2.0 * u.x, 3.0 * u.y)
+//!     }
+//!     fn pdf(&self, _: Vec2) -> f32 {
+//!         1.0 / 6.0
+//!     }
+//! }
+//!
+//! let err = jacobian_identity_error(&Rect, Vec2::new(0.3, 0.6), DEFAULT_JACOBIAN_STEP).unwrap();
+//! assert!(err < 1e-3);
+//! // Too close to the square's edge for the central difference: no answer.
+//! assert_eq!(jacobian_identity_error(&Rect, Vec2::new(0.0, 0.6), DEFAULT_JACOBIAN_STEP), None);
+//! ```
 
 use glam::{Vec2, Vec3};
 

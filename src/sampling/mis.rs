@@ -88,20 +88,23 @@ fn two_strategies(n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32, power: fn(f64) -> 
 }
 
 fn n_strategies(i: usize, items: &[(f32, f32)], power: fn(f64) -> f64) -> f32 {
-    let Some(products) = items
-        .iter()
-        .map(|&(n, p)| product(n, p))
-        .collect::<Option<Vec<f64>>>()
-    else {
+    let Some(&(n_i, pdf_i)) = items.get(i) else {
         return 0.0;
     };
-    let Some(&f) = products.get(i) else {
+    let Some(f) = product(n_i, pdf_i) else {
         return 0.0;
     };
+    let mut infinite = 0usize;
+    for &(n, pdf) in items {
+        match product(n, pdf) {
+            None => return 0.0,
+            Some(g) if g.is_infinite() => infinite += 1,
+            Some(_) => {}
+        }
+    }
     if f == 0.0 {
         return 0.0;
     }
-    let infinite = products.iter().filter(|p| p.is_infinite()).count();
     if infinite > 0 {
         return if f.is_infinite() {
             1.0 / infinite as f32
@@ -109,8 +112,12 @@ fn n_strategies(i: usize, items: &[(f32, f32)], power: fn(f64) -> f64) -> f32 {
             0.0
         };
     }
-    // Ratios to f keep every term ≤ (max/min)^β, finite in f64 for f32 inputs.
-    let sum: f64 = products.iter().map(|&g| power(g / f)).sum();
+    // Ratios to f keep every term finite or +∞ in f64 (never NaN), and the own term is 1.
+    let sum: f64 = items
+        .iter()
+        .filter_map(|&(n, pdf)| product(n, pdf))
+        .map(|g| power(g / f))
+        .sum();
     (1.0 / sum) as f32
 }
 

@@ -3,6 +3,8 @@
 
 use glam::Vec2;
 
+use crate::sampling::warp::{InvertibleWarp, Warp};
+
 use super::piecewise_1d::{drop_underflowing, validate_table, PiecewiseConstant1D};
 use crate::sampling::SamplingError;
 
@@ -204,6 +206,32 @@ impl PiecewiseConstant2D {
     }
 }
 
+/// The distribution as a warp of the unit square onto itself, so generic code (the
+/// chi-square harness, property tests) can take it. The inherent
+/// [`sample`](PiecewiseConstant2D::sample) also returns the pdf and the cell.
+impl Warp for PiecewiseConstant2D {
+    type Point = Vec2;
+
+    fn sample(&self, u: Vec2) -> Vec2 {
+        PiecewiseConstant2D::sample(self, u).0
+    }
+
+    fn pdf(&self, p: Vec2) -> f32 {
+        PiecewiseConstant2D::pdf(self, p)
+    }
+
+    fn sample_with_pdf(&self, u: Vec2) -> (Vec2, f32) {
+        let (p, pdf, _) = PiecewiseConstant2D::sample(self, u);
+        (p, pdf)
+    }
+}
+
+impl InvertibleWarp for PiecewiseConstant2D {
+    fn invert(&self, p: Vec2) -> Vec2 {
+        PiecewiseConstant2D::invert(self, p)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -263,5 +291,9 @@ mod tests {
         let (p, _, _) = d.sample(u);
         let back = d.invert(p);
         assert!(back.is_finite() && (back - u).abs().max_element() < 1e-6);
+        // The same through the warp traits.
+        let (q, pdf) = Warp::sample_with_pdf(&d, u);
+        assert_eq!((q, pdf), (p, d.pdf(p)));
+        assert_eq!(InvertibleWarp::invert(&d, q), back);
     }
 }
