@@ -243,6 +243,8 @@ mod tests {
         assert_close(x, 0.7, 1e-13);
         let x = inv.sample(|x| x * x, |_| 0.0, 0.49);
         assert_close(x, 0.7, 1e-13);
+        let x = inv.sample(|x| x * x, |_| -1.0, 0.49);
+        assert_close(x, 0.7, 1e-13);
     }
 
     #[test]
