@@ -47,6 +47,8 @@ pub struct PiecewiseConstant1D {
     pdf_scale: f64,
     /// Index of the last bin with a nonzero value.
     last_nonzero: usize,
+    /// `n / (max − min)`: maps `x − min` to the bin coordinate.
+    bins_per_unit: f64,
 }
 
 impl PiecewiseConstant1D {
@@ -109,6 +111,7 @@ impl PiecewiseConstant1D {
             max,
             pdf_scale,
             last_nonzero,
+            bins_per_unit: n / range,
         })
     }
 
@@ -147,7 +150,7 @@ impl PiecewiseConstant1D {
     #[must_use]
     pub fn invert(&self, x: f32) -> f32 {
         let n = self.func.len() as f64;
-        let t = (f64::from(x) - f64::from(self.min)) / self.range() * n;
+        let t = self.bin_coordinate(x);
         if t.is_nan() || t <= 0.0 {
             return 0.0;
         }
@@ -221,17 +224,17 @@ impl PiecewiseConstant1D {
         f64::from(self.max) - f64::from(self.min)
     }
 
-    /// `(x − min) / (max − min) · n`, whose integer part is the bin index; NaN for NaN.
+    /// `(x − min) · n / (max − min)`, whose integer part is the bin index; NaN for NaN.
+    /// Monotone in `x`; exact on `[0, 1)` (then `n / (max − min) = n`).
     fn bin_coordinate(&self, x: f32) -> f64 {
-        (f64::from(x) - f64::from(self.min)) / self.range() * self.func.len() as f64
+        (f64::from(x) - f64::from(self.min)) * self.bins_per_unit
     }
 
     /// The `f32` at fraction `d ∈ [0,1]` of bin `i`, nudged by whole `f32` steps so that
     /// [`bin_of`](Self::bin_of) agrees it lies in bin `i` (rounding to `f32` can carry it
     /// onto a neighbour, or onto `max`).
     fn point_in_bin(&self, i: usize, d: f64) -> f32 {
-        let n = self.func.len() as f64;
-        let mut x = (f64::from(self.min) + (i as f64 + d) / n * self.range()) as f32;
+        let mut x = (f64::from(self.min) + (i as f64 + d) / self.bins_per_unit) as f32;
         for _ in 0..4 {
             let t = self.bin_coordinate(x);
             if t >= (i + 1) as f64 {
