@@ -22,7 +22,7 @@ const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
 /// normalised.
 fn check_wi(wi: Vec3) -> Result<Vec3, SamplingError> {
     let len = wi.length();
-    if !wi.is_finite() || !((len - 1.0).abs() <= 1e-3) {
+    if !wi.is_finite() || (len - 1.0).abs() > 1e-3 {
         return Err(SamplingError::InvalidDirection {
             name: "wi",
             expected: "finite and unit length (|wi| within 1e-3 of 1)",
