@@ -50,7 +50,7 @@ impl Planar {
     ) -> Result<Self, SamplingError> {
         let cross = e1.cross(e2);
         let len = cross.length();
-        if !(len > 1e-12 * e1.length() * e2.length()) || !len.is_finite() {
+        if !len.is_finite() || len <= 1e-12 * e1.length() * e2.length() {
             return Err(SamplingError::Degenerate {
                 what: "the shape has zero area (collinear or zero-length edges)",
             });
@@ -58,7 +58,8 @@ impl Planar {
         let normal = cross / len;
         let to = p0 - origin;
         let scale = to.length().max(e1.length()).max(e2.length());
-        if !(normal.dot(to).abs() > 1e-9 * scale) {
+        let off_plane = normal.dot(to).abs();
+        if off_plane.is_nan() || off_plane <= 1e-9 * scale {
             return Err(SamplingError::Degenerate {
                 what: "the origin lies in the plane of the shape (zero solid angle)",
             });
@@ -81,7 +82,7 @@ impl Planar {
     pub(crate) fn hit(&self, dir: DVec3) -> Option<(f64, f64)> {
         let denom = self.normal.dot(dir);
         let dist = self.normal.dot(self.p0 - self.origin) / denom;
-        if !(dist > 0.0) || !dist.is_finite() {
+        if !dist.is_finite() || dist <= 0.0 {
             return None;
         }
         let p = self.origin + dist * dir - self.p0;
