@@ -207,7 +207,14 @@ impl InvertibleWarp for Beckmann {
     fn invert(&self, m: Vec3) -> Vec2 {
         let (r2, z2) = radial_axial(m);
         let e = r2 / (z2 * self.alpha * self.alpha);
-        let u1 = if e.is_nan() { 0.0 } else { -(-e).exp_m1() };
+        // 1 − exp(−e), rounded once whichever side of 1/2 it falls.
+        let u1 = if e.is_nan() {
+            0.0
+        } else if e > std::f32::consts::LN_2 {
+            1.0 - (-e).exp()
+        } else {
+            -(-e).exp_m1()
+        };
         Vec2::new(u1.min(ONE_MINUS_EPS), azimuth_to_unit(m))
     }
 }
@@ -293,7 +300,15 @@ impl InvertibleWarp for Ggx {
     fn invert(&self, m: Vec3) -> Vec2 {
         let (r2, z2) = radial_axial(m);
         let den = self.alpha * self.alpha * z2 + r2;
-        let u1 = if den > 0.0 { r2 / den } else { 0.0 };
+        // r²/(α²z² + r²), or 1 − α²z²/(α²z² + r²) near 1 so it is rounded once.
+        let a2z2 = self.alpha * self.alpha * z2;
+        let u1 = if den <= 0.0 || den.is_nan() {
+            0.0
+        } else if r2 > a2z2 {
+            1.0 - a2z2 / den
+        } else {
+            r2 / den
+        };
         Vec2::new(u1.min(ONE_MINUS_EPS), azimuth_to_unit(m))
     }
 }

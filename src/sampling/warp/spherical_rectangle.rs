@@ -101,18 +101,15 @@ impl SphericalRectangle {
         let corners = [p0, p0 + ex, p0 + ex + ey, p0 + ey].map(|p| (p - o).normalize());
         let vos = triangle_solid_angle(corners[0], corners[1], corners[2])
             + triangle_solid_angle(corners[0], corners[2], corners[3]);
-        let omega = urena.map_or(vos, |(_, s, _)| s);
-        let usable = orthogonal
-            && matches!(urena, Some((_, s, g)) if s >= f64::from(SPHERICAL_RECTANGLE_MIN_SOLID_ANGLE)
-                && g >= f64::from(SPHERICAL_RECTANGLE_MIN_ANGLE));
+        let usable = urena.filter(|&(_, s, g)| {
+            orthogonal
+                && s >= f64::from(SPHERICAL_RECTANGLE_MIN_SOLID_ANGLE)
+                && g >= f64::from(SPHERICAL_RECTANGLE_MIN_ANGLE)
+        });
         Ok(Self {
             planar,
-            urena: if usable {
-                urena.map(|(u, _, _)| u)
-            } else {
-                None
-            },
-            omega,
+            urena: usable.map(|(u, _, _)| u),
+            omega: usable.map_or(vos, |(_, s, _)| s),
         })
     }
 

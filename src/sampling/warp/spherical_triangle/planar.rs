@@ -7,7 +7,8 @@ use glam::{DVec2, DVec3, Vec3};
 use crate::sampling::SamplingError;
 
 /// Angular tolerance (radians) of the inside test, a few `f32` ulps of a unit direction:
-/// a sampled direction rounded to `f32` must still count as hitting the shape.
+/// a sampled direction rounded to `f32` must still count as hitting the shape. On the
+/// shape's plane the band is this angle times d/|cos θ'|.
 pub(crate) const ANGULAR_TOLERANCE: f64 = 1e-6;
 
 /// The shape p0 + s e1 + t e2 with s, t ≥ 0 and s + t ≤ 1 (triangle) or s, t ≤ 1
@@ -89,8 +90,10 @@ impl Planar {
         let inv = 1.0 / self.cross.dot(self.normal);
         let s = p.cross(self.e2).dot(self.normal) * inv;
         let t = self.e1.cross(p).dot(self.normal) * inv;
-        // Coordinate tolerances: the angular band, in units of each coordinate's height.
-        let band = ANGULAR_TOLERANCE * dist * inv;
+        // Coordinate tolerances: the angular band, stretched by 1/|cos θ'| at grazing views
+        // (where an angular error moves the hit point furthest), in units of each
+        // coordinate's height.
+        let band = ANGULAR_TOLERANCE * dist / denom.abs() * inv;
         let (ts, tt) = (band * self.e2.length(), band * self.e1.length());
         let inside = if self.triangle {
             let tu = band * (self.e2 - self.e1).length();
