@@ -97,7 +97,7 @@ proptest! {
     }
 
     #[test]
-    fn visible_normals(ai in 0usize..6, ti in 0usize..5, phi in 0.0f32..6.28, u in square()) {
+    fn visible_normals(ai in 0usize..6, ti in 0usize..5, phi in 0.0f32..std::f32::consts::TAU, u in square()) {
         let (alpha, deg) = (ALPHAS[ai], ANGLES_DEG[ti]);
         let wi = wi_at(deg, phi);
         let ctx = format!("alpha {alpha} θi {deg} φi {phi} u {u}");
