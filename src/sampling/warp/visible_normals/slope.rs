@@ -64,11 +64,16 @@ impl SlopeCdf {
                 break;
             }
             let step = x - f / self.density(x);
-            x = if step > lo && step < hi && step.is_finite() {
+            let next = if step > lo && step < hi && step.is_finite() {
                 step
             } else {
                 0.5 * (lo + hi)
             };
+            let converged = (next - x).abs() <= 1e-12 * (1.0 + x.abs());
+            x = next;
+            if converged {
+                break;
+            }
         }
         x.clamp(lo, hi)
     }
