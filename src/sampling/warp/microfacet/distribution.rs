@@ -4,7 +4,8 @@ use glam::Vec3;
 
 /// A microfacet normal distribution with Smith masking, in the z-up local frame.
 ///
-/// Implemented by [`Beckmann`] and [`Ggx`]; the BSDFs are written against this trait.
+/// Implemented by [`Beckmann`](super::Beckmann) and [`Ggx`](super::Ggx); the BSDFs are
+/// written against this trait.
 pub trait MicrofacetDistribution {
     /// The roughness α.
     fn alpha(&self) -> f32;
