@@ -159,6 +159,14 @@ fn shape() -> impl Strategy<Value = (Vec3, Vec3, Vec3, Vec3)> {
     ]
 }
 
+/// Relative agreement expected between the pdf of the exact sampled point and the pdf at the
+/// `f32`-rounded direction: in the area fallback the pdf d²/(A|cos θ′|) moves by ~2δ/|cos θ′|
+/// for a direction error δ ≈ 1e-7 rad, which matters for shapes seen nearly edge-on.
+fn rounding_tolerance(o: Vec3, point: Vec3, normal: Vec3) -> f32 {
+    let cos = (point - o).normalize().dot(normal.normalize()).abs();
+    1e-4 + 1e-6 / cos
+}
+
 fn check_direction(dir: Vec3, pdf: f32, ctx: &str) -> Result<(), TestCaseError> {
     prop_assert!(
         dir.is_finite() && (dir.length() - 1.0).abs() < 1e-5,
@@ -181,7 +189,8 @@ proptest! {
         let (dir, pdf) = tri.sample_with_pdf(u);
         check_direction(dir, pdf, &ctx)?;
         if let Some((point, pdf_point)) = tri.sample_point(u) {
-            prop_assert!(point.is_finite() && (pdf_point / pdf - 1.0).abs() < 1e-3, "{ctx}");
+            let tol = rounding_tolerance(o, point, e1.cross(e2));
+            prop_assert!(point.is_finite() && (pdf_point / pdf - 1.0).abs() < tol, "{ctx}");
             let to = (point - o).normalize();
             prop_assert!((to - dir).length() < 1e-4, "{ctx}: {to} vs {dir}");
         }
@@ -201,7 +210,8 @@ proptest! {
         let (dir, pdf) = rect.sample_with_pdf(u);
         check_direction(dir, pdf, &ctx)?;
         if let Some((point, pdf_point)) = rect.sample_point(u) {
-            prop_assert!(point.is_finite() && (pdf_point / pdf - 1.0).abs() < 1e-3, "{ctx}");
+            let tol = rounding_tolerance(o, point, e1.cross(e2));
+            prop_assert!(point.is_finite() && (pdf_point / pdf - 1.0).abs() < tol, "{ctx}");
         }
         if !rect.is_area_sampled() {
             prop_assert!((pdf * rect.solid_angle() - 1.0).abs() < 1e-5, "{ctx}");
