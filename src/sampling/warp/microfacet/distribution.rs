@@ -6,6 +6,19 @@ use glam::Vec3;
 ///
 /// Implemented by [`Beckmann`](super::Beckmann) and [`Ggx`](super::Ggx); the BSDFs are
 /// written against this trait.
+///
+/// ```
+/// use mcrt::glam::Vec3;
+/// use mcrt::sampling::warp::{Ggx, MicrofacetDistribution};
+///
+/// // The microfacet part of a rough mirror, D G / (4 cos θi cos θo), at the half vector.
+/// let ggx = Ggx::new(0.2).unwrap();
+/// let (wi, wo) = (Vec3::new(0.3, 0.0, 0.954), Vec3::new(-0.5, 0.1, 0.86));
+/// let m = (wi + wo).normalize();
+/// let f = ggx.d(m) * ggx.g(wi, wo, m) / (4.0 * wi.z * wo.z);
+/// assert!(f.is_finite() && f > 0.0);
+/// assert!(ggx.g(wi, wo, m) <= ggx.g_height_correlated(wi, wo, m));
+/// ```
 pub trait MicrofacetDistribution {
     /// The roughness α.
     fn alpha(&self) -> f32;
