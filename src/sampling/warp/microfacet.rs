@@ -1,7 +1,7 @@
 //! Microfacet normal distributions (Beckmann, GGX): the NDF, Smith masking, and sampling of
 //! microfacet normals with pdf D(m) cos θ_m.
 //!
-//! Conventions (derivations in `docs/derivations/warps-microfacet.md`):
+//! Conventions (derivations in `docs/derivations.md`):
 //! - D is normalised in projected area: ∫ D(m) cos θ_m dω_m = 1 over the upper hemisphere.
 //! - [`Beckmann`] and [`Ggx`] sample m with pdf D(m) cos θ_m per steradian (Mitsuba 3's
 //!   convention for `square_to_beckmann_pdf`). A renderer turns this half-vector pdf into a

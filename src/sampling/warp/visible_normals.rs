@@ -3,7 +3,7 @@
 //!
 //! Both warps take wi in the z-up local frame, strictly above the horizon. They work from
 //! normal incidence to 89.9° and for α from 1e-4 to 1 (tested; see
-//! `docs/derivations/warps-microfacet.md`). Neither is invertible.
+//! `docs/derivations.md`). Neither is invertible.
 
 use glam::{DVec3, Vec2, Vec3};
 
