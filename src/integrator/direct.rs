@@ -72,7 +72,7 @@ impl DirectIntegrator {
             n_l
         };
         for _ in 0..n_delta {
-            let u_pick = rng.next_1d();
+            let u_pick = rng.next_2d();
             let u = rng.next_2d();
             if !smooth {
                 continue;

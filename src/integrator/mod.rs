@@ -16,7 +16,6 @@
 mod direct;
 mod frame;
 mod path;
-pub(crate) mod standin;
 mod strategy;
 mod traits;
 

@@ -123,7 +123,7 @@ impl PathTracer {
             let bsdf = scene.bsdf(&sp);
             let wo = sp.frame.to_local(wo_world);
             let flags = bsdf.flags();
-            let u_pick = rng.next_1d();
+            let u_pick = rng.next_2d();
             let u_light = rng.next_2d();
             if flags.smooth && (self.strategy.samples_lights() || scene.has_delta_lights()) {
                 if let Some(ls) = scene.sample_light(&sp, u_pick, u_light) {

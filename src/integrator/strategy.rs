@@ -1,6 +1,6 @@
 //! Which sampling strategies an estimator uses at every path vertex, and their MIS weights.
 
-use super::standin::{balance_heuristic, power_heuristic};
+use crate::sampling::mis::{balance_heuristic, power_heuristic};
 
 /// How light arriving at a vertex is estimated.
 ///

@@ -140,8 +140,9 @@ pub trait Scene {
     /// Whether any light is a Dirac delta (point light).
     fn has_delta_lights(&self) -> bool;
 
-    /// Next-event estimation: choose a light (`u_pick`) and a direction toward it (`u`).
-    fn sample_light(&self, from: &SurfacePoint, u_pick: f32, u: Vec2) -> Option<LightSample>;
+    /// Next-event estimation: choose a light (`u_pick.x`), a part of it such as a triangle
+    /// (`u_pick.y`) and a direction toward it (`u`).
+    fn sample_light(&self, from: &SurfacePoint, u_pick: Vec2, u: Vec2) -> Option<LightSample>;
 
     /// Density per unit solid angle (with the light choice) with which
     /// [`Scene::sample_light`] at `from` returns the direction toward the emitter point `hit`.

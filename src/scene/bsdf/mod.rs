@@ -11,16 +11,16 @@ mod dielectric;
 mod diffuse;
 mod fresnel;
 mod rough_conductor;
-mod standin;
 
 pub use conductor::{Conductor, Fresnel};
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
 pub use fresnel::{fresnel_conductor, fresnel_dielectric};
-pub use rough_conductor::RoughConductor;
+pub use rough_conductor::{Ndf, RoughConductor};
 
 use super::description::{BsdfDesc, ConductorFresnel, MicrofacetKind};
 use crate::integrator::{Bsdf, BsdfFlags, BsdfSample};
+use crate::sampling::SamplingError;
 use glam::{Vec2, Vec3};
 
 /// Any of the supported materials.
@@ -128,12 +128,15 @@ fn fresnel_of(f: &ConductorFresnel) -> Fresnel {
 impl AnyBsdf {
     /// The material a description asks for, and whether it is two-sided (`twosided`
     /// wrappers nest; any depth means two-sided).
-    pub fn from_desc(desc: &BsdfDesc) -> Sided<AnyBsdf> {
+    ///
+    /// # Errors
+    /// A roughness outside the microfacet warps' range.
+    pub fn from_desc(desc: &BsdfDesc) -> Result<Sided<AnyBsdf>, SamplingError> {
         let bsdf = match desc {
             BsdfDesc::TwoSided(inner) => {
-                let mut s = Self::from_desc(inner);
+                let mut s = Self::from_desc(inner)?;
                 s.two_sided = true;
-                return s;
+                return Ok(s);
             }
             BsdfDesc::Diffuse { reflectance } => AnyBsdf::Diffuse(Diffuse {
                 reflectance: *reflectance,
@@ -155,7 +158,7 @@ impl AnyBsdf {
                 *alpha,
                 fresnel_of(fresnel),
                 *specular_reflectance,
-            )),
+            )?),
             BsdfDesc::Dielectric {
                 int_ior,
                 ext_ior,
@@ -167,10 +170,10 @@ impl AnyBsdf {
                 specular_transmittance: *specular_transmittance,
             }),
         };
-        Sided {
+        Ok(Sided {
             bsdf,
             two_sided: false,
-        }
+        })
     }
 
     /// The Lambertian albedo if this is a diffuse material.

@@ -2,20 +2,70 @@
 //! GGX or Beckmann normals, sampled with visible normals.
 
 use super::conductor::Fresnel;
-use super::standin::Ndf;
 use crate::integrator::{Bsdf, BsdfFlags, BsdfSample};
+use crate::sampling::warp::{
+    Beckmann, BeckmannVisible, Ggx, GgxVisible, MicrofacetDistribution, Warp,
+};
+use crate::sampling::SamplingError;
 use glam::{Vec2, Vec3};
 
+/// The normal distribution of a rough conductor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Ndf {
+    /// GGX (Trowbridge–Reitz).
+    Ggx(Ggx),
+    /// Beckmann.
+    Beckmann(Beckmann),
+}
+
+impl Ndf {
+    #[inline]
+    fn d(&self, m: Vec3) -> f32 {
+        match self {
+            Ndf::Ggx(g) => g.d(m),
+            Ndf::Beckmann(b) => b.d(m),
+        }
+    }
+
+    #[inline]
+    fn g(&self, wo: Vec3, wi: Vec3, m: Vec3) -> f32 {
+        match self {
+            Ndf::Ggx(g) => g.g(wo, wi, m),
+            Ndf::Beckmann(b) => b.g(wo, wi, m),
+        }
+    }
+
+    /// Density of the visible normal `m` seen from `wo` (per steradian of m).
+    #[inline]
+    fn pdf_visible(&self, wo: Vec3, m: Vec3) -> f32 {
+        match self {
+            Ndf::Ggx(g) => GgxVisible::new(g.alpha(), wo).map_or(0.0, |v| v.pdf(m)),
+            Ndf::Beckmann(b) => BeckmannVisible::new(b.alpha(), wo).map_or(0.0, |v| v.pdf(m)),
+        }
+    }
+
+    #[inline]
+    fn sample_visible(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
+        match self {
+            Ndf::Ggx(g) => GgxVisible::new(g.alpha(), wo).ok().map(|v| v.sample(u)),
+            Ndf::Beckmann(b) => BeckmannVisible::new(b.alpha(), wo)
+                .ok()
+                .map(|v| v.sample(u)),
+        }
+    }
+}
+
 /// Microfacet reflection `f = F(wo·h) D(h) G(wo, wi, h) / (4 cos θ_o cos θ_i)` with Mitsuba's
-/// separable Smith `G = G1(wo) G1(wi)`; the sampled half-vector density is the visible
-/// normal density `G1(wo) max(0, wo·h) D(h) / cos θ_o`, mapped to `wi` by the reflection
-/// Jacobian `1 / (4 |wi·h|)`.
+/// separable Smith `G = G1(wo) G1(wi)`; the half-vector is drawn from the visible normals
+/// seen from `wo` (density `G1(wo) max(0, wo·h) D(h) / cos θ_o`), mapped to `wi` by the
+/// reflection Jacobian `1 / (4 |wi·h|)`. The sample weight is `f cos θ_i / pdf`.
 ///
 /// Walter, Marschner, Li, Torrance 2007, "Microfacet Models for Refraction through Rough
 /// Surfaces", EGSR; Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RoughConductor {
-    pub(crate) ndf: Ndf,
+    /// The normal distribution.
+    pub ndf: Ndf,
     /// Fresnel term.
     pub fresnel: Fresnel,
     /// Scale on the reflectance.
@@ -23,17 +73,26 @@ pub struct RoughConductor {
 }
 
 impl RoughConductor {
-    /// A rough conductor; `ggx` selects GGX (else Beckmann), `alpha` the roughness
-    /// (clamped to at least 10⁻⁴).
-    pub fn new(ggx: bool, alpha: f32, fresnel: Fresnel, specular_reflectance: Vec3) -> Self {
-        Self {
-            ndf: Ndf {
-                ggx,
-                alpha: alpha.max(1e-4),
-            },
+    /// A rough conductor; `ggx` selects GGX (else Beckmann) of roughness `alpha`.
+    ///
+    /// # Errors
+    /// `alpha` outside the microfacet warps' range `[10⁻⁴, 10⁴]`.
+    pub fn new(
+        ggx: bool,
+        alpha: f32,
+        fresnel: Fresnel,
+        specular_reflectance: Vec3,
+    ) -> Result<Self, SamplingError> {
+        let ndf = if ggx {
+            Ndf::Ggx(Ggx::new(alpha)?)
+        } else {
+            Ndf::Beckmann(Beckmann::new(alpha)?)
+        };
+        Ok(Self {
+            ndf,
             fresnel,
             specular_reflectance,
-        }
+        })
     }
 }
 
@@ -64,9 +123,9 @@ impl Bsdf for RoughConductor {
         if !(d > 0.0) || !(dot > 0.0) {
             return (Vec3::ZERO, 0.0);
         }
-        let g = self.ndf.g1(wo, h) * self.ndf.g1(wi, h);
+        let g = self.ndf.g(wo, wi, h);
         let f = self.fresnel.eval(wo.dot(h)) * self.specular_reflectance * (d * g / (4.0 * wo.z));
-        let pdf = self.ndf.pdf(wo, h) / (4.0 * dot);
+        let pdf = self.ndf.pdf_visible(wo, h) / (4.0 * dot);
         (f, pdf)
     }
 
@@ -74,7 +133,7 @@ impl Bsdf for RoughConductor {
         if wo.z <= 0.0 {
             return None;
         }
-        let m = self.ndf.sample(wo, u2);
+        let m = self.ndf.sample_visible(wo, u2)?;
         let wi = 2.0 * wo.dot(m) * m - wo;
         if wi.z <= 0.0 {
             return None;

@@ -11,7 +11,9 @@ fn lcg(state: &mut u64) -> f32 {
 
 fn smooth_bsdfs() -> Vec<Sided<AnyBsdf>> {
     let rc = |ggx, alpha, fresnel| {
-        AnyBsdf::RoughConductor(RoughConductor::new(ggx, alpha, fresnel, Vec3::ONE))
+        AnyBsdf::RoughConductor(
+            RoughConductor::new(ggx, alpha, fresnel, Vec3::ONE).expect("valid alpha"),
+        )
     };
     let gold = Fresnel::Complex {
         eta: Vec3::new(0.143, 0.374, 1.442),
@@ -136,7 +138,7 @@ fn from_desc_reads_twosided_and_ior() {
             specular_transmittance: Vec3::ONE,
         },
     ));
-    let s = AnyBsdf::from_desc(&desc);
+    let s = AnyBsdf::from_desc(&desc).expect("valid");
     assert!(s.two_sided);
     match s.bsdf {
         AnyBsdf::Dielectric(d) => assert_eq!(d.eta, 1.5),

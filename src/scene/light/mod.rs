@@ -1,13 +1,11 @@
 //! Lights: area emitters on shapes (front side only), point lights, a constant environment
 //! and an environment map, chosen for next-event estimation by power.
 
-mod picker;
-
 use crate::integrator::{LightSample, SurfacePoint};
+use crate::sampling::distribution::AliasTable;
 use crate::scene::description::{EmitterDesc, SceneDescription};
 use crate::scene::render::geo::{Geometry, Hit};
 use glam::{Vec2, Vec3};
-use picker::Picker;
 use std::f32::consts::PI;
 
 /// One light.
@@ -51,7 +49,8 @@ impl std::error::Error for LightError {}
 #[derive(Debug, Clone)]
 pub struct Lights {
     lights: Vec<Light>,
-    picker: Picker,
+    /// Chooses a light by power; `None` when no light emits.
+    picker: Option<AliasTable>,
     shape_light: Vec<Option<u32>>,
     env: Option<u32>,
     has_delta: bool,
@@ -112,7 +111,7 @@ impl Lights {
             }
         }
         Ok(Self {
-            picker: Picker::new(&power),
+            picker: AliasTable::new(&power).ok(),
             lights,
             shape_light,
             env,
@@ -123,6 +122,12 @@ impl Lights {
     /// The lights.
     pub fn lights(&self) -> &[Light] {
         &self.lights
+    }
+
+    /// Probability of choosing light `i`.
+    #[inline]
+    fn pmf(&self, i: u32) -> f32 {
+        self.picker.as_ref().map_or(0.0, |t| t.pmf(i as usize))
     }
 
     /// Whether any light is a point light.
@@ -159,11 +164,11 @@ impl Lights {
         &self,
         geo: &Geometry,
         from: &SurfacePoint,
-        u_pick: f32,
+        u_pick: Vec2,
         u: Vec2,
     ) -> Option<LightSample> {
-        let (i, u_rest) = self.picker.sample(u_pick)?;
-        let pick = self.picker.pmf(i);
+        let (i, pick) = self.picker.as_ref()?.sample_with_pmf(u_pick.x);
+        let u_rest = u_pick.y;
         match self.lights[i] {
             Light::Area { shape, radiance } => {
                 let s = geo.sample_shape(shape, from.p, u_rest, u)?;
@@ -232,13 +237,13 @@ impl Lights {
             shape: hit.shape,
             prim: hit.prim,
         };
-        geo.shape_pdf(hit.shape, from.p, &h) * self.picker.pmf(*i as usize)
+        geo.shape_pdf(hit.shape, from.p, &h) * self.pmf(*i)
     }
 
     /// The same for the environment along `dir`.
     pub fn pdf_environment(&self, _from: &SurfacePoint, _dir: Vec3) -> f32 {
         match self.env {
-            Some(i) => self.picker.pmf(i as usize) / (4.0 * PI),
+            Some(i) => self.pmf(i) / (4.0 * PI),
             None => 0.0,
         }
     }

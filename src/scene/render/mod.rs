@@ -157,11 +157,15 @@ impl Renderer {
         let lights =
             Lights::new(desc, &geo, scene_radius(desc)).map_err(|e| RenderError(e.to_string()))?;
         let camera = Camera::new(&desc.sensor).map_err(|e| RenderError(format!("camera: {e}")))?;
-        let bsdfs: Vec<_> = desc
+        let bsdfs = desc
             .shapes
             .iter()
-            .map(|s| AnyBsdf::from_desc(&s.bsdf))
-            .collect();
+            .enumerate()
+            .map(|(i, s)| {
+                AnyBsdf::from_desc(&s.bsdf)
+                    .map_err(|e| RenderError(format!("material of shape {i} ({:?}): {e}", s.id)))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let strategy = opts.strategy.unwrap_or_default();
         let integrator = match desc.integrator {
             IntegratorDesc::Path {

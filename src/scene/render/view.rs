@@ -97,7 +97,7 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
     }
 
     #[inline]
-    fn sample_light(&self, from: &SurfacePoint, u_pick: f32, u: Vec2) -> Option<LightSample> {
+    fn sample_light(&self, from: &SurfacePoint, u_pick: Vec2, u: Vec2) -> Option<LightSample> {
         self.lights.sample(self.geo, from, u_pick, u)
     }
 
