@@ -32,7 +32,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     v += var[(y * w + x) as usize];
                 }
             }
-            let e = ((s - t).x / t.x.max(1e-6)) as f32;
+            let e = (s - t).x / t.x.max(1e-6);
             let z = (s - t).x / v.x.sqrt().max(1e-12);
             list.push((if a.len() > 3 { z } else { e }, bx * b, by * b, t.x / 64.0));
             for y in by * b..(by + 1) * b {

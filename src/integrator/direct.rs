@@ -1,7 +1,7 @@
 //! Direct lighting: emitters seen from the camera plus light arriving at the first hit, by a
 //! fixed number of light and BSDF samples (Mitsuba 3's `direct`).
 
-use super::{Bsdf, PathResult, SampleSource, Scene, Strategy};
+use super::{is_positive, Bsdf, PathResult, SampleSource, Scene, Strategy};
 use glam::Vec3;
 
 /// Direct-lighting estimator with `emitter_samples` light samples and `bsdf_samples` BSDF
@@ -80,7 +80,7 @@ impl DirectIntegrator {
             let Some(ls) = scene.sample_light(&sp, u_pick, u) else {
                 continue;
             };
-            if !(ls.pdf > 0.0) || (n_l == 0 && !ls.delta) {
+            if !is_positive(ls.pdf) || (n_l == 0 && !ls.delta) {
                 continue;
             }
             let (f, pdf_b) = bsdf.eval_pdf(wo, sp.frame.to_local(ls.wi));

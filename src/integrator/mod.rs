@@ -25,6 +25,12 @@ pub use path::{PathResult, PathTracer};
 pub use strategy::Strategy;
 pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, SampleSource, Scene, SurfacePoint};
 
+/// `x > 0`, false for NaN: the guard in front of every division by a density.
+#[inline]
+pub fn is_positive(x: f32) -> bool {
+    x > 0.0
+}
+
 /// Either estimator, chosen at run time from the scene's `integrator` element.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Integrator {

@@ -1,7 +1,7 @@
 //! Unidirectional path tracing with next-event estimation, multiple importance sampling and
 //! Russian roulette.
 
-use super::{Bsdf, SampleSource, Scene, Strategy, SurfacePoint};
+use super::{is_positive, Bsdf, SampleSource, Scene, Strategy, SurfacePoint};
 use glam::Vec3;
 
 /// A path tracer with Mitsuba 3's `path` semantics.
@@ -139,7 +139,7 @@ impl PathTracer {
             eta *= bs.eta;
             depth += 1;
             let t_max_c = throughput.max_element();
-            if !(t_max_c > 0.0) {
+            if !is_positive(t_max_c) {
                 break;
             }
             if depth >= self.rr_depth {
@@ -175,7 +175,7 @@ impl PathTracer {
         if !ls.delta && !self.strategy.samples_lights() {
             return Vec3::ZERO;
         }
-        if !(ls.pdf > 0.0) {
+        if !is_positive(ls.pdf) {
             return Vec3::ZERO;
         }
         let wi = sp.frame.to_local(ls.wi);

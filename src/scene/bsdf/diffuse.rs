@@ -1,6 +1,6 @@
 //! Lambertian reflection (Mitsuba's `diffuse`), one-sided.
 
-use crate::integrator::{Bsdf, BsdfFlags, BsdfSample};
+use crate::integrator::{is_positive, Bsdf, BsdfFlags, BsdfSample};
 use crate::sampling::warp::{CosineHemisphere, Warp};
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
@@ -53,7 +53,7 @@ impl Bsdf for Diffuse {
             return None;
         }
         let (wi, pdf) = CosineHemisphere.sample_with_pdf(u2);
-        if !(pdf > 0.0) {
+        if !is_positive(pdf) {
             return None;
         }
         Some(BsdfSample {

@@ -2,7 +2,7 @@
 //! GGX or Beckmann normals, sampled with visible normals.
 
 use super::conductor::Fresnel;
-use crate::integrator::{Bsdf, BsdfFlags, BsdfSample};
+use crate::integrator::{is_positive, Bsdf, BsdfFlags, BsdfSample};
 use crate::sampling::warp::{
     Beckmann, BeckmannVisible, Ggx, GgxVisible, MicrofacetDistribution, Warp,
 };
@@ -120,7 +120,7 @@ impl Bsdf for RoughConductor {
         let h = (wo + wi).normalize_or_zero();
         let d = self.ndf.d(h);
         let dot = wi.dot(h);
-        if !(d > 0.0) || !(dot > 0.0) {
+        if !is_positive(d) || !is_positive(dot) {
             return (Vec3::ZERO, 0.0);
         }
         let g = self.ndf.g(wo, wi, h);
@@ -139,7 +139,7 @@ impl Bsdf for RoughConductor {
             return None;
         }
         let (f, pdf) = self.eval_pdf(wo, wi);
-        if !(pdf > 0.0) || !pdf.is_finite() {
+        if !is_positive(pdf) || !pdf.is_finite() {
             return None;
         }
         Some(BsdfSample {

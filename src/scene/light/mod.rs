@@ -1,7 +1,7 @@
 //! Lights: area emitters on shapes (front side only), point lights, a constant environment
 //! and an environment map, chosen for next-event estimation by power.
 
-use crate::integrator::{LightSample, SurfacePoint};
+use crate::integrator::{is_positive, LightSample, SurfacePoint};
 use crate::sampling::distribution::AliasTable;
 use crate::scene::description::{EmitterDesc, SceneDescription};
 use crate::scene::render::geo::{Geometry, Hit};
@@ -174,11 +174,11 @@ impl Lights {
                 let s = geo.sample_shape(shape, from.p, u_rest, u)?;
                 let d = s.p - from.p;
                 let dist = d.length();
-                if !(dist > 0.0) {
+                if !is_positive(dist) {
                     return None;
                 }
                 let wi = d / dist;
-                if s.n.dot(wi) >= 0.0 || !(s.pdf > 0.0) || !s.pdf.is_finite() {
+                if s.n.dot(wi) >= 0.0 || !is_positive(s.pdf) || !s.pdf.is_finite() {
                     return None;
                 }
                 Some(LightSample {
@@ -195,7 +195,7 @@ impl Lights {
             } => {
                 let d = position - from.p;
                 let d2 = d.length_squared();
-                if !(d2 > 0.0) {
+                if !is_positive(d2) {
                     return None;
                 }
                 let dist = d2.sqrt();

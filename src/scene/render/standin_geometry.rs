@@ -1,6 +1,6 @@
 //! TEMPORARY stand-in for `scene::geometry` and `scene::camera` (branch geometry), with the
 //! same names and signatures, brute force. Deleted when the real modules land.
-#![allow(dead_code)]
+#![allow(dead_code, clippy::neg_cmp_op_on_partial_ord)]
 
 use crate::scene::description::{SensorDesc, ShapeDesc, ShapeKind};
 use glam::{Mat4, Vec2, Vec3};

@@ -26,6 +26,9 @@ pub(crate) struct LoopParams<'a> {
     pub cancel: &'a AtomicBool,
 }
 
+/// One tile's per-pixel accumulators and its ray count.
+type TileResult = (Vec<(usize, PixelAccum)>, u64);
+
 /// Counters of the work done.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct LoopStats {
@@ -55,7 +58,7 @@ fn render_tile<S: Scene>(
     p: &LoopParams<'_>,
     (x0, y0, x1, y1): (u32, u32, u32, u32),
     (s0, s1): (u32, u32),
-) -> (Vec<(usize, PixelAccum)>, u64) {
+) -> TileResult {
     let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
     let mut rays = 0u64;
     for y in y0..y1 {
@@ -93,7 +96,7 @@ pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Fi
     let mut s0 = 0;
     while s0 < p.spp && !p.cancel.load(Ordering::Relaxed) {
         let s1 = (s0 + step).min(p.spp);
-        let results: Vec<Option<(Vec<(usize, PixelAccum)>, u64)>> = tiles
+        let results: Vec<Option<TileResult>> = tiles
             .par_iter()
             .map(|&t| {
                 if p.cancel.load(Ordering::Relaxed) {
