@@ -1,6 +1,10 @@
 //! Lights: area emitters on shapes (front side only), point lights, a constant environment
 //! and an environment map, chosen for next-event estimation by power.
 
+mod envmap;
+
+pub use envmap::EnvMap;
+
 use crate::integrator::{is_positive, LightSample, SurfacePoint};
 use crate::sampling::distribution::AliasTable;
 use crate::scene::description::{EmitterDesc, SceneDescription};
@@ -31,6 +35,8 @@ pub enum Light {
         /// Radiance.
         radiance: Vec3,
     },
+    /// An environment map.
+    EnvMap(Box<EnvMap>),
 }
 
 /// Why the lights of a scene could not be set up.
@@ -102,11 +108,19 @@ impl Lights {
                         radiance: *radiance,
                     });
                 }
-                EmitterDesc::EnvMap { filename, .. } => {
-                    return Err(LightError(format!(
-                        "envmap {} is not supported yet",
-                        filename.display()
-                    )));
+                EmitterDesc::EnvMap {
+                    filename,
+                    scale,
+                    to_world,
+                } => {
+                    if env.is_some() {
+                        return Err(LightError("more than one environment emitter".into()));
+                    }
+                    let map = EnvMap::load(filename, *scale, *to_world)
+                        .map_err(|e| LightError(format!("{}: {e}", filename.display())))?;
+                    env = Some(lights.len() as u32);
+                    power.push(PI * radius * radius * map.integral());
+                    lights.push(Light::EnvMap(Box::new(map)));
                 }
             }
         }
@@ -152,9 +166,10 @@ impl Lights {
 
     /// Radiance arriving from the environment against the ray direction `dir`.
     #[inline]
-    pub fn environment(&self, _dir: Vec3) -> Vec3 {
+    pub fn environment(&self, dir: Vec3) -> Vec3 {
         match self.env.map(|i| &self.lights[i as usize]) {
             Some(Light::Constant { radiance }) => *radiance,
+            Some(Light::EnvMap(m)) => m.eval(dir),
             _ => Vec3::ZERO,
         }
     }
@@ -207,6 +222,16 @@ impl Lights {
                     delta: true,
                 })
             }
+            Light::EnvMap(ref m) => {
+                let (wi, radiance, pdf) = m.sample(u)?;
+                Some(LightSample {
+                    wi,
+                    dist: f32::INFINITY,
+                    radiance,
+                    pdf: pdf * pick,
+                    delta: false,
+                })
+            }
             Light::Constant { radiance } => {
                 let z = 1.0 - 2.0 * u.x;
                 let r = (1.0 - z * z).max(0.0).sqrt();
@@ -241,9 +266,12 @@ impl Lights {
     }
 
     /// The same for the environment along `dir`.
-    pub fn pdf_environment(&self, _from: &SurfacePoint, _dir: Vec3) -> f32 {
+    pub fn pdf_environment(&self, _from: &SurfacePoint, dir: Vec3) -> f32 {
         match self.env {
-            Some(i) => self.pmf(i) / (4.0 * PI),
+            Some(i) => match &self.lights[i as usize] {
+                Light::EnvMap(m) => self.pmf(i) * m.pdf(dir),
+                _ => self.pmf(i) / (4.0 * PI),
+            },
             None => 0.0,
         }
     }
