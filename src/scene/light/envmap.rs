@@ -1,6 +1,7 @@
 //! An environment map: radiance from a latitude–longitude EXR image at infinity (Mitsuba's
 //! `envmap`), sampled in proportion to its luminance with a [`PiecewiseConstant2D`].
 
+use crate::integrator::is_positive;
 use crate::sampling::distribution::PiecewiseConstant2D;
 use crate::scene::film::read_exr;
 use glam::{Mat3, Mat4, Vec2, Vec3};
@@ -97,7 +98,7 @@ impl EnvMap {
     pub fn sample(&self, u: Vec2) -> Option<(Vec3, Vec3, f32)> {
         let (uv, pdf_uv, _) = self.dist.sample(u);
         let (st, ct) = (PI * uv.y).sin_cos();
-        if !(st > 0.0) {
+        if !is_positive(st) {
             return None;
         }
         let (sp, cp) = (2.0 * PI * uv.x).sin_cos();
@@ -110,7 +111,7 @@ impl EnvMap {
     pub fn pdf(&self, dir: Vec3) -> f32 {
         let uv = self.uv(dir);
         let st = (PI * uv.y).sin();
-        if !(st > 0.0) {
+        if !is_positive(st) {
             return 0.0;
         }
         self.dist.pdf(uv) / (2.0 * PI * PI * st)
