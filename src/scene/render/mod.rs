@@ -73,6 +73,10 @@ pub struct RenderOptions {
     pub strategy: Option<Strategy>,
     /// Acceleration structure.
     pub accel: AccelKind,
+    /// Pick the render loop specialised to the scene's effects (default). `false` always
+    /// runs the general loop (every material type, point lights and environment checked at
+    /// run time); for benchmarks and tests of the specialisation.
+    pub specialize: bool,
 }
 
 impl Default for RenderOptions {
@@ -83,6 +87,7 @@ impl Default for RenderOptions {
             threads: 0,
             strategy: None,
             accel: AccelKind::Bvh,
+            specialize: true,
         }
     }
 }
@@ -101,6 +106,7 @@ pub struct Renderer {
     seed: u64,
     threads: usize,
     effects: Effects,
+    specialize: bool,
 }
 
 /// A finished (or cancelled) render.
@@ -206,6 +212,7 @@ impl Renderer {
             seed: opts.seed.unwrap_or(desc.sensor.sampler.seed),
             threads: opts.threads,
             effects,
+            specialize: opts.specialize,
         })
     }
 
@@ -272,6 +279,11 @@ impl Renderer {
 
     fn dispatch(&self, p: &tiles::LoopParams<'_>) -> (Film, tiles::LoopStats) {
         let e = self.effects;
+        if !self.specialize {
+            let (geo, lights) = (&self.geo, &self.lights);
+            let bsdfs = self.bsdfs.clone();
+            return tiles::render_loop(&SceneView::<_, true, true> { geo, bsdfs, lights }, p);
+        }
         if e.diffuse_only {
             let bsdfs: Vec<_> = self
                 .bsdfs

@@ -10,9 +10,9 @@ use glam::{Vec2, Vec3};
 /// Relative shortening of shadow rays, so the light's own surface does not occlude itself.
 const SHADOW_EPSILON: f32 = 1e-3;
 
-/// A scene specialised on its material type `B` and on the presence of delta lights
-/// (`DELTA`) and of an environment (`ENV`): code paths a scene does not need are constant
-/// false and compiled out.
+/// A scene specialised on its material type `B` and on whether delta lights (`DELTA`) and
+/// an environment (`ENV`) may be present: when a flag is `false` the code paths for it are
+/// constant false and compiled out; when `true` the lights are asked at run time.
 pub struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
     pub(crate) geo: &'a Geometry,
     pub(crate) bsdfs: Vec<B>,
@@ -79,7 +79,7 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
 
     #[inline]
     fn has_environment(&self) -> bool {
-        ENV
+        ENV && self.lights.has_environment()
     }
 
     #[inline]
@@ -93,7 +93,7 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
 
     #[inline]
     fn has_delta_lights(&self) -> bool {
-        DELTA
+        DELTA && self.lights.has_delta()
     }
 
     #[inline]
