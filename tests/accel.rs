@@ -320,6 +320,16 @@ fn cornell_box_rays_from_inside_always_hit() {
             dir: c,
         });
     }
+    // Rays running inside the planes of the walls and box faces (a zero direction
+    // component, the origin exactly on the plane): they meet edges of other faces.
+    for k in 0..600 {
+        let a = k % 3;
+        let mut o = point(&mut r, 0.99);
+        o[a] = [-1.0, 1.0, -0.4, 0.0][k % 4];
+        let mut d = unit_vec(&mut r);
+        d[a] = 0.0;
+        rays.push(Ray { origin: o, dir: d });
+    }
     let g = Geometry::new(&shapes, None, AccelKind::Bvh).unwrap();
     rays.extend(surface_rays(&g, &mut r, 1000));
     let s = compare(&shapes, &rays, 6);
@@ -425,4 +435,40 @@ fn hit_data_on_cornell_box() {
     assert_eq!(h.shape, 6);
     assert!((h.ng - Vec3::Y).length() < 1e-5 && (h.p.y + 0.4).abs() < 1e-5);
     assert_eq!(h.ns, h.ng);
+}
+
+/// Throughput on the Cornell box (run with `-- --ignored --nocapture`): closest-hit and
+/// occlusion rays per second for each structure, single thread.
+#[test]
+#[ignore = "timing, not a check"]
+fn throughput_cornell_box() {
+    let shapes = cornell_box();
+    let mut r = rng(11);
+    let n = 1_000_000;
+    let rays: Vec<Ray> = (0..n)
+        .map(|_| Ray {
+            origin: point(&mut r, 0.95),
+            dir: unit_vec(&mut r),
+        })
+        .collect();
+    for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::BruteForce] {
+        let g = Geometry::new(&shapes, None, kind).unwrap();
+        let start = std::time::Instant::now();
+        let mut hits = 0usize;
+        for ray in &rays {
+            hits += usize::from(g.intersect(ray, f32::INFINITY).is_some());
+        }
+        let closest = n as f64 / start.elapsed().as_secs_f64();
+        let start = std::time::Instant::now();
+        let mut occ = 0usize;
+        for ray in &rays {
+            occ += usize::from(g.occluded(ray, 1.0));
+        }
+        let any = n as f64 / start.elapsed().as_secs_f64();
+        println!(
+            "{kind:?}: {:.2} M closest-hit rays/s, {:.2} M occlusion rays/s ({hits} hits, {occ} occluded)",
+            closest / 1e6,
+            any / 1e6
+        );
+    }
 }

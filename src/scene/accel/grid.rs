@@ -171,7 +171,7 @@ impl Grid {
         done: impl Fn(&S, f32) -> bool,
     ) -> bool {
         let rb = RayBoxTest::new(origin, dir);
-        let Some((t0, t1)) = rb.clip(self.bounds.min, self.bounds.max, t_max) else {
+        let Some((t0, t1)) = rb.clip(self.bounds.min.into(), self.bounds.max.into(), t_max) else {
             return false;
         };
         let p = origin + dir * t0;
@@ -183,7 +183,7 @@ impl Grid {
                 return f32::INFINITY;
             }
             let face = c[a] + i32::from(step[a] > 0);
-            (self.bounds.min[a] + face as f32 * self.cell[a] - origin[a]) * rb.inv_dir[a]
+            (self.bounds.min[a] + face as f32 * self.cell[a] - origin[a]) / dir[a]
         };
         let mut t_next = [next_t(&c, 0), next_t(&c, 1), next_t(&c, 2)];
         loop {

@@ -1,6 +1,7 @@
 //! Turning [`ShapeDesc`]s into world-space primitives and per-shape data.
 
 use super::error::GeometryError;
+use super::intersect::TriSoa;
 use super::sample::TriangleCdf;
 use crate::scene::description::{ShapeDesc, ShapeKind};
 use glam::{Affine3A, Mat3, Vec3};
@@ -10,7 +11,7 @@ use std::path::Path;
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Prim {
     /// A triangle, world-space vertices.
-    Tri([Vec3; 3]),
+    Tri(TriSoa),
     /// A sphere.
     Sphere { center: Vec3, radius: f32 },
     /// A disk: index into `disks`.
@@ -91,7 +92,10 @@ fn push_prims(out: &mut Built, shape: u32, data: &ShapeData) {
     match data {
         ShapeData::Mesh(m) => {
             for (k, t) in m.indices.iter().enumerate() {
-                push(Prim::Tri(t.map(|v| m.positions[v as usize])), k as u32);
+                push(
+                    Prim::Tri(TriSoa::new(t.map(|v| m.positions[v as usize]))),
+                    k as u32,
+                );
             }
         }
         &ShapeData::Sphere { center, radius, .. } => push(Prim::Sphere { center, radius }, 0),

@@ -3,7 +3,30 @@
 //! Every routine accepts a direction of any nonzero length and returns `t` in units of that
 //! length, and reports only hits with `0 < t < t_max` (strict at both ends).
 
-use glam::{Affine3A, DVec3, Vec3};
+use glam::{Affine3A, DVec3, Vec3, Vec3A, Vec3Swizzles};
+
+/// A triangle stored by coordinate: lane `i` of `x`, `y`, `z` holds vertex `i`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TriSoa {
+    x: Vec3A,
+    y: Vec3A,
+    z: Vec3A,
+}
+
+impl TriSoa {
+    pub(crate) fn new(v: [Vec3; 3]) -> Self {
+        Self {
+            x: Vec3A::new(v[0].x, v[1].x, v[2].x),
+            y: Vec3A::new(v[0].y, v[1].y, v[2].y),
+            z: Vec3A::new(v[0].z, v[1].z, v[2].z),
+        }
+    }
+
+    /// The three vertices.
+    pub(crate) fn vertices(&self) -> [Vec3; 3] {
+        [0, 1, 2].map(|i| Vec3::new(self.x[i], self.y[i], self.z[i]))
+    }
+}
 
 /// A ray prepared for the watertight triangle test (Woop, Benthin & Wald 2013,
 /// "Watertight Ray/Triangle Intersection", JCGT 2(1)): the permutation and shear that map the
@@ -13,7 +36,7 @@ pub(crate) struct TriRay {
     origin: Vec3,
     /// Rows of the shear: x' = rx·v, y' = ry·v, z' = rz·v for v relative to the origin. Each
     /// row has at most two nonzero entries, one of them exactly 1, so x' and y' are the
-    /// paper's `A[kx] − Sx·A[kz]` rounded exactly the same way.
+    /// paper's `A[kx] − Sx·A[kz]` rounded exactly the same way (adding ±0 changes nothing).
     rx: Vec3,
     ry: Vec3,
     rz: Vec3,
@@ -38,37 +61,28 @@ impl TriRay {
         }
     }
 
-    /// The hit `(t, b1, b2)` with the triangle `v`, where `b1`, `b2` are the barycentric
-    /// weights of `v[1]` and `v[2]`.
+    /// The hit `(t, b1, b2)` with the triangle, where `b1`, `b2` are the barycentric
+    /// weights of vertices 1 and 2. All three vertices are processed at once in SIMD lanes.
     #[inline(always)]
-    pub(crate) fn hit(&self, v: &[Vec3; 3], t_max: f32) -> Option<(f32, f32, f32)> {
-        let a = v[0] - self.origin;
-        let b = v[1] - self.origin;
-        let c = v[2] - self.origin;
-        let (ax, ay) = (self.rx.dot(a), self.ry.dot(a));
-        let (bx, by) = (self.rx.dot(b), self.ry.dot(b));
-        let (cx, cy) = (self.rx.dot(c), self.ry.dot(c));
-        let mut u = cx * by - cy * bx;
-        let mut w_v = ax * cy - ay * cx;
-        let mut w = bx * ay - by * ax;
-        if u == 0.0 || w_v == 0.0 || w == 0.0 {
-            // On an edge in f32: decide in f64, as the paper does, so that shared edges are
-            // claimed consistently.
-            let d = |p: f32, q: f32, r: f32, s: f32| {
-                (f64::from(p) * f64::from(q) - f64::from(r) * f64::from(s)) as f32
-            };
-            u = d(cx, by, cy, bx);
-            w_v = d(ax, cy, ay, cx);
-            w = d(bx, ay, by, ax);
+    pub(crate) fn hit(&self, tri: &TriSoa, t_max: f32) -> Option<(f32, f32, f32)> {
+        let x = tri.x - Vec3A::splat(self.origin.x);
+        let y = tri.y - Vec3A::splat(self.origin.y);
+        let z = tri.z - Vec3A::splat(self.origin.z);
+        let row = |r: Vec3| x * r.x + y * r.y + z * r.z;
+        let (px, py) = (row(self.rx), row(self.ry));
+        // Lanes (U, V, W): the edge functions of edges BC, CA, AB at the origin.
+        let mut e = px.zxy() * py.yzx() - py.zxy() * px.yzx();
+        if e.cmpeq(Vec3A::ZERO).any() {
+            e = edges_f64(px, py);
         }
-        if (u < 0.0 || w_v < 0.0 || w < 0.0) && (u > 0.0 || w_v > 0.0 || w > 0.0) {
+        if e.min_element() < 0.0 && e.max_element() > 0.0 {
             return None;
         }
-        let det = u + w_v + w;
+        let det = e.x + e.y + e.z;
         if det == 0.0 {
             return None;
         }
-        let tt = u * self.rz.dot(a) + w_v * self.rz.dot(b) + w * self.rz.dot(c);
+        let tt = e.dot(row(self.rz));
         let inside = if det > 0.0 {
             tt > 0.0 && tt < t_max * det
         } else {
@@ -79,8 +93,17 @@ impl TriRay {
         }
         let inv = 1.0 / det;
         let t = tt * inv;
-        (t > 0.0 && t < t_max).then_some((t, w_v * inv, w * inv))
+        (t > 0.0 && t < t_max).then_some((t, e.y * inv, e.z * inv))
     }
+}
+
+/// The edge functions in f64: on an edge in f32, the paper decides in higher precision so
+/// that shared edges are claimed consistently.
+#[cold]
+fn edges_f64(px: Vec3A, py: Vec3A) -> Vec3A {
+    let (x, y) = (px.as_dvec3(), py.as_dvec3());
+    let e = x.zxy() * y.yzx() - y.zxy() * x.yzx();
+    e.as_vec3a()
 }
 
 /// The nearest root in `(0, t_max)` of |o + t d − c|² = r², computed as in Haines, Günther,
@@ -146,7 +169,7 @@ pub(crate) fn hit_disk(
 mod tests {
     use super::*;
 
-    const TRI: [Vec3; 3] = [
+    const V: [Vec3; 3] = [
         Vec3::new(0.0, 0.0, 0.0),
         Vec3::new(1.0, 0.0, 0.0),
         Vec3::new(0.0, 1.0, 0.0),
@@ -154,29 +177,32 @@ mod tests {
 
     #[test]
     fn triangle_barycentrics_and_distance() {
+        let tri = TriSoa::new(V);
+        assert_eq!(tri.vertices(), V);
         let r = TriRay::new(Vec3::new(0.25, 0.5, 2.0), Vec3::new(0.0, 0.0, -2.0));
-        let (t, b1, b2) = r.hit(&TRI, f32::INFINITY).unwrap();
+        let (t, b1, b2) = r.hit(&tri, f32::INFINITY).unwrap();
         assert!(t.is_finite() && b1.is_finite() && b2.is_finite());
         assert!((t - 1.0).abs() < 1e-6);
         assert!((b1 - 0.25).abs() < 1e-6 && (b2 - 0.5).abs() < 1e-6);
         // Same from below (back face) and with t_max too small.
         let r = TriRay::new(Vec3::new(0.25, 0.5, -1.0), Vec3::Z);
-        assert!(r.hit(&TRI, 2.0).is_some());
-        assert!(r.hit(&TRI, 1.0).is_none());
+        assert!(r.hit(&tri, 2.0).is_some());
+        assert!(r.hit(&tri, 1.0).is_none());
         assert!(TriRay::new(Vec3::new(0.8, 0.8, 1.0), -Vec3::Z)
-            .hit(&TRI, 9.0)
+            .hit(&tri, 9.0)
             .is_none());
     }
 
     #[test]
     fn shared_edge_is_claimed_once_or_more_never_missed() {
         // Two triangles sharing the diagonal of the unit square; rays exactly on it.
-        let other = [TRI[1], Vec3::new(1.0, 1.0, 0.0), TRI[2]];
+        let tri = TriSoa::new(V);
+        let other = TriSoa::new([V[1], Vec3::new(1.0, 1.0, 0.0), V[2]]);
         for i in 1..64 {
             let s = i as f32 / 64.0;
             let d = Vec3::new(0.1, -0.2, -1.0);
             let r2 = TriRay::new(Vec3::new(s, 1.0 - s, 0.0) - d, d);
-            let hits = usize::from(r2.hit(&TRI, 9.0).is_some())
+            let hits = usize::from(r2.hit(&tri, 9.0).is_some())
                 + usize::from(r2.hit(&other, 9.0).is_some());
             assert!(hits >= 1, "ray {i} fell through the shared edge");
         }
@@ -184,7 +210,7 @@ mod tests {
 
     #[test]
     fn degenerate_triangle_is_never_hit() {
-        let flat = [Vec3::ZERO, Vec3::X, Vec3::X * 2.0];
+        let flat = TriSoa::new([Vec3::ZERO, Vec3::X, Vec3::X * 2.0]);
         let r = TriRay::new(Vec3::new(0.5, 0.0, 1.0), -Vec3::Z);
         assert!(r.hit(&flat, 9.0).is_none());
     }

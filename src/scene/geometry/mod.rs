@@ -282,7 +282,7 @@ impl Geometry {
 
 fn prim_bounds(p: &Prim, shapes: &[ShapeData]) -> Aabb {
     match p {
-        Prim::Tri(v) => Aabb::from_points(v),
+        Prim::Tri(v) => Aabb::from_points(&v.vertices()),
         &Prim::Sphere { center, radius } => Aabb {
             min: center - Vec3::splat(radius),
             max: center + Vec3::splat(radius),
