@@ -472,3 +472,60 @@ fn throughput_cornell_box() {
         );
     }
 }
+
+#[test]
+fn obj_meshes_load_relative_to_the_base_dir() {
+    let dir = std::env::temp_dir().join(format!("mcrt-geometry-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // A unit quad at z = 0 facing +z, with vertex normals tilted towards +x.
+    let text = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0.6 0 0.8\nf 1//1 2//1 3//1 4//1\n";
+    std::fs::write(dir.join("quad.obj"), text).unwrap();
+    let obj = |face_normals| {
+        let mut s = ShapeDesc::new(ShapeKind::Obj {
+            filename: "quad.obj".into(),
+            face_normals,
+        });
+        s.to_world = Mat4::from_translation(Vec3::new(0.0, 0.0, -1.0));
+        s
+    };
+    let ray = Ray {
+        origin: Vec3::new(0.2, 0.3, 1.0),
+        dir: -Vec3::Z,
+    };
+    let g = Geometry::new(&[obj(false)], Some(&dir), AccelKind::Bvh).unwrap();
+    let h = g.intersect(&ray, f32::INFINITY).unwrap();
+    assert!(h.t.is_finite() && (h.t - 2.0).abs() < 1e-6);
+    assert!((h.ng - Vec3::Z).length() < 1e-6);
+    assert!(
+        (h.ns - Vec3::new(0.6, 0.0, 0.8)).length() < 1e-5,
+        "ns {}",
+        h.ns
+    );
+    let g = Geometry::new(&[obj(true)], Some(&dir), AccelKind::Grid).unwrap();
+    let h = g.intersect(&ray, f32::INFINITY).unwrap();
+    assert_eq!(h.ns, h.ng);
+    // A missing file is an error that names it.
+    let mut missing = obj(false);
+    missing.kind = ShapeKind::Obj {
+        filename: "nope.obj".into(),
+        face_normals: false,
+    };
+    let err = Geometry::new(&[missing], Some(&dir), AccelKind::Bvh).unwrap_err();
+    assert!(err.to_string().contains("nope.obj"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn invalid_shapes_are_errors() {
+    let mut s = sphere(Vec3::ZERO, 1.0);
+    s.to_world = Mat4::from_scale(Vec3::new(1.0, 2.0, 1.0));
+    assert!(Geometry::new(&[s], None, AccelKind::Bvh).is_err());
+    assert!(Geometry::new(&[sphere(Vec3::ZERO, -1.0)], None, AccelKind::Bvh).is_err());
+    let bad_index = mesh(vec![Vec3::ZERO; 3], vec![[0, 1, 3]]);
+    assert!(Geometry::new(&[bad_index], None, AccelKind::Bvh).is_err());
+    let mut singular = ShapeDesc::new(ShapeKind::Rectangle);
+    singular.to_world = Mat4::from_scale(Vec3::new(1.0, 0.0, 1.0));
+    assert!(Geometry::new(&[singular], None, AccelKind::Bvh).is_err());
+    let nan = mesh(vec![Vec3::NAN; 3], vec![[0, 1, 2]]);
+    assert!(Geometry::new(&[nan], None, AccelKind::Bvh).is_err());
+}

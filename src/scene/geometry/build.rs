@@ -2,8 +2,9 @@
 
 use super::error::GeometryError;
 use super::intersect::TriSoa;
-use super::sample::TriangleCdf;
+use crate::sampling::distribution::AliasTable;
 use crate::scene::description::{ShapeDesc, ShapeKind};
+use crate::scene::obj::read_obj;
 use glam::{Affine3A, Mat3, Vec3};
 use std::path::Path;
 
@@ -34,8 +35,10 @@ pub(crate) struct MeshData {
     pub(crate) indices: Vec<[u32; 3]>,
     /// `flip_normals`.
     pub(crate) flip: bool,
-    /// Triangle choice by area.
-    pub(crate) cdf: TriangleCdf,
+    /// Triangle choice by area (`None` when the mesh has no area).
+    pub(crate) pick: Option<AliasTable>,
+    /// Total area.
+    pub(crate) area: f32,
     /// A rectangle's corner and edges (world space), for spherical-rectangle sampling.
     pub(crate) parallelogram: Option<[Vec3; 3]>,
 }
@@ -161,13 +164,32 @@ fn shape_data(
                 .collect();
             ShapeData::Mesh(mesh(i, pos, nrm, indices.clone(), flip, false)?)
         }
-        ShapeKind::Obj { filename, .. } => {
-            // TODO(loader): read through `crate::scene::obj::read_obj` once it lands.
+        ShapeKind::Obj {
+            filename,
+            face_normals,
+        } => {
             let path = base_dir.map_or_else(|| filename.clone(), |b| b.join(filename));
-            return Err(GeometryError::Obj {
+            let obj = read_obj(&path).map_err(|e| GeometryError::Obj {
                 shape: i,
-                message: format!("{}: OBJ meshes are not supported yet", path.display()),
-            });
+                message: e.to_string(),
+            })?;
+            let pos: Vec<Vec3> = obj
+                .positions
+                .iter()
+                .map(|&p| m.transform_point3(p))
+                .collect();
+            let nrm = if *face_normals {
+                vec![]
+            } else if obj.normals.is_empty() {
+                smooth_normals(&pos, &obj.indices)
+            } else {
+                let nm = Mat3::from(m.matrix3).inverse().transpose();
+                obj.normals
+                    .iter()
+                    .map(|&n| (nm * n).normalize_or_zero())
+                    .collect()
+            };
+            ShapeData::Mesh(mesh(i, pos, nrm, obj.indices, flip, false)?)
         }
         &ShapeKind::Sphere { center, radius } => sphere(i, m, center, radius, flip)?,
         ShapeKind::Disk => disk(m, flip),
@@ -220,7 +242,8 @@ pub(crate) fn mesh(
         normals,
         indices,
         flip,
-        cdf: TriangleCdf::new(&areas),
+        pick: AliasTable::new(&areas).ok(),
+        area: areas.iter().map(|&a| f64::from(a)).sum::<f64>() as f32,
         parallelogram: None,
     })
 }
@@ -292,4 +315,24 @@ fn disk(m: &Affine3A, flip: bool) -> ShapeData {
         normal: if flip { -n } else { n },
         area: std::f32::consts::PI * ex.cross(ey).length(),
     })
+}
+
+/// Vertex normals as the angle-weighted mean of the adjacent face normals (what Mitsuba
+/// computes for meshes without normals unless `face_normals` is set). Vertices on no
+/// face of nonzero area get a zero normal, which hit shading replaces by `ng`.
+fn smooth_normals(pos: &[Vec3], indices: &[[u32; 3]]) -> Vec<Vec3> {
+    let mut acc = vec![Vec3::ZERO; pos.len()];
+    for t in indices {
+        let p = t.map(|v| pos.get(v as usize).copied().unwrap_or(Vec3::ZERO));
+        let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+        for k in 0..3 {
+            let e1 = (p[(k + 1) % 3] - p[k]).normalize_or_zero();
+            let e2 = (p[(k + 2) % 3] - p[k]).normalize_or_zero();
+            let angle = e1.dot(e2).clamp(-1.0, 1.0).acos();
+            if let Some(a) = acc.get_mut(t[k] as usize) {
+                *a += n * angle;
+            }
+        }
+    }
+    acc.into_iter().map(Vec3::normalize_or_zero).collect()
 }
