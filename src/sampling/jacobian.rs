@@ -5,7 +5,7 @@
 //! the (`m × k`) derivative of `T` (for a square `D`, `J = |det D|`). For a warp from the
 //! unit square, `p_X = 1`, so `pdf(sample(u)) · J(u) = 1`: [`jacobian_identity_error`]
 //! checks that identity for any [`Warp`] by central differences. Derivations are in
-//! `docs/derivations/distributions.md`.
+//! `docs/derivations.md`.
 //!
 //! The conversions below are the Jacobians a renderer meets. Each returns a finite value
 //! `>= 0` for finite inputs `>= 0`: where the Jacobian is zero or infinite (a grazing light,

@@ -10,7 +10,7 @@ pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 ///
 /// The density is `p(x) = f[i] / I` for `x` in bin `i`, per unit length of `x`, where
 /// `I = Σ f · width` is the table's [`integral`](Self::integral). Sampling inverts the CDF
-/// (the inversion method; see `docs/derivations/distributions.md`), accumulated in `f64`, by
+/// (the inversion method; see `docs/derivations.md`), accumulated in `f64`, by
 /// binary search. A bin whose value is zero is never sampled, for any `u ∈ [0,1)`, and a
 /// sample always lies inside the bin reported with it and strictly below `max`.
 ///

@@ -16,7 +16,7 @@ use crate::sampling::SamplingError;
 /// `I = Σ f / (width · height)` is the [`integral`](Self::integral). Sampling uses the
 /// marginal/conditional method: `v` is drawn from the marginal density of the rows (row sums)
 /// with `u.y`, then `u` from the chosen row's conditional density with `u.x` (see
-/// `docs/derivations/distributions.md`). Rows that are all zero are allowed (they are never
+/// `docs/derivations.md`). Rows that are all zero are allowed (they are never
 /// chosen); no zero-valued cell is ever sampled. Cells whose density underflows `f32`
 /// (below about 10⁻⁴⁵) count as zero.
 ///
