@@ -226,3 +226,51 @@ fn areas() {
         );
     }
 }
+
+/// Where the spherical warps apply, every sample has the same density 1/Ω (times the
+/// triangle's choice probability for meshes).
+#[test]
+fn solid_angle_sampling_gives_constant_pdf() {
+    let light = with(
+        ShapeKind::Rectangle,
+        Mat4::from_cols_array(&[
+            0.23, 0., 0., 0., 0., 0., 0.19, 0., 0., -0.19, 0., 0., 0., 0.99, 0.01, 1.,
+        ]),
+    );
+    let one_triangle = ShapeDesc::new(ShapeKind::Mesh {
+        positions: vec![
+            Vec3::new(-1.0, 1.0, -1.0),
+            Vec3::new(1.0, 1.0, -1.0),
+            Vec3::new(0.0, 1.0, 1.0),
+        ],
+        normals: vec![],
+        indices: vec![[0, 2, 1]],
+    });
+    let ball = ShapeDesc::new(ShapeKind::Sphere {
+        center: Vec3::new(0.0, 0.5, 0.0),
+        radius: 0.2,
+    });
+    let g = Geometry::new(&[light, one_triangle, ball], None, AccelKind::Bvh).unwrap();
+    let reference = Vec3::new(0.3, -1.0, 0.2);
+    let mut r = Pcg64::seed_from_u64(20);
+    for shape in 0..3 {
+        let pdfs: Vec<f32> = (0..2000)
+            .filter_map(|_| g.sample_shape(shape, reference, r.random(), u2(&mut r)))
+            .map(|s| s.pdf)
+            .collect();
+        assert_eq!(pdfs.len(), 2000);
+        let (lo, hi) = pdfs
+            .iter()
+            .fold((f32::INFINITY, 0.0f32), |(a, b), &p| (a.min(p), b.max(p)));
+        assert!(lo.is_finite() && hi.is_finite() && lo > 0.0);
+        assert!(hi / lo - 1.0 < 1e-4, "shape {shape}: pdf from {lo} to {hi}");
+    }
+}
+
+#[test]
+fn sheared_rectangle_falls_back_to_area_sampling() {
+    let mut m = tilted();
+    m.y_axis += m.x_axis * 0.5; // shear: the edges are no longer orthogonal
+    let r = vec![with(ShapeKind::Rectangle, m)];
+    check("rect sheared", &r, Vec3::new(0.3, 0.2, 0.9), 21);
+}

@@ -19,9 +19,12 @@
 //!
 //! # Shape sampling
 //! See [`Geometry::sample_shape`]: densities are per unit solid angle at the reference point.
-//! Every shape is now sampled uniformly by area, converted to solid angle; the solid-angle
-//! strategies (cone for spheres, spherical rectangles and triangles) replace it where they
-//! apply and it remains the fallback for tiny solid angles (see `docs/geometry.md`).
+//! Spheres are sampled by the cone they subtend
+//! ([`UniformCone`](crate::sampling::warp::UniformCone)), mesh triangles (chosen by area)
+//! by [`SphericalTriangle`](crate::sampling::warp::SphericalTriangle), rectangles by
+//! [`SphericalRectangle`](crate::sampling::warp::SphericalRectangle), disks uniformly by
+//! area; uniform area sampling converted to solid angle is the fallback for tiny or sliver
+//! solid angles, references inside spheres and sheared rectangles (`docs/geometry.md`).
 //!
 //! ```
 //! use mcrt::glam::{Mat4, Vec3};

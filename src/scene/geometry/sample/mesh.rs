@@ -1,6 +1,10 @@
-//! Sampling triangle meshes (and cubes) triangle by triangle, rectangles as a whole.
+//! Sampling triangle meshes (and cubes) triangle by triangle, rectangles as a whole, by
+//! solid angle through the spherical warps (which fall back to area sampling themselves for
+//! tiny or sliver solid angles); by area where a warp cannot be built (the reference in the
+//! shape's plane, non-finite input).
 
 use super::area_to_solid_angle;
+use crate::sampling::warp::{SphericalRectangle, SphericalTriangle, Warp};
 use crate::scene::geometry::build::MeshData;
 use crate::scene::geometry::{Hit, ShapeSample};
 use glam::{Vec2, Vec3};
@@ -34,10 +38,18 @@ pub(super) fn sample(m: &MeshData, reference: Vec3, u_pick: f32, u: Vec2) -> Opt
     let (k, pmf) = m.pick.as_ref()?.sample_with_pmf(u_pick);
     let tri = triangle(m, k);
     let n = front_normal(m, tri);
-    let p = uniform_point(tri, u);
-    let area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
-    let pdf = pmf * area_to_solid_angle(1.0 / area, reference, p, n)?;
-    Some(ShapeSample { p, n, pdf })
+    let (p, pdf) = match SphericalTriangle::new(reference, tri[0], tri[1], tri[2]) {
+        Ok(st) => st.sample_point(u)?,
+        Err(_) => {
+            let p = uniform_point(tri, u);
+            (
+                p,
+                area_to_solid_angle(1.0 / triangle_area(tri), reference, p, n)?,
+            )
+        }
+    };
+    let pdf = pmf * pdf;
+    (pdf.is_finite() && pdf > 0.0).then_some(ShapeSample { p, n, pdf })
 }
 
 pub(super) fn pdf(m: &MeshData, reference: Vec3, hit: &Hit) -> Option<f32> {
@@ -50,11 +62,18 @@ pub(super) fn pdf(m: &MeshData, reference: Vec3, hit: &Hit) -> Option<f32> {
     }
     let pmf = m.pick.as_ref()?.pmf(k);
     let tri = triangle(m, k);
-    let area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).length();
-    Some(pmf * area_to_solid_angle(1.0 / area, reference, hit.p, hit.ng)?)
+    let pdf = match SphericalTriangle::new(reference, tri[0], tri[1], tri[2]) {
+        Ok(st) => st.pdf((hit.p - reference).normalize_or_zero()),
+        Err(_) => area_to_solid_angle(1.0 / triangle_area(tri), reference, hit.p, hit.ng)?,
+    };
+    Some(pmf * pdf)
 }
 
-/// A rectangle: `corner + s·ex + t·ey`; uniform by area for now.
+fn triangle_area([a, b, c]: [Vec3; 3]) -> f32 {
+    0.5 * (b - a).cross(c - a).length()
+}
+
+/// A rectangle `corner + s·ex + t·ey`, s, t ∈ [0, 1], as a whole.
 fn sample_parallelogram(
     m: &MeshData,
     &[corner, ex, ey]: &[Vec3; 3],
@@ -62,11 +81,24 @@ fn sample_parallelogram(
     u: Vec2,
 ) -> Option<ShapeSample> {
     let n = front_normal(m, triangle(m, 0));
-    let p = corner + u.x * ex + u.y * ey;
-    let pdf = area_to_solid_angle(1.0 / m.area, reference, p, n)?;
-    Some(ShapeSample { p, n, pdf })
+    let (p, pdf) = match SphericalRectangle::new(reference, corner, ex, ey) {
+        Ok(sr) => sr.sample_point(u)?,
+        Err(_) => {
+            let p = corner + u.x * ex + u.y * ey;
+            (p, area_to_solid_angle(1.0 / m.area, reference, p, n)?)
+        }
+    };
+    (pdf.is_finite() && pdf > 0.0).then_some(ShapeSample { p, n, pdf })
 }
 
-fn pdf_parallelogram(m: &MeshData, _par: &[Vec3; 3], reference: Vec3, hit: &Hit) -> Option<f32> {
-    area_to_solid_angle(1.0 / m.area, reference, hit.p, hit.ng)
+fn pdf_parallelogram(
+    m: &MeshData,
+    &[corner, ex, ey]: &[Vec3; 3],
+    reference: Vec3,
+    hit: &Hit,
+) -> Option<f32> {
+    match SphericalRectangle::new(reference, corner, ex, ey) {
+        Ok(sr) => Some(sr.pdf((hit.p - reference).normalize_or_zero())),
+        Err(_) => area_to_solid_angle(1.0 / m.area, reference, hit.p, hit.ng),
+    }
 }
