@@ -3,11 +3,13 @@
 //! - `shape_pdf` at the sampled point (found again by casting a ray) equals the returned pdf;
 //! - E[1/pdf · 1{sample visible}] equals the solid angle the shape subtends, computed
 //!   independently by casting uniformly distributed rays (both estimates with their standard
-//!   errors; the test allows 5 combined standard errors plus 0.5%).
+//!   errors; the test allows 5 combined standard errors plus 0.5%);
+//!
+//! both with `ShapeSampling::SolidAngle` (the default) and `ShapeSampling::Area`.
 
 use mcrt::glam::{Mat4, Quat, Vec2, Vec3};
 use mcrt::scene::description::{ShapeDesc, ShapeKind};
-use mcrt::scene::geometry::{AccelKind, Geometry, Ray};
+use mcrt::scene::geometry::{AccelKind, Geometry, Ray, ShapeSampling};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -30,11 +32,39 @@ fn mean_se(xs: &[f64]) -> (f64, f64) {
     (m, (v / n).sqrt())
 }
 
-/// Checks shape 0 of `shapes` seen from `reference`.
+/// Checks shape 0 of `shapes` seen from `reference`, with both strategies.
 fn check(name: &str, shapes: &[ShapeDesc], reference: Vec3, seed: u64) {
-    let g = Geometry::new(shapes, None, AccelKind::Bvh).unwrap();
+    check_with(
+        name,
+        shapes,
+        reference,
+        seed,
+        ShapeSampling::SolidAngle,
+        200_000,
+    );
+    let area = format!("{name} (area)");
+    check_with(
+        &area,
+        shapes,
+        reference,
+        seed + 1000,
+        ShapeSampling::Area,
+        100_000,
+    );
+}
+
+fn check_with(
+    name: &str,
+    shapes: &[ShapeDesc],
+    reference: Vec3,
+    seed: u64,
+    how: ShapeSampling,
+    n: usize,
+) {
+    let g = Geometry::new(shapes, None, AccelKind::Bvh)
+        .unwrap()
+        .with_shape_sampling(how);
     let mut r = Pcg64::seed_from_u64(seed);
-    let n = 200_000;
     // Solid angle by hit-or-miss over the sphere of directions.
     let hits: Vec<f64> = (0..n)
         .map(|_| {

@@ -110,7 +110,7 @@ fn edges_f64(px: Vec3A, py: Vec3A) -> Vec3A {
 /// Akenine-Möller 2019, "Precision Improvements for Ray/Sphere Intersection", Ray Tracing
 /// Gems, ch. 7: the discriminant from the distance of the centre to the ray line, and the
 /// smaller root from the larger by Vieta's formula, both in f64 for the few flops it takes.
-#[inline]
+#[inline(never)]
 pub(crate) fn hit_sphere(
     origin: Vec3,
     dir: Vec3,
@@ -145,7 +145,7 @@ pub(crate) fn hit_sphere(
 
 /// The hit distance with the unit disk `x² + y² ≤ 1, z = 0` in the object space that
 /// `to_object` maps to, and the hit point in object space.
-#[inline]
+#[inline(never)]
 pub(crate) fn hit_disk(
     origin: Vec3,
     dir: Vec3,

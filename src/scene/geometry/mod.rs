@@ -51,6 +51,7 @@ mod sample;
 pub use crate::scene::accel::AccelKind;
 pub use error::GeometryError;
 pub use offset::{offset_origin, spawn_ray, spawn_ray_to};
+pub use sample::ShapeSampling;
 
 use crate::scene::accel::{Aabb, Accel};
 use crate::scene::description::ShapeDesc;
@@ -116,6 +117,7 @@ pub struct Geometry {
     accel: Accel,
     shapes: Vec<ShapeData>,
     bounds: Aabb,
+    shape_sampling: ShapeSampling,
 }
 
 /// Where a closest-hit search found its hit: stored primitive and barycentrics.
@@ -153,6 +155,7 @@ impl Geometry {
             accel,
             shapes: built.shapes,
             bounds: scene,
+            shape_sampling: ShapeSampling::default(),
         })
     }
 

@@ -21,6 +21,18 @@ mod sphere;
 
 use super::build::ShapeData;
 use super::{Geometry, Hit, ShapeSample};
+
+/// How [`Geometry::sample_shape`] samples triangles and rectangles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShapeSampling {
+    /// By solid angle where the spherical warps allow (the default; lowest variance).
+    #[default]
+    SolidAngle,
+    /// Uniformly by area, converted to solid angle (as Mitsuba 3 samples rectangles and
+    /// meshes): several times cheaper per sample, more variance close to large lights.
+    /// Spheres keep cone sampling, which is cheap.
+    Area,
+}
 use crate::sampling::warp::{UniformDiskConcentric, Warp};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -37,6 +49,18 @@ pub(crate) fn area_to_solid_angle(pdf_area: f32, reference: Vec3, p: Vec3, n: Ve
 }
 
 impl Geometry {
+    /// This geometry with the given strategy for triangles and rectangles.
+    #[must_use]
+    pub fn with_shape_sampling(mut self, sampling: ShapeSampling) -> Self {
+        self.shape_sampling = sampling;
+        self
+    }
+
+    /// The strategy in use for triangles and rectangles.
+    pub fn shape_sampling(&self) -> ShapeSampling {
+        self.shape_sampling
+    }
+
     /// The surface area of shape `shape` (world space); 0 for an index out of range.
     pub fn shape_area(&self, shape: u32) -> f32 {
         match self.shapes.get(shape as usize) {
@@ -60,7 +84,7 @@ impl Geometry {
         u: Vec2,
     ) -> Option<ShapeSample> {
         match self.shapes.get(shape as usize)? {
-            ShapeData::Mesh(m) => mesh::sample(m, reference, u_pick, u),
+            ShapeData::Mesh(m) => mesh::sample(m, self.shape_sampling, reference, u_pick, u),
             &ShapeData::Sphere {
                 center,
                 radius,
@@ -87,7 +111,7 @@ impl Geometry {
             return 0.0;
         }
         let pdf = match self.shapes.get(shape as usize) {
-            Some(ShapeData::Mesh(m)) => mesh::pdf(m, reference, hit),
+            Some(ShapeData::Mesh(m)) => mesh::pdf(m, self.shape_sampling, reference, hit),
             Some(&ShapeData::Sphere { center, radius, .. }) => {
                 sphere::pdf(center, radius, reference, hit)
             }
