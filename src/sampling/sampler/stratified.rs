@@ -44,10 +44,9 @@ pub struct StratifiedSampler {
     spp: u32,
     seed: u64,
     jitter: bool,
-    pixel_key: u64,
+    round_key: u64,
     sample_key: u64,
     index_in_round: u32,
-    round: u32,
     dimension: u64,
 }
 
@@ -69,10 +68,9 @@ impl StratifiedSampler {
             spp,
             seed,
             jitter,
-            pixel_key: 0,
+            round_key: 0,
             sample_key: 0,
             index_in_round: 0,
-            round: 0,
             dimension: 0,
         })
     }
@@ -108,8 +106,7 @@ impl StratifiedSampler {
     /// The random permutation key of the current dimension, pixel and round.
     #[inline]
     fn permutation_key(&self, tag: u64) -> u64 {
-        let k = combine(self.pixel_key, (self.dimension << 8) | tag);
-        combine(k, u64::from(self.round))
+        combine(self.round_key, (self.dimension << 8) | tag)
     }
 
     /// 64 random bits for the jitter of the current dimension and pixel sample.
@@ -121,10 +118,16 @@ impl StratifiedSampler {
 
 impl Sampler for StratifiedSampler {
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
-        self.pixel_key = pixel_key(self.seed, pixel);
-        self.sample_key = combine(self.pixel_key, u64::from(sample_index));
+        let pixel_key = pixel_key(self.seed, pixel);
+        self.sample_key = combine(pixel_key, u64::from(sample_index));
         self.index_in_round = sample_index % self.spp;
-        self.round = sample_index / self.spp;
+        let round = sample_index / self.spp;
+        // Round 0 (the usual case) skips one hash.
+        self.round_key = if round == 0 {
+            pixel_key
+        } else {
+            combine(pixel_key, u64::from(round))
+        };
         self.dimension = 0;
     }
 
