@@ -59,6 +59,28 @@ fn samplers(c: &mut Criterion) {
     );
     #[cfg(feature = "sobol")]
     bench_one(c, "sobol", SobolSampler::new(128, 1).unwrap());
+    #[cfg(feature = "sobol")]
+    raw_sobol(c);
+}
+
+/// The `sobol_burley` call alone (two dimensions via `sample_4d`, a new seed per call as our
+/// padding uses), to show how much of the Sobol sampler's cost is the scrambled sequence.
+#[cfg(feature = "sobol")]
+fn raw_sobol(c: &mut Criterion) {
+    let mut group = c.benchmark_group("sampler/sobol_burley_raw");
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function("sample_4d", |b| {
+        b.iter(|| {
+            for i in 0..BATCH as u32 {
+                black_box(sobol_burley::sample_4d(
+                    black_box(i & 127),
+                    0,
+                    i.wrapping_mul(0x9e37_79b9),
+                ));
+            }
+        })
+    });
+    group.finish();
 }
 
 criterion_group! {
