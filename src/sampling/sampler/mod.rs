@@ -21,7 +21,8 @@
 //! # Mitsuba 3 scene files
 //!
 //! The `<sampler type="...">` tag of a Mitsuba 3 scene maps to ours as follows (the scene
-//! description's `SamplerKind` carries the choice):
+//! description's `SamplerKind` carries the choice; [`AnySampler`] holds whichever sampler a
+//! renderer builds from it):
 //!
 //! | Mitsuba 3 tag | `SamplerKind` | ours | sample count |
 //! |---|---|---|---|
@@ -54,12 +55,14 @@ use glam::Vec2;
 
 use super::SamplingError;
 
+mod any;
 mod hash;
 mod independent;
 #[cfg(feature = "sobol")]
 mod sobol;
 mod stratified;
 
+pub use any::AnySampler;
 pub use independent::IndependentSampler;
 #[cfg(feature = "sobol")]
 pub use sobol::SobolSampler;
