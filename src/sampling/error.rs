@@ -54,7 +54,10 @@ impl fmt::Display for SamplingError {
                 name,
                 value,
                 expected,
-            } => write!(f, "invalid parameter `{name}` = {value}: expected {expected}"),
+            } => write!(
+                f,
+                "invalid parameter `{name}` = {value}: expected {expected}"
+            ),
             Self::InvalidDirection { name, expected } => {
                 write!(f, "invalid direction `{name}`: expected {expected}")
             }
