@@ -13,7 +13,7 @@ pub const MIN_EXPECTED: f64 = 5.0;
 /// let a = mcrt::stats::sidak(0.01, 1);
 /// assert!((a - 0.01).abs() < 1e-15);
 /// let a = mcrt::stats::sidak(0.01, 400); // 2.513e-5, a little above Bonferroni's 0.01/400
-/// assert!(a > 0.01 / 400.0 && a < 0.01 / 399.0);
+/// assert!(a > 0.01 / 400.0 && a < 0.0101 / 400.0);
 /// ```
 pub fn sidak(alpha: f64, test_count: u32) -> f64 {
     let n = f64::from(test_count.max(1));
