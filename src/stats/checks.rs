@@ -130,7 +130,7 @@ pub fn check_jacobian<P: StatPoint>(
         );
         let p = sample(u);
         let density = f64::from(pdf(p));
-        if !p.is_finite_point() || !(density > 0.0) {
+        if !p.is_finite_point() || density.is_nan() || density <= 0.0 {
             return None;
         }
         let j1 = jacobian_f64(&sample, u, settings.step)?;
@@ -247,7 +247,7 @@ fn summarise(
         match r {
             Some((e, u)) => {
                 out.checked += 1;
-                if !(*e <= out.worst_error) {
+                if e.is_nan() || *e > out.worst_error {
                     out.worst_error = *e;
                     out.worst_at = Some(*u);
                 }

@@ -2,7 +2,7 @@
 //! into cells that resolve narrow lobes.
 
 use super::domain::{Domain, PdfRef, CELL_ABS_TOL};
-use super::quadrature::{integrate_2d, Rect};
+use super::quadrature::{integrate_2d, Rect, REFINED_MIN_DEPTH};
 use glam::{DVec3, Vec3};
 use std::f64::consts::{PI, TAU};
 
@@ -106,7 +106,7 @@ impl Directions {
     fn angles(&self, p: Vec3) -> Option<(f64, f64)> {
         let p = p.as_dvec3();
         let len2 = p.length_squared();
-        if !((len2 - 1.0).abs() <= 2e-3) {
+        if len2.is_nan() || (len2 - 1.0).abs() > 2e-3 {
             return None;
         }
         let (x, y, z) = (p.dot(self.tangent), p.dot(self.bitangent), p.dot(self.axis));
@@ -121,9 +121,9 @@ impl Directions {
         (self.tangent * (st * cp) + self.bitangent * (st * sp) + self.axis * ct).as_vec3()
     }
 
-    fn solid_angle_mass(&self, r: Rect, pdf: PdfRef<'_, Vec3>) -> f64 {
+    fn solid_angle_mass(&self, r: Rect, pdf: PdfRef<'_, Vec3>, min_depth: u32) -> f64 {
         let f = |theta: f64, phi: f64| pdf(self.direction(theta, phi)) * theta.sin();
-        integrate_2d(&f, r, CELL_ABS_TOL)
+        integrate_2d(&f, r, CELL_ABS_TOL, min_depth)
     }
 
     fn cap_rect(&self, cell: usize) -> Rect {
@@ -137,7 +137,7 @@ impl Directions {
         }
     }
 
-    fn complement_mass(&self, pdf: PdfRef<'_, Vec3>) -> f64 {
+    fn complement_mass(&self, pdf: PdfRef<'_, Vec3>, min_depth: u32) -> f64 {
         let span = PI - self.theta_max;
         let edge = |k: usize| self.theta_max + span * (k as f64 / COMPLEMENT_BANDS as f64).powi(2);
         let dphi = TAU / COMPLEMENT_SECTORS as f64;
@@ -150,7 +150,7 @@ impl Directions {
                     b0: dphi * s as f64,
                     b1: dphi * (s + 1) as f64,
                 };
-                sum += self.solid_angle_mass(r, pdf);
+                sum += self.solid_angle_mass(r, pdf, min_depth);
             }
         }
         sum
@@ -177,9 +177,17 @@ impl Domain for Directions {
 
     fn cell_mass(&self, cell: usize, pdf: PdfRef<'_, Vec3>) -> f64 {
         if cell >= self.rows * self.cols {
-            self.complement_mass(pdf)
+            self.complement_mass(pdf, 0)
         } else {
-            self.solid_angle_mass(self.cap_rect(cell), pdf)
+            self.solid_angle_mass(self.cap_rect(cell), pdf, 0)
+        }
+    }
+
+    fn cell_mass_refined(&self, cell: usize, pdf: PdfRef<'_, Vec3>) -> f64 {
+        if cell >= self.rows * self.cols {
+            self.complement_mass(pdf, REFINED_MIN_DEPTH - 2)
+        } else {
+            self.solid_angle_mass(self.cap_rect(cell), pdf, REFINED_MIN_DEPTH)
         }
     }
 

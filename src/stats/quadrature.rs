@@ -36,18 +36,35 @@ fn rule_1d(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> f64 {
     s * h
 }
 
-/// ∫ₐᵇ f, adaptively, to about `abs_tol` absolute error.
-pub(crate) fn integrate_1d(f: &dyn Fn(f64) -> f64, a: f64, b: f64, abs_tol: f64) -> f64 {
-    fn rec(f: &dyn Fn(f64) -> f64, a: f64, b: f64, coarse: f64, tol: f64, depth: u32) -> f64 {
+/// Subdivision levels forced when a cell holds samples but its integral came out 0 (a
+/// support narrower than the quadrature nodes' spacing).
+pub(crate) const REFINED_MIN_DEPTH: u32 = 6;
+
+/// ∫ₐᵇ f, adaptively, to about `abs_tol` absolute error, subdividing at least `min_depth`
+/// levels.
+pub(crate) fn integrate_1d(
+    f: &dyn Fn(f64) -> f64,
+    a: f64,
+    b: f64,
+    abs_tol: f64,
+    min_depth: u32,
+) -> f64 {
+    struct Ctx<'a> {
+        f: &'a dyn Fn(f64) -> f64,
+        min_depth: u32,
+    }
+    fn rec(c: &Ctx<'_>, a: f64, b: f64, coarse: f64, tol: f64, depth: u32) -> f64 {
         let m = 0.5 * (a + b);
-        let (l, r) = (rule_1d(f, a, m), rule_1d(f, m, b));
+        let (l, r) = (rule_1d(c.f, a, m), rule_1d(c.f, m, b));
         let fine = l + r;
-        if depth >= MAX_DEPTH_1D || (fine - coarse).abs() <= tol.max(REL_TOL * fine.abs()) {
+        let converged = (fine - coarse).abs() <= tol.max(REL_TOL * fine.abs());
+        if depth >= MAX_DEPTH_1D.max(c.min_depth) || (depth >= c.min_depth && converged) {
             return fine;
         }
-        rec(f, a, m, l, 0.5 * tol, depth + 1) + rec(f, m, b, r, 0.5 * tol, depth + 1)
+        rec(c, a, m, l, 0.5 * tol, depth + 1) + rec(c, m, b, r, 0.5 * tol, depth + 1)
     }
-    rec(f, a, b, rule_1d(f, a, b), abs_tol, 0)
+    let c = Ctx { f, min_depth };
+    rec(&c, a, b, rule_1d(f, a, b), abs_tol, 0)
 }
 
 /// A rectangle `[a0, a1] × [b0, b1]` of parameter space.
@@ -102,22 +119,36 @@ fn rule_2d(f: &dyn Fn(f64, f64) -> f64, r: Rect) -> f64 {
     s * ha * hb
 }
 
-/// ∬ f over `r`, adaptively, to about `abs_tol` absolute error.
-pub(crate) fn integrate_2d(f: &dyn Fn(f64, f64) -> f64, r: Rect, abs_tol: f64) -> f64 {
-    fn rec(f: &dyn Fn(f64, f64) -> f64, r: Rect, coarse: f64, tol: f64, depth: u32) -> f64 {
+/// ∬ f over `r`, adaptively, to about `abs_tol` absolute error, subdividing at least
+/// `min_depth` levels.
+pub(crate) fn integrate_2d(
+    f: &dyn Fn(f64, f64) -> f64,
+    r: Rect,
+    abs_tol: f64,
+    min_depth: u32,
+) -> f64 {
+    fn rec(
+        f: &dyn Fn(f64, f64) -> f64,
+        r: Rect,
+        coarse: f64,
+        tol: f64,
+        depth: u32,
+        min: u32,
+    ) -> f64 {
         let q = r.quarters();
         let parts = q.map(|s| rule_2d(f, s));
         let fine: f64 = parts.iter().sum();
-        if depth >= MAX_DEPTH || (fine - coarse).abs() <= tol.max(REL_TOL * fine.abs()) {
+        let converged = (fine - coarse).abs() <= tol.max(REL_TOL * fine.abs());
+        if depth >= MAX_DEPTH.max(min) || (depth >= min && converged) {
             return fine;
         }
         let mut s = 0.0;
         for (sub, c) in q.into_iter().zip(parts) {
-            s += rec(f, sub, c, 0.25 * tol, depth + 1);
+            s += rec(f, sub, c, 0.25 * tol, depth + 1, min);
         }
         s
     }
-    rec(f, r, rule_2d(f, r), abs_tol, 0)
+    rec(f, r, rule_2d(f, r), abs_tol, 0, min_depth)
 }
 
 #[cfg(test)]
@@ -126,7 +157,7 @@ mod tests {
 
     #[test]
     fn polynomials_are_exact() {
-        let v = integrate_1d(&|x| x * x * x + 1.0, 0.0, 2.0, 1e-12);
+        let v = integrate_1d(&|x| x * x * x + 1.0, 0.0, 2.0, 1e-12, 0);
         assert!(v.is_finite() && (v - 6.0).abs() < 1e-12, "{v}");
         let r = Rect {
             a0: 0.0,
@@ -134,7 +165,7 @@ mod tests {
             b0: 0.0,
             b1: 2.0,
         };
-        let v = integrate_2d(&|a, b| a * b, r, 1e-12);
+        let v = integrate_2d(&|a, b| a * b, r, 1e-12, 0);
         assert!(v.is_finite() && (v - 1.0).abs() < 1e-12, "{v}");
     }
 
@@ -148,12 +179,23 @@ mod tests {
             b1: 1.0,
         };
         let disk = |a: f64, b: f64| if a * a + b * b < 1.0 { 1.0 } else { 0.0 };
-        let v = integrate_2d(&disk, r, 1e-9);
+        let v = integrate_2d(&disk, r, 1e-9, 0);
         assert!(
             v.is_finite() && (v - std::f64::consts::PI).abs() < 1e-3,
             "{v}"
         );
-        let step = integrate_1d(&|x| if x < 0.3 { 1.0 } else { 0.0 }, 0.0, 1.0, 1e-12);
+        let step = integrate_1d(&|x| if x < 0.3 { 1.0 } else { 0.0 }, 0.0, 1.0, 1e-12, 0);
         assert!(step.is_finite() && (step - 0.3).abs() < 1e-5, "{step}");
+        // A sliver the nodes miss is found with a forced minimum depth.
+        let sliver = |a: f64, _b: f64| if (0.5..0.502).contains(&a) { 1.0 } else { 0.0 };
+        let unit = Rect {
+            a0: 0.0,
+            a1: 1.0,
+            b0: 0.0,
+            b1: 1.0,
+        };
+        assert_eq!(integrate_2d(&sliver, unit, 1e-12, 0), 0.0);
+        let v = integrate_2d(&sliver, unit, 1e-12, REFINED_MIN_DEPTH);
+        assert!(v.is_finite() && (v - 0.002).abs() < 1e-4, "{v}");
     }
 }
