@@ -64,6 +64,6 @@ pub use checks::{
 pub use chi2::{p_value, sidak, CellCount, MIN_EXPECTED};
 pub use directions::Directions;
 pub use domain::{Discrete, Domain, Interval, PdfRef, Rectangle};
-pub use harness::ChiSquareTest;
+pub use harness::{ChiSquareTest, RECHECK_MAX_CELLS, RECHECK_SIGMAS};
 pub use outcome::{Chi2Failure, Chi2Outcome};
 pub use point::StatPoint;
