@@ -36,7 +36,23 @@ where
     W::Point: StatPoint,
     D: Domain<Point = W::Point>,
 {
-    let o = chi2(domain, name).run_warp(warp);
+    check_n(f, name, warp, domain, jac, common::SAMPLES);
+}
+
+/// [`check`] with `samples` samples (for warps too slow for the default count).
+fn check_n<W, D>(
+    f: &mut Failures,
+    name: &str,
+    warp: &W,
+    domain: D,
+    jac: Option<JacobianCheck>,
+    samples: usize,
+) where
+    W: Warp + Sync,
+    W::Point: StatPoint,
+    D: Domain<Point = W::Point>,
+{
+    let o = chi2(domain, name).samples(samples).run_warp(warp);
     if !o.passed() {
         f.0.push(o.report());
     }
@@ -78,6 +94,15 @@ fn square() -> Rectangle {
 
 fn jac() -> Option<JacobianCheck> {
     Some(common::jacobian())
+}
+
+/// A wider difference step for maps onto small solid angles, where the `f32` rounding of
+/// the sampled directions (≈ 6·10⁻⁸) over a step of 2⁻¹⁰ would exceed the tolerance.
+fn jac_wide() -> Option<JacobianCheck> {
+    Some(JacobianCheck {
+        step: 1.0 / 128.0,
+        ..common::jacobian()
+    })
 }
 
 #[test]
@@ -209,12 +234,14 @@ fn visible_normals() {
                 lobe_domain(alpha),
                 jac(),
             );
-            check(
+            // Beckmann visible normals cost about 3 µs per sample: a quarter of the samples.
+            check_n(
                 &mut f,
                 &format!("BeckmannVisible-{tag}"),
                 &b,
                 lobe_domain(alpha),
                 jac(),
+                common::SAMPLES / 4,
             );
         }
     }
@@ -275,7 +302,7 @@ fn spherical_triangles() {
     for (tag, [a, b, c]) in cases {
         let name = format!("SphericalTriangle-{tag}");
         let t = SphericalTriangle::new(o, a, b, c).expect("valid triangle");
-        check(&mut f, &name, &t, cap_around(o, &[a, b, c]), jac());
+        check(&mut f, &name, &t, cap_around(o, &[a, b, c]), jac_wide());
     }
     f.finish();
 }
@@ -314,7 +341,7 @@ fn spherical_rectangles() {
         let name = format!("SphericalRectangle-{tag}");
         let r = SphericalRectangle::new(o, corner, ex, ey).expect("valid rectangle");
         let pts = [corner, corner + ex, corner + ex + ey, corner + ey];
-        check(&mut f, &name, &r, cap_around(o, &pts), jac());
+        check(&mut f, &name, &r, cap_around(o, &pts), jac_wide());
     }
     f.finish();
 }
