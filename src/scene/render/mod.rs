@@ -22,7 +22,6 @@
 
 mod effects;
 mod rng;
-mod standin_geometry;
 mod tiles;
 mod view;
 
@@ -32,7 +31,8 @@ pub use view::SceneView;
 
 /// The geometry and camera the renderer uses (one place to switch implementations).
 pub(crate) mod geo {
-    pub use super::standin_geometry::*;
+    pub use crate::scene::camera::Camera;
+    pub use crate::scene::geometry::*;
 }
 
 pub use geo::AccelKind;
@@ -153,12 +153,11 @@ fn bit(i: u32, b: u32) -> f32 {
 impl Renderer {
     /// Prepares a scene: geometry, lights, materials, camera and integrator.
     pub fn new(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {
-        let base: PathBuf = desc
+        let base: Option<PathBuf> = desc
             .source
             .as_ref()
-            .and_then(|p| p.parent().map(Path::to_path_buf))
-            .unwrap_or_else(|| PathBuf::from("."));
-        let geo = Geometry::new(&desc.shapes, &base, opts.accel)
+            .and_then(|p| p.parent().map(Path::to_path_buf));
+        let geo = Geometry::new(&desc.shapes, base.as_deref(), opts.accel)
             .map_err(|e| RenderError(format!("geometry: {e}")))?;
         let lights =
             Lights::new(desc, &geo, scene_radius(desc)).map_err(|e| RenderError(e.to_string()))?;

@@ -71,10 +71,10 @@ fn render_tile<S: Scene>(
                     .filter
                     .sample(crate::integrator::SampleSource::next_2d(&mut rng));
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
-                let ray = p.camera.generate_ray(film);
+                let (ray, t_max) = p.camera.generate_ray_with_tmax(film);
                 let r = p
                     .integrator
-                    .li(scene, ray.origin, ray.dir, p.t_max, &mut rng);
+                    .li(scene, ray.origin, ray.dir, t_max.min(p.t_max), &mut rng);
                 rays += r.rays as u64;
                 let v = r.radiance;
                 acc.add(if v.is_finite() { v } else { glam::Vec3::ZERO });
