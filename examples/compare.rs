@@ -6,7 +6,7 @@
 //!
 //! Prints, for 16×16 and 32×32 blocks brighter than 5% of the image mean, the worst relative
 //! block error, the image mean ratio and (with the variance image) the worst |z| against the
-//! Šidák-corrected critical value at α = 0.01.
+//! Šidák-corrected critical value at α = 0.01; and the relMSE of the image.
 
 use mcrt::glam::Vec3;
 use mcrt::scene::film::{compare_blocks, read_exr};
@@ -27,6 +27,17 @@ fn run() -> Result<(), String> {
         Some(p) => read_exr(Path::new(p)).map_err(|e| e.to_string())?.2,
         None => vec![Vec3::ZERO; img.len()],
     };
+    let rel_mse: f64 = img
+        .iter()
+        .zip(&reference)
+        .map(|(a, r)| {
+            let d = *a - *r;
+            let e = d * d / (*r * *r + Vec3::splat(0.01));
+            f64::from(e.x + e.y + e.z) / 3.0
+        })
+        .sum::<f64>()
+        / img.len() as f64;
+    println!("relMSE {rel_mse:.3e}  (mean of (img − ref)² / (ref² + 0.01))");
     for b in [16, 32] {
         let r = compare_blocks(&img, &var, &reference, None, w, h, b, 0.05, 0.01);
         println!(

@@ -4,7 +4,7 @@
 //! cargo run --release --example render -- [scene.xml] [--spp N] [-D name=value]...
 //!     [-o out.exr] [--threads N] [--seed S] [--variance]
 //!     [--strategy bsdf|light|balance|power] [--sampler independent|stratified|sobol]
-//!     [--accel bvh|grid]
+//!     [--accel bvh|grid] [--light-sampling solid-angle|area]
 //! ```
 //!
 //! Writes a linear float EXR and an sRGB PNG beside it (and `<name>-variance.exr` with
@@ -13,7 +13,7 @@
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrt::integrator::Strategy;
 use mcrt::scene::description::{SamplerKind, SceneDescription};
-use mcrt::scene::render::{AccelKind, RenderOptions, Renderer};
+use mcrt::scene::render::{AccelKind, RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -30,7 +30,8 @@ struct Args {
 
 const USAGE: &str = "usage: render [scene.xml] [--spp N] [-D name=value]... [-o out.exr] \
 [--threads N] [--seed S] [--variance] [--strategy bsdf|light|balance|power] \
-[--sampler independent|stratified|sobol] [--accel bvh|grid]";
+[--sampler independent|stratified|sobol] [--accel bvh|grid] \
+[--light-sampling solid-angle|area]";
 
 fn parse_num<T: std::str::FromStr>(flag: &str, v: Option<String>) -> Result<T, String> {
     let v = v.ok_or_else(|| format!("{flag} needs a value"))?;
@@ -74,6 +75,18 @@ fn parse_args() -> Result<Args, String> {
                         ))
                     }
                 });
+            }
+            "--light-sampling" => {
+                let s = it.next().ok_or("--light-sampling needs a value")?;
+                a.opts.light_sampling = match s.as_str() {
+                    "solid-angle" => ShapeSampling::SolidAngle,
+                    "area" => ShapeSampling::Area,
+                    _ => {
+                        return Err(format!(
+                            "--light-sampling {s}: expected solid-angle or area"
+                        ))
+                    }
+                };
             }
             "--accel" => {
                 let s = it.next().ok_or("--accel needs a value")?;

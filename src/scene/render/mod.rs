@@ -33,7 +33,7 @@ pub(crate) mod geo {
     pub use crate::scene::geometry::*;
 }
 
-pub use geo::AccelKind;
+pub use geo::{AccelKind, ShapeSampling};
 
 use crate::integrator::{DirectIntegrator, Integrator, PathTracer, Strategy};
 use crate::sampling::sampler::{
@@ -75,6 +75,8 @@ pub struct RenderOptions {
     pub strategy: Option<Strategy>,
     /// Acceleration structure.
     pub accel: AccelKind,
+    /// How area lights on triangles and rectangles are sampled (solid angle by default).
+    pub light_sampling: ShapeSampling,
     /// Sample generator (else the file's `sampler` type).
     pub sampler: Option<SamplerKind>,
     /// Pick the render loop specialised to the scene's effects (default). `false` always
@@ -92,6 +94,7 @@ impl Default for RenderOptions {
             strategy: None,
             accel: AccelKind::Bvh,
             sampler: None,
+            light_sampling: ShapeSampling::SolidAngle,
             specialize: true,
         }
     }
@@ -173,7 +176,8 @@ impl Renderer {
             .as_ref()
             .and_then(|p| p.parent().map(Path::to_path_buf));
         let geo = Geometry::new(&desc.shapes, base.as_deref(), opts.accel)
-            .map_err(|e| RenderError(format!("geometry: {e}")))?;
+            .map_err(|e| RenderError(format!("geometry: {e}")))?
+            .with_shape_sampling(opts.light_sampling);
         let lights =
             Lights::new(desc, &geo, scene_radius(desc)).map_err(|e| RenderError(e.to_string()))?;
         let camera = Camera::new(&desc.sensor).map_err(|e| RenderError(format!("camera: {e}")))?;
