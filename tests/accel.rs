@@ -529,3 +529,27 @@ fn invalid_shapes_are_errors() {
     let nan = mesh(vec![Vec3::NAN; 3], vec![[0, 1, 2]]);
     assert!(Geometry::new(&[nan], None, AccelKind::Bvh).is_err());
 }
+
+#[test]
+fn geometry_and_camera_are_shareable_across_threads() {
+    fn shareable<T: Send + Sync>() {}
+    shareable::<Geometry>();
+    shareable::<mcrt::scene::camera::Camera>();
+    // Queries from several threads at once agree with one thread (per-thread stacks).
+    let g = Geometry::new(&cornell_box(), None, AccelKind::Bvh).unwrap();
+    let mut r = rng(12);
+    let rays = random_rays(&mut r, 2000, 0.9);
+    let serial: Vec<Option<f32>> = rays
+        .iter()
+        .map(|ray| g.intersect(ray, f32::INFINITY).map(|h| h.t))
+        .collect();
+    std::thread::scope(|s| {
+        for _ in 0..3 {
+            s.spawn(|| {
+                for (ray, want) in rays.iter().zip(&serial) {
+                    assert_eq!(g.intersect(ray, f32::INFINITY).map(|h| h.t), *want);
+                }
+            });
+        }
+    });
+}
