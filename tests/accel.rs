@@ -553,3 +553,48 @@ fn geometry_and_camera_are_shareable_across_threads() {
         }
     });
 }
+
+/// Rays spawned from hits with `spawn_ray` (the offset policy) never hit their own flat
+/// primitive again, on either side, whatever the direction (grazing included).
+#[test]
+fn spawned_rays_do_not_self_intersect() {
+    use mcrt::scene::geometry::spawn_ray;
+    let mut shapes = cornell_box();
+    shapes.push(tessellated_sphere(16, 32));
+    // Move the tessellated sphere away from the origin so coordinates use ulp offsets.
+    shapes.last_mut().unwrap().to_world = Mat4::from_translation(Vec3::new(40.0, -25.0, 60.0));
+    let g = Geometry::new(&shapes, None, AccelKind::Bvh).unwrap();
+    let mut r = rng(13);
+    let mut starts = Vec::new();
+    while starts.len() < 3000 {
+        let origin = if starts.len() % 2 == 0 {
+            point(&mut r, 0.9)
+        } else {
+            Vec3::new(40.0, -25.0, 60.0) + point(&mut r, 0.3)
+        };
+        let probe = Ray {
+            origin,
+            dir: unit_vec(&mut r),
+        };
+        if let Some(h) = g.intersect(&probe, f32::INFINITY) {
+            starts.push(h);
+        }
+    }
+    let mut rehits = 0;
+    for h in &starts {
+        for _ in 0..4 {
+            let mut d = unit_vec(&mut r);
+            if r.random::<f32>() < 0.3 {
+                // Nearly grazing.
+                d = (d - h.ng * d.dot(h.ng) * 0.9999).normalize();
+            }
+            let ray = spawn_ray(h.p, h.ng, d);
+            if let Some(n) = g.intersect(&ray, f32::INFINITY) {
+                if (n.shape, n.prim) == (h.shape, h.prim) {
+                    rehits += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(rehits, 0);
+}

@@ -74,6 +74,7 @@ impl Bvh4 {
     /// The code of binary node `b`: a leaf code, or the index of its 4-wide node.
     fn collapse(&mut self, bvh: &Bvh, b: usize) -> u32 {
         if let Some((first, count)) = bvh.leaf(b) {
+            debug_assert!(first < 1 << 28 && count <= 7, "leaf code overflow");
             return LEAF | first << 3 | count;
         }
         let mut kids = bvh.children(b).to_vec();
