@@ -598,3 +598,45 @@ fn spawned_rays_do_not_self_intersect() {
     }
     assert_eq!(rehits, 0);
 }
+
+/// Shadow rays from `spawn_ray_to` between two surface points: not occluded when the first
+/// thing the open segment meets is the target itself, occluded when something lies well
+/// before it.
+#[test]
+fn shadow_rays_between_surface_points() {
+    use mcrt::scene::geometry::{spawn_ray, spawn_ray_to};
+    let g = Geometry::new(&cornell_box(), None, AccelKind::Bvh).unwrap();
+    let mut r = rng(14);
+    let mut hits = Vec::new();
+    while hits.len() < 600 {
+        let probe = Ray {
+            origin: point(&mut r, 0.9),
+            dir: unit_vec(&mut r),
+        };
+        if let Some(h) = g.intersect(&probe, f32::INFINITY) {
+            hits.push(h);
+        }
+    }
+    let (mut free, mut blocked) = (0, 0);
+    for pair in hits.chunks(2) {
+        let (a, b) = (&pair[0], &pair[1]);
+        if a.shape == b.shape {
+            continue; // coplanar (walls) or same box: the segment may run along a face
+        }
+        let (ray, t_max) = spawn_ray_to(a.p, a.ng, b.p, b.ng);
+        // `t = 1` is b (the direction is b − a).
+        let first = g.intersect(&spawn_ray(a.p, a.ng, b.p - a.p), f32::INFINITY);
+        match first {
+            Some(f) if (f.p - b.p).length() < 1e-4 => {
+                assert!(!g.occluded(&ray, t_max), "{a:?} -> {b:?}");
+                free += 1;
+            }
+            Some(f) if f.t < 0.99 => {
+                assert!(g.occluded(&ray, t_max), "{a:?} -> {b:?} through {f:?}");
+                blocked += 1;
+            }
+            _ => {}
+        }
+    }
+    assert!(free > 50 && blocked > 10, "free {free}, blocked {blocked}");
+}
