@@ -640,3 +640,40 @@ fn shadow_rays_between_surface_points() {
     }
     assert!(free > 50 && blocked > 10, "free {free}, blocked {blocked}");
 }
+
+/// Build time and throughput on a 100k-triangle soup (every point of space lies in the
+/// boxes of hundreds of triangles: a hard case) and a 131k-triangle tessellated sphere, rays
+/// from inside (run with `-- --ignored --nocapture`).
+#[test]
+#[ignore = "timing, not a check"]
+fn throughput_large_meshes() {
+    let mut r = rng(15);
+    let n = 200_000;
+    let rays = random_rays(&mut r, n, 0.5);
+    for (name, shapes) in [
+        ("soup", vec![soup(&mut r, 100_000)]),
+        ("sphere", vec![tessellated_sphere(256, 256)]),
+    ] {
+        throughput(name, &shapes, &rays);
+    }
+}
+
+fn throughput(name: &str, shapes: &[ShapeDesc], rays: &[Ray]) {
+    let n = rays.len();
+    for kind in [AccelKind::Bvh, AccelKind::Grid] {
+        let start = std::time::Instant::now();
+        let g = Geometry::new(shapes, None, kind).unwrap();
+        let build = start.elapsed().as_secs_f64();
+        let start = std::time::Instant::now();
+        let hits = rays
+            .iter()
+            .filter(|ray| g.intersect(ray, f32::INFINITY).is_some())
+            .count();
+        let rate = n as f64 / start.elapsed().as_secs_f64();
+        println!(
+            "{name} {kind:?}: build {:.3} s, {:.2} M closest-hit rays/s ({hits} hits)",
+            build,
+            rate / 1e6
+        );
+    }
+}
