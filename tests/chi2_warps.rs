@@ -283,14 +283,6 @@ fn spherical_triangles() {
             ],
         ),
         (
-            "tiny",
-            [
-                Vec3::new(0.0, 0.0, 50.0),
-                Vec3::new(0.05, 0.0, 50.0),
-                Vec3::new(0.0, 0.05, 50.0),
-            ],
-        ),
-        (
             "sliver",
             [
                 Vec3::new(-1.0, 0.0, 2.0),
@@ -300,10 +292,30 @@ fn spherical_triangles() {
         ),
     ];
     for (tag, [a, b, c]) in cases {
-        let name = format!("SphericalTriangle-{tag}");
-        let t = SphericalTriangle::new(o, a, b, c).expect("valid triangle");
-        check(&mut f, &name, &t, cap_around(o, &[a, b, c]), jac_wide());
+        spherical_triangle(&mut f, tag, o, [a, b, c]);
     }
+    f.finish();
+}
+
+fn spherical_triangle(f: &mut Failures, tag: &str, o: Vec3, [a, b, c]: [Vec3; 3]) {
+    let name = format!("SphericalTriangle-{tag}");
+    let t = SphericalTriangle::new(o, a, b, c).expect("valid triangle");
+    check(f, &name, &t, cap_around(o, &[a, b, c]), jac_wide());
+}
+
+/// A triangle of 5·10⁻⁷ sr, sampled by the area fallback. Kept apart: it fails while the
+/// pdf's hit test accepts a fixed angular band of 10⁻⁶ rad around the triangle, which adds
+/// 0.7 % to the support of a triangle 10⁻³ rad across (see `docs/testing.md`).
+#[test]
+fn spherical_triangle_tiny() {
+    let mut f = Failures::default();
+    let o = Vec3::new(0.1, -0.2, 0.0);
+    let tri = [
+        Vec3::new(0.0, 0.0, 50.0),
+        Vec3::new(0.05, 0.0, 50.0),
+        Vec3::new(0.0, 0.05, 50.0),
+    ];
+    spherical_triangle(&mut f, "tiny", o, tri);
     f.finish();
 }
 

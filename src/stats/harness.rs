@@ -15,7 +15,7 @@ use std::path::PathBuf;
 pub const RECHECK_SIGMAS: f64 = 4.0;
 
 /// At most this many cells are re-integrated per run.
-pub const RECHECK_MAX_CELLS: usize = 256;
+pub const RECHECK_MAX_CELLS: usize = 64;
 
 /// What one draw produced.
 pub(crate) enum Draw<P> {
