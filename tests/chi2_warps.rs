@@ -357,3 +357,35 @@ fn spherical_rectangles() {
     }
     f.finish();
 }
+
+/// The suite's default hemisphere cells (rings refined toward the pole) resolve a GGX lobe
+/// of α = 0.01 without a zoomed cap.
+#[test]
+fn narrow_lobe_on_the_default_hemisphere() {
+    let g = Ggx::new(0.01).expect("valid alpha");
+    let o = chi2(hemisphere(), "Ggx-0.01-hemisphere").run_warp(&g);
+    o.assert_passed();
+    assert!(
+        o.dof >= 100,
+        "the lobe covers too few cells: {}",
+        o.report()
+    );
+}
+
+/// A Phong-like lobe about a reflected direction 60° off the pole (exponent 10³), tested in
+/// a cap about that direction.
+#[test]
+fn reflected_lobe_off_the_pole() {
+    let lobe = PowerCosineHemisphere::new(1000.0).expect("valid exponent");
+    let r = Vec3::new(60f32.to_radians().sin(), 0.0, 60f32.to_radians().cos());
+    let (t, b) = r.any_orthonormal_pair();
+    let to_world = |w: Vec3| t * w.x + b * w.y + r * w.z;
+    let to_local = |w: Vec3| Vec3::new(w.dot(t), w.dot(b), w.dot(r));
+    let domain = Directions::cap(r, 8.0 / 1001f32.sqrt())
+        .resolution(61, 64)
+        .refinement(1.5);
+    let o = chi2(domain, "PowerCosine-reflected")
+        .run(|u| to_world(lobe.sample(u)), |w| lobe.pdf(to_local(w)));
+    o.assert_passed();
+    assert!(o.dof >= 100, "{}", o.report());
+}
