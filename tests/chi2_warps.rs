@@ -97,7 +97,7 @@ fn jac() -> Option<JacobianCheck> {
 }
 
 /// A wider difference step for maps onto small solid angles, where the `f32` rounding of
-/// the sampled directions (≈ 6·10⁻⁸) over a step of 2⁻¹⁰ would exceed the tolerance.
+/// the sampled directions (≈ 6·10⁻⁸) over a step of 2⁻⁹ would exceed the tolerance.
 fn jac_wide() -> Option<JacobianCheck> {
     Some(JacobianCheck {
         step: 1.0 / 128.0,
