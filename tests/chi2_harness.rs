@@ -451,3 +451,25 @@ fn default_settings_are_usable_directly() {
         .assert_passed();
     let _ = PI;
 }
+
+#[test]
+fn samples_below_the_hemisphere_fail_outright() {
+    // Cosine-weighted, but one sample in 10⁴ mirrored below the horizon: it lands in the
+    // complement cell, where the pdf integrates to 0.
+    let leaky = |u: Vec2| {
+        let w = cosine_hemisphere(u);
+        if u.y < 1e-4 {
+            Vec3::new(w.x, w.y, -w.z)
+        } else {
+            w
+        }
+    };
+    let o = chi2(hemisphere(), "edge-below-horizon")
+        .output_dir(None)
+        .run(leaky, cosine_pdf);
+    assert!(
+        o.failures.iter().any(|f| matches!(f, Chi2Failure::ZeroExpectedHit { cell, .. } if cell.contains("complement"))),
+        "{}",
+        o.report()
+    );
+}

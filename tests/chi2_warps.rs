@@ -131,6 +131,27 @@ fn triangle() {
     f.finish();
 }
 
+/// A sliver triangle in 3D (1 × 10⁻³), sampled through `triangle_point`, against
+/// `triangle_area_pdf` on its support: uniform in area.
+#[test]
+fn sliver_triangle_in_3d() {
+    let (a, b, c) = (Vec3::ZERO, Vec3::X, Vec3::new(0.5, 1e-3, 0.0));
+    let area_pdf = triangle_area_pdf(a, b, c);
+    assert!(
+        area_pdf.is_finite() && (area_pdf - 2000.0).abs() < 0.5,
+        "{area_pdf}"
+    );
+    let inside = |p: Vec2| {
+        let (x, y) = (f64::from(p.x), f64::from(p.y));
+        y >= 0.0 && y <= 2e-3 * x.min(1.0 - x) * (1.0 + 1e-6)
+    };
+    let sample = |u: Vec2| triangle_point(a, b, c, UniformTriangle.sample(u)).truncate();
+    let domain = Rectangle::new(Vec2::ZERO, Vec2::new(1.0, 1e-3), 64, 16);
+    chi2(domain, "UniformTriangle-sliver-3d")
+        .run(sample, |p| if inside(p) { area_pdf } else { 0.0 })
+        .assert_passed();
+}
+
 #[test]
 fn hemispheres_and_sphere() {
     let mut f = Failures::default();
