@@ -53,6 +53,13 @@ impl CheckOutcome {
     }
 }
 
+impl std::fmt::Display for CheckOutcome {
+    /// Writes [`CheckOutcome::report`].
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.report())
+    }
+}
+
 /// Checks `|∫_domain pdf − 1| ≤ tolerance` (same quadrature as the chi-square test).
 ///
 /// ```
