@@ -87,7 +87,7 @@ impl<D: Domain> ChiSquareTest<D> {
     }
 
     /// Sets the family-wise level `alpha` for a suite of `test_count` tests: each run is
-    /// rejected when its p-value is below `1 − (1 − alpha)^(1/test_count)` ([`sidak`]).
+    /// rejected when its p-value is below `1 − (1 − alpha)^(1/test_count)` ([`sidak`](super::sidak)).
     /// Keep `test_count` fixed for a suite, so a filtered run uses the same threshold.
     /// An `alpha` outside `(0, 1)` falls back to 0.01.
     #[must_use]
