@@ -62,7 +62,10 @@ fn table(name: &str, f: fn(Vec2) -> f64, exact: f64) {
     #[cfg(feature = "sobol")]
     print!(" sobol |");
     println!();
-    println!("|---|---|---|{}", if cfg!(feature = "sobol") { "---|" } else { "" });
+    println!(
+        "|---|---|---|{}",
+        if cfg!(feature = "sobol") { "---|" } else { "" }
+    );
     let mut last: Option<(f64, Vec<f64>)> = None;
     for k in 1..=5 {
         let spp = 1u32 << (2 * k);
@@ -88,7 +91,11 @@ fn table(name: &str, f: fn(Vec2) -> f64, exact: f64) {
 }
 
 fn main() {
-    table("smooth integrand exp(xy) + sin(3x)·y²", smooth, smooth_integral());
+    table(
+        "smooth integrand exp(xy) + sin(3x)·y²",
+        smooth,
+        smooth_integral(),
+    );
     table(
         "discontinuous integrand: quarter disk",
         quarter_disk,
