@@ -5,7 +5,9 @@ Usage: scripts/perf_doc.py   (after the three `cargo bench --bench ...`; scripts
 runs all of it)
 
 Replaces the text between `<!-- table:NAME -->` and `<!-- end -->` markers with the output of
-scripts/bench_table.py for that table, and the machine block with this machine's description.
+scripts/bench_table.py for that table (and of `cargo run --release --example
+sampler_convergence` for the convergence table), and the machine block with this machine's
+description.
 """
 
 import os
@@ -50,6 +52,11 @@ def main():
                                capture_output=True, text=True, check=True).stdout
         text = re.sub(rf"(<!-- table:{name} -->\n).*?(<!-- end -->)",
                       lambda m: m.group(1) + table + m.group(2), text, flags=re.S)
+    conv = subprocess.run(["cargo", "run", "--quiet", "--release", "--example",
+                           "sampler_convergence"], cwd=os.path.join(HERE, ".."),
+                          capture_output=True, text=True, check=True).stdout.strip() + "\n"
+    text = re.sub(r"(<!-- table:convergence -->\n).*?(<!-- end -->)",
+                  lambda m: m.group(1) + conv + m.group(2), text, flags=re.S)
     text = re.sub(r"(<!-- machine -->\n).*?(<!-- end -->)",
                   lambda m: m.group(1) + machine() + m.group(2), text, flags=re.S)
     open(DOC, "w").write(text)
