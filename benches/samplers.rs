@@ -83,6 +83,16 @@ fn raw_sobol(c: &mut Criterion) {
             }
         })
     });
+    group.bench_function("sample x2", |b| {
+        b.iter(|| {
+            for i in 0..BATCH as u32 {
+                let seed = i.wrapping_mul(0x9e37_79b9);
+                let index = black_box(i & 127);
+                black_box(sobol_burley::sample(index, 0, seed));
+                black_box(sobol_burley::sample(index, 1, seed));
+            }
+        })
+    });
     group.finish();
 }
 
