@@ -529,3 +529,151 @@ fn invalid_shapes_are_errors() {
     let nan = mesh(vec![Vec3::NAN; 3], vec![[0, 1, 2]]);
     assert!(Geometry::new(&[nan], None, AccelKind::Bvh).is_err());
 }
+
+#[test]
+fn geometry_and_camera_are_shareable_across_threads() {
+    fn shareable<T: Send + Sync>() {}
+    shareable::<Geometry>();
+    shareable::<mcrt::scene::camera::Camera>();
+    // Queries from several threads at once agree with one thread (per-thread stacks).
+    let g = Geometry::new(&cornell_box(), None, AccelKind::Bvh).unwrap();
+    let mut r = rng(12);
+    let rays = random_rays(&mut r, 2000, 0.9);
+    let serial: Vec<Option<f32>> = rays
+        .iter()
+        .map(|ray| g.intersect(ray, f32::INFINITY).map(|h| h.t))
+        .collect();
+    std::thread::scope(|s| {
+        for _ in 0..3 {
+            s.spawn(|| {
+                for (ray, want) in rays.iter().zip(&serial) {
+                    assert_eq!(g.intersect(ray, f32::INFINITY).map(|h| h.t), *want);
+                }
+            });
+        }
+    });
+}
+
+/// Rays spawned from hits with `spawn_ray` (the offset policy) never hit their own flat
+/// primitive again, on either side, whatever the direction (grazing included).
+#[test]
+fn spawned_rays_do_not_self_intersect() {
+    use mcrt::scene::geometry::spawn_ray;
+    let mut shapes = cornell_box();
+    shapes.push(tessellated_sphere(16, 32));
+    // Move the tessellated sphere away from the origin so coordinates use ulp offsets.
+    shapes.last_mut().unwrap().to_world = Mat4::from_translation(Vec3::new(40.0, -25.0, 60.0));
+    let g = Geometry::new(&shapes, None, AccelKind::Bvh).unwrap();
+    let mut r = rng(13);
+    let mut starts = Vec::new();
+    while starts.len() < 3000 {
+        let origin = if starts.len() % 2 == 0 {
+            point(&mut r, 0.9)
+        } else {
+            Vec3::new(40.0, -25.0, 60.0) + point(&mut r, 0.3)
+        };
+        let probe = Ray {
+            origin,
+            dir: unit_vec(&mut r),
+        };
+        if let Some(h) = g.intersect(&probe, f32::INFINITY) {
+            starts.push(h);
+        }
+    }
+    let mut rehits = 0;
+    for h in &starts {
+        for _ in 0..4 {
+            let mut d = unit_vec(&mut r);
+            if r.random::<f32>() < 0.3 {
+                // Nearly grazing.
+                d = (d - h.ng * d.dot(h.ng) * 0.9999).normalize();
+            }
+            let ray = spawn_ray(h.p, h.ng, d);
+            if let Some(n) = g.intersect(&ray, f32::INFINITY) {
+                if (n.shape, n.prim) == (h.shape, h.prim) {
+                    rehits += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(rehits, 0);
+}
+
+/// Shadow rays from `spawn_ray_to` between two surface points: not occluded when the first
+/// thing the open segment meets is the target itself, occluded when something lies well
+/// before it.
+#[test]
+fn shadow_rays_between_surface_points() {
+    use mcrt::scene::geometry::{spawn_ray, spawn_ray_to};
+    let g = Geometry::new(&cornell_box(), None, AccelKind::Bvh).unwrap();
+    let mut r = rng(14);
+    let mut hits = Vec::new();
+    while hits.len() < 600 {
+        let probe = Ray {
+            origin: point(&mut r, 0.9),
+            dir: unit_vec(&mut r),
+        };
+        if let Some(h) = g.intersect(&probe, f32::INFINITY) {
+            hits.push(h);
+        }
+    }
+    let (mut free, mut blocked) = (0, 0);
+    for pair in hits.chunks(2) {
+        let (a, b) = (&pair[0], &pair[1]);
+        if a.shape == b.shape {
+            continue; // coplanar (walls) or same box: the segment may run along a face
+        }
+        let (ray, t_max) = spawn_ray_to(a.p, a.ng, b.p, b.ng);
+        // `t = 1` is b (the direction is b − a).
+        let first = g.intersect(&spawn_ray(a.p, a.ng, b.p - a.p), f32::INFINITY);
+        match first {
+            Some(f) if (f.p - b.p).length() < 1e-4 => {
+                assert!(!g.occluded(&ray, t_max), "{a:?} -> {b:?}");
+                free += 1;
+            }
+            Some(f) if f.t < 0.99 => {
+                assert!(g.occluded(&ray, t_max), "{a:?} -> {b:?} through {f:?}");
+                blocked += 1;
+            }
+            _ => {}
+        }
+    }
+    assert!(free > 50 && blocked > 10, "free {free}, blocked {blocked}");
+}
+
+/// Build time and throughput on a 100k-triangle soup (every point of space lies in the
+/// boxes of hundreds of triangles: a hard case) and a 131k-triangle tessellated sphere, rays
+/// from inside (run with `-- --ignored --nocapture`).
+#[test]
+#[ignore = "timing, not a check"]
+fn throughput_large_meshes() {
+    let mut r = rng(15);
+    let n = 200_000;
+    let rays = random_rays(&mut r, n, 0.5);
+    for (name, shapes) in [
+        ("soup", vec![soup(&mut r, 100_000)]),
+        ("sphere", vec![tessellated_sphere(256, 256)]),
+    ] {
+        throughput(name, &shapes, &rays);
+    }
+}
+
+fn throughput(name: &str, shapes: &[ShapeDesc], rays: &[Ray]) {
+    let n = rays.len();
+    for kind in [AccelKind::Bvh, AccelKind::Grid] {
+        let start = std::time::Instant::now();
+        let g = Geometry::new(shapes, None, kind).unwrap();
+        let build = start.elapsed().as_secs_f64();
+        let start = std::time::Instant::now();
+        let hits = rays
+            .iter()
+            .filter(|ray| g.intersect(ray, f32::INFINITY).is_some())
+            .count();
+        let rate = n as f64 / start.elapsed().as_secs_f64();
+        println!(
+            "{name} {kind:?}: build {:.3} s, {:.2} M closest-hit rays/s ({hits} hits)",
+            build,
+            rate / 1e6
+        );
+    }
+}

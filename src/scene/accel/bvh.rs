@@ -82,6 +82,28 @@ impl Bvh {
         &self.order
     }
 
+    /// Leaf `b`'s primitive range (first, count), or `None` for an interior node.
+    pub(super) fn leaf(&self, b: usize) -> Option<(u32, u32)> {
+        let n = &self.nodes[b];
+        (n.count > 0).then_some((n.offset, u32::from(n.count)))
+    }
+
+    /// The two children of interior node `b`.
+    pub(super) fn children(&self, b: usize) -> [usize; 2] {
+        [b + 1, self.nodes[b].offset as usize]
+    }
+
+    /// The (padded) box of node `b`.
+    pub(super) fn node_box(&self, b: usize) -> (Vec3A, Vec3A) {
+        (self.nodes[b].min, self.nodes[b].max)
+    }
+
+    /// The surface area of node `b`'s box.
+    pub(super) fn area(&self, b: usize) -> f32 {
+        let e = (self.nodes[b].max - self.nodes[b].min).max(Vec3A::ZERO);
+        2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+    }
+
     /// Number of nodes.
     pub fn node_count(&self) -> usize {
         self.nodes.len()

@@ -1,5 +1,7 @@
-//! Acceleration structures over primitives given by their bounding boxes: a SAH BVH
-//! ([`Bvh`]), a uniform grid ([`Grid`]) and brute force, selected by [`AccelKind`].
+//! Acceleration structures over primitives given by their bounding boxes: a SAH BVH (built
+//! binary, [`Bvh`], then collapsed to 4-wide nodes, [`Bvh4`], which is what
+//! [`AccelKind::Bvh`] uses), a uniform grid ([`Grid`]) and brute force, selected by
+//! [`AccelKind`].
 //!
 //! They know nothing of the primitives themselves: a query calls back with primitive
 //! indices and the caller intersects them. The primitives must be stored in the order
@@ -28,10 +30,12 @@
 
 mod aabb;
 mod bvh;
+mod bvh4;
 mod grid;
 
 pub use aabb::{Aabb, RayBoxTest};
 pub use bvh::{Bvh, BINS, MAX_LEAF};
+pub use bvh4::Bvh4;
 pub use grid::{Grid, DENSITY, MAX_RES};
 
 use glam::Vec3;
@@ -39,7 +43,8 @@ use glam::Vec3;
 /// Which acceleration structure to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum AccelKind {
-    /// A bounding volume hierarchy built with the binned surface area heuristic (default).
+    /// A bounding volume hierarchy built with the binned surface area heuristic and
+    /// collapsed to 4-wide nodes ([`Bvh4`]; the default).
     #[default]
     Bvh,
     /// A uniform grid traversed with a 3D DDA.
@@ -57,7 +62,7 @@ pub struct Accel {
 
 #[derive(Debug, Clone)]
 enum Imp {
-    Bvh(Bvh),
+    Bvh(Bvh4),
     Grid(Grid),
     BruteForce(u32),
 }
@@ -68,7 +73,7 @@ impl Accel {
         let identity = || (0..bounds.len() as u32).collect();
         match kind {
             AccelKind::Bvh => {
-                let bvh = Bvh::build(bounds);
+                let bvh = Bvh4::build(bounds);
                 let order = bvh.order().to_vec();
                 Self {
                     imp: Imp::Bvh(bvh),

@@ -118,7 +118,7 @@ pub(crate) fn hit_sphere(
     radius: f32,
     t_max: f32,
 ) -> Option<f32> {
-    let f = (origin - center).as_dvec3();
+    let f = origin.as_dvec3() - center.as_dvec3();
     let d = dir.as_dvec3();
     let r = f64::from(radius);
     let a = d.dot(d);
@@ -225,6 +225,31 @@ mod tests {
         // Far away, tiny sphere: the precise discriminant still finds it.
         let t = hit_sphere(Vec3::new(0.0, 0.0, -1e4), Vec3::Z, Vec3::ZERO, 1e-2, 1e5).unwrap();
         assert!(t.is_finite() && (t - (1e4 - 1e-2)).abs() < 1e-2);
+    }
+
+    #[test]
+    fn rays_leaving_a_sphere_do_not_hit_it_again() {
+        use crate::scene::geometry::offset_origin;
+        let c = Vec3::new(3.0, -2.0, 7.0);
+        for k in 0..200 {
+            let a = k as f32 * 0.37;
+            let n = Vec3::new(
+                a.cos() * (a * 0.5).sin(),
+                (a * 0.5).cos(),
+                a.sin() * (a * 0.5).sin(),
+            )
+            .normalize();
+            let p = c + 0.8 * n;
+            // Leaving outwards: nothing ahead.
+            let out = n + Vec3::new(0.1, -0.2, 0.05);
+            let o = offset_origin(p, n, out);
+            assert!(hit_sphere(o, out, c, 0.8, f32::INFINITY).is_none(), "k {k}");
+            // Refracted inwards: the far side, not the start point.
+            let inward = -n + Vec3::new(0.05, 0.1, -0.1);
+            let o = offset_origin(p, n, inward);
+            let t = hit_sphere(o, inward, c, 0.8, f32::INFINITY).unwrap();
+            assert!(t.is_finite() && t > 0.1, "k {k}: t {t}");
+        }
     }
 
     #[test]
