@@ -7,10 +7,10 @@ use glam::{DVec2, DVec3};
 
 use super::{RectangleFrame, SPHERICAL_RECTANGLE_MIN_SOLID_ANGLE};
 
-/// cos and sin of [`SPHERICAL_RECTANGLE_MIN_ANGLE`](super::SPHERICAL_RECTANGLE_MIN_ANGLE) (1e-3 rad), to compare an angle given
+/// cos and sin of [`SPHERICAL_RECTANGLE_MIN_ANGLE`](super::SPHERICAL_RECTANGLE_MIN_ANGLE) (`1e-3_f32` widened to `f64`), to compare an angle given
 /// by its (cos, sin) pair with the threshold without an `atan2`.
-const COS_MIN_ANGLE: f64 = 0.999_999_500_000_041_7;
-const SIN_MIN_ANGLE: f64 = 9.999_998_333_333_417e-4;
+const COS_MIN_ANGLE: f64 = 0.999_999_499_999_994_2;
+const SIN_MIN_ANGLE: f64 = 9.999_998_808_307_693e-4;
 
 /// Precomputed quantities of Ureña et al.'s method, in the rectangle's local frame where the
 /// rectangle is [x0, x1] × [y0, y1] at height z0 < 0.
@@ -161,7 +161,16 @@ mod tests {
     #[test]
     fn wide_enough_matches_atan2() {
         let t = f64::from(SPHERICAL_RECTANGLE_MIN_ANGLE);
-        for g in [0.0, 0.5e-3, 0.99e-3, 1.01e-3, 0.1, 1.0, 3.0, std::f64::consts::PI] {
+        for g in [
+            0.0,
+            0.5e-3,
+            0.99e-3,
+            1.01e-3,
+            0.1,
+            1.0,
+            3.0,
+            std::f64::consts::PI,
+        ] {
             let z = DVec2::new(f64::cos(g), f64::sin(g));
             assert_eq!(wide_enough(z), g >= t, "{g}");
         }

@@ -122,12 +122,7 @@ fn sample_parallelogram(
     (pdf.is_finite() && pdf > 0.0).then_some(ShapeSample { p, n, pdf })
 }
 
-fn pdf_parallelogram(
-    m: &MeshData,
-    how: ShapeSampling,
-    reference: Vec3,
-    hit: &Hit,
-) -> Option<f32> {
+fn pdf_parallelogram(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) -> Option<f32> {
     match solid_angle(how, || rectangle(m, reference)) {
         Some(sr) => Some(sr.pdf((hit.p - reference).normalize_or_zero())),
         None => area_to_solid_angle(1.0 / m.area, reference, hit.p, hit.ng),
