@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo run --release --example shape_sampling_efficiency -- [--spp N] [--threads N]
-//!     [--seed S] [--reference tests/data/cornell-box.exr]
+//!     [--seed S] [--reference tests/data/cornell-box.exr] [--only solid-angle|area]
 //! ```
 //!
 //! Renders the built-in Cornell box (256×256, path tracer, MIS power heuristic) once per
@@ -116,6 +116,7 @@ struct Args {
     threads: usize,
     seed: u64,
     reference: PathBuf,
+    only: Option<String>,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -124,6 +125,7 @@ fn parse_args() -> Result<Args, String> {
         threads: 0,
         seed: 0,
         reference: PathBuf::from("tests/data/cornell-box.exr"),
+        only: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
@@ -143,10 +145,11 @@ fn parse_args() -> Result<Args, String> {
                 a.seed = v.parse().map_err(|_| bad(&v))?;
             }
             "--reference" => a.reference = value()?.into(),
+            "--only" => a.only = Some(value()?),
             _ => {
                 return Err(
                     "usage: shape_sampling_efficiency [--spp N] [--threads N] [--seed S] \
-                     [--reference ref.exr]"
+                     [--reference ref.exr] [--only solid-angle|area]"
                         .into(),
                 )
             }
@@ -277,6 +280,9 @@ fn run() -> Result<(), String> {
         ("solid-angle", ShapeSampling::SolidAngle),
         ("area", ShapeSampling::Area),
     ] {
+        if args.only.as_deref().is_some_and(|o| o != name) {
+            continue;
+        }
         let (img, cpu) = render(&desc, how, &args)?;
         let e = rel_mse(&img, &reference);
         let efficiency = 1.0 / (e * cpu);

@@ -249,6 +249,8 @@ mod tests {
             Vec3::ZERO,
             Vec3::new(3.0, -2.0, 0.5),
             Vec3::new(0.5, 0.5, 1.9),
+            // Almost in the plane, over the rectangle: Ω close to 2π.
+            Vec3::new(0.2, -0.3, 1.999),
         ] {
             let r = square(origin, 2.0);
             assert!(!r.is_area_sampled(), "{origin}");
@@ -263,6 +265,29 @@ mod tests {
                 "{origin}: {got} vs {want}"
             );
         }
+    }
+
+    #[test]
+    fn frame_seen_from_matches_new() {
+        let (corner, ex, ey) = (
+            Vec3::new(-0.3, 0.2, 1.0),
+            Vec3::new(1.5, 0.0, 0.5),
+            Vec3::new(-0.2, 0.7, 0.6),
+        );
+        let frame = RectangleFrame::new(corner, ex, ey).unwrap();
+        for origin in [
+            Vec3::ZERO,
+            Vec3::new(4.0, -1.0, 0.3),
+            Vec3::new(0.0, 0.0, 1e3),
+        ] {
+            let a = frame.seen_from(origin).unwrap();
+            let b = SphericalRectangle::new(origin, corner, ex, ey).unwrap();
+            assert_eq!(a, b, "{origin}");
+            let u = Vec2::new(0.3, 0.7);
+            assert_eq!(a.sample_point(u), b.sample_point(u));
+        }
+        assert!(frame.seen_from(corner + 0.5 * ex).is_err());
+        assert!(frame.seen_from(Vec3::NAN).is_err());
     }
 
     #[test]

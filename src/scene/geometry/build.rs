@@ -44,7 +44,7 @@ pub(crate) struct MeshData {
     pub(crate) parallelogram: Option<[Vec3; 3]>,
     /// The same rectangle prepared for spherical-rectangle sampling (`None` when the warp
     /// rejects it, e.g. zero area).
-    pub(crate) rect_frame: Option<RectangleFrame>,
+    pub(crate) rect_frame: Option<Box<RectangleFrame>>,
 }
 
 /// A world-space disk.
@@ -149,7 +149,7 @@ fn shape_data(
             )?;
             let (corner, ex, ey) = (p[0], p[1] - p[0], p[3] - p[0]);
             mesh.parallelogram = Some([corner, ex, ey]);
-            mesh.rect_frame = RectangleFrame::new(corner, ex, ey).ok();
+            mesh.rect_frame = RectangleFrame::new(corner, ex, ey).ok().map(Box::new);
             ShapeData::Mesh(mesh)
         }
         ShapeKind::Cube => {
