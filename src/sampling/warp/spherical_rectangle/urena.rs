@@ -91,7 +91,8 @@ impl Urena {
             corner(n2, n3),
             corner(n3, n0),
         ];
-        if !g.iter().all(|&c| wide_enough(c)) {
+        // Non-short-circuit `&`: four cheap tests, no branches.
+        if !(wide_enough(g[0]) & wide_enough(g[1]) & wide_enough(g[2]) & wide_enough(g[3])) {
             return None;
         }
         let g23 = arg(mul(g[2], g[3]));
