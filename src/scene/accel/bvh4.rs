@@ -142,7 +142,7 @@ impl Bvh4 {
     ) -> Option<f32> {
         let mut best = None;
         let mut t_max = t_max;
-        self.walk(origin, dir, &mut t_max, |i, bound| {
+        self.walk::<true>(origin, dir, &mut t_max, |i, bound| {
             if let Some(t) = test(i, *bound) {
                 *bound = t;
                 best = Some(t);
@@ -162,11 +162,12 @@ impl Bvh4 {
         mut test: impl FnMut(u32, f32) -> bool,
     ) -> bool {
         let mut t_max = t_max;
-        self.walk(origin, dir, &mut t_max, |i, t| test(i, *t))
+        // Any hit will do: children are visited in node order, not sorted by distance.
+        self.walk::<false>(origin, dir, &mut t_max, |i, t| test(i, *t))
     }
 
     #[inline(always)]
-    fn walk(
+    fn walk<const ORDERED: bool>(
         &self,
         origin: Vec3,
         dir: Vec3,
@@ -187,17 +188,17 @@ impl Bvh4 {
                 items: [(0, 0.0); ARRAY_STACK],
                 len: 0,
             };
-            self.traverse(&mut stack, o, inv, t_max, visit)
+            self.traverse::<ORDERED>(&mut stack, o, inv, t_max, visit)
         } else {
             STACK.with_borrow_mut(|stack| {
                 stack.clear();
-                self.traverse(stack, o, inv, t_max, visit)
+                self.traverse::<ORDERED>(stack, o, inv, t_max, visit)
             })
         }
     }
 
     #[inline(always)]
-    fn traverse(
+    fn traverse<const ORDERED: bool>(
         &self,
         stack: &mut impl Stack,
         o: [Vec4; 3],
@@ -225,7 +226,12 @@ impl Bvh4 {
                     far = far.min(t0.max(t1) * SLAB_GROW);
                 }
                 let mask = near.cmple(far).bitmask();
-                if let Some(next) = descend(stack, n, mask, near) {
+                let next = if ORDERED {
+                    descend(stack, n, mask, near)
+                } else {
+                    descend_unordered(stack, n, mask)
+                };
+                if let Some(next) = next {
                     code = next;
                     continue;
                 }
@@ -282,6 +288,23 @@ impl Stack for ArrayStack {
         self.len = self.len.checked_sub(1)?;
         Some(self.items[self.len])
     }
+}
+
+/// Pushes all entered children (bits of `mask`) but the first, in node order, and returns
+/// that first one: for any-hit queries, where the order does not matter.
+#[inline(always)]
+fn descend_unordered(stack: &mut impl Stack, n: &Node4, mask: u32) -> Option<u32> {
+    let mut first = None;
+    for lane in 0..4 {
+        let c = n.child[lane];
+        if mask & (1 << lane) != 0 && c != EMPTY {
+            match first {
+                None => first = Some(c),
+                Some(_) => stack.push((c, 0.0)),
+            }
+        }
+    }
+    first
 }
 
 /// Sorts the entered children (bits of `mask`) by entry distance, pushes all but the
