@@ -57,12 +57,9 @@ pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
         return 0;
     }
     let bits = 32 - (n - 1).leading_zeros();
-    let mut round_keys = [0u64; ROUNDS];
-    let mut k = key;
-    for rk in &mut round_keys {
-        k = mix64(k.wrapping_add(GOLDEN));
-        *rk = k;
-    }
+    // `key` is already a full-avalanche hash: one multiply per derived key is enough.
+    let folded = key ^ (key >> 31);
+    let round_keys = ROUND_MULTIPLIERS.map(|m| folded.wrapping_mul(m));
     let mut x = i;
     loop {
         for &rk in &round_keys {
@@ -74,7 +71,8 @@ pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
     }
     // A keyed cyclic shift on top makes each element exactly uniform over keys, whatever the
     // bijection's quality: P(result = s) = Σₜ P(x = t) · P(shift = s − t) = 1/n.
-    let shift = ((u64::from(mix64(k) as u32) * u64::from(n)) >> 32) as u32;
+    let shift_bits = (key.rotate_left(17) ^ folded).wrapping_mul(SHIFT_MULTIPLIER) >> 32;
+    let shift = ((shift_bits * u64::from(n)) >> 32) as u32;
     let y = x + shift;
     if y >= n {
         y - n
@@ -86,6 +84,16 @@ pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
 /// Rounds of [`round`] per walk of [`permute`].
 const ROUNDS: usize = 3;
 
+/// Odd multipliers deriving the round keys of [`permute`] from its key.
+const ROUND_MULTIPLIERS: [u64; ROUNDS] = [
+    0xd1b5_4a32_d192_ed03,
+    0xaef1_7502_108e_f2d9,
+    0x8cb9_2ba7_2f3d_8dd7,
+];
+
+/// Odd multiplier deriving the cyclic shift of [`permute`] from its key.
+const SHIFT_MULTIPLIER: u64 = 0xf135_7aea_2e62_a9c5;
+
 /// One keyed bijection of the `bits`-bit integers (every step invertible modulo `2^bits`).
 #[inline]
 fn round(mut x: u32, bits: u32, key: u64) -> u32 {
@@ -95,7 +103,7 @@ fn round(mut x: u32, bits: u32, key: u64) -> u32 {
     x = x.wrapping_mul((key >> 32) as u32 | 1) & mask;
     x ^= x >> half;
     x ^= (x << half) & mask;
-    let r = (key >> 59) as u32 % bits;
+    let r = (((key >> 59) as u32) * bits) >> 5; // in 0..bits, without a division
     if r != 0 {
         x = ((x << r) | (x >> (bits - r))) & mask;
     }
