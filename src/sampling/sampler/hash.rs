@@ -1,8 +1,6 @@
 //! Hashing helpers shared by the samplers: a 64-bit mixer, keys for (seed, pixel, index),
 //! conversion of random bits to `[0, 1)`, and a stateless random permutation.
 
-use super::ONE_MINUS_EPSILON;
-
 /// The SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.
 /// Steele, Lea & Flood 2014, "Fast splittable pseudorandom number generators", OOPSLA.
 #[inline]
@@ -34,11 +32,17 @@ pub(crate) fn unit_f32(bits: u32) -> f32 {
     (bits >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
-/// `(stratum + offset) / count` in `[0, 1)`, rounded in f64 and clamped below 1.
+/// `(stratum + offset) / count` for `offset ∈ [0, 1)`: computed in f64 and rounded *down* to
+/// f32, so the value never rounds up onto the next stratum's lower edge (nor onto 1.0).
 #[inline]
 pub(crate) fn in_stratum(stratum: u32, offset: f32, count: u32) -> f32 {
     let v = (f64::from(stratum) + f64::from(offset)) / f64::from(count);
-    (v as f32).min(ONE_MINUS_EPSILON)
+    let f = v as f32;
+    if f64::from(f) > v {
+        f.next_down()
+    } else {
+        f
+    }
 }
 
 /// Element `i` of a random permutation of `0..n` chosen by `key`, without storing it.
@@ -113,11 +117,31 @@ fn round(mut x: u32, bits: u32, key: u64) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::sampler::ONE_MINUS_EPSILON;
 
     #[test]
     fn unit_f32_covers_zero_to_one_minus_epsilon() {
         assert_eq!(unit_f32(0), 0.0);
         assert_eq!(unit_f32(u32::MAX), ONE_MINUS_EPSILON);
+    }
+
+    #[test]
+    fn in_stratum_stays_below_the_next_stratum() {
+        // (1 − 2⁻²⁴)/3 rounds to the f32 nearest 1/3 (above 1/3) when rounded to nearest.
+        for count in [3u32, 5, 7, 9, 11, 13, 100, 1000, 12345] {
+            for stratum in [0, 1, count / 2, count - 2, count - 1] {
+                let v = in_stratum(stratum, ONE_MINUS_EPSILON, count);
+                let upper = f64::from(stratum + 1) / f64::from(count);
+                assert!(
+                    v.is_finite() && f64::from(v) < upper,
+                    "{stratum}/{count}: {v}"
+                );
+                let low = in_stratum(stratum, 0.0, count);
+                assert!(f64::from(low) <= f64::from(stratum) / f64::from(count));
+                let edge = f64::from(stratum) / f64::from(count);
+                assert!(f64::from(low) >= edge * (1.0 - f64::from(f32::EPSILON)));
+            }
+        }
     }
 
     #[test]
