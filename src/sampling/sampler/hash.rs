@@ -127,7 +127,7 @@ mod tests {
 
     #[test]
     fn in_stratum_stays_below_the_next_stratum() {
-        // (1 − 2⁻²⁴)/3 rounds to the f32 nearest 1/3 (above 1/3) when rounded to nearest.
+        // Rounded to nearest, (3 + 1 − 2⁻²⁴)/5 would give 0.8, the lower edge of stratum 4.
         for count in [3u32, 5, 7, 9, 11, 13, 100, 1000, 12345] {
             for stratum in [0, 1, count / 2, count - 2, count - 1] {
                 let v = in_stratum(stratum, ONE_MINUS_EPSILON, count);
