@@ -1,0 +1,63 @@
+//! The rendering study's results as CSV, so that a later run can rebuild the report without
+//! rendering again.
+
+use crate::render_study::RenderPoint;
+
+/// Header line.
+const HEADER: &str = "scene,strategy,sampler,spp,seconds,rel_mse";
+
+/// Formats the points, one line each after the header.
+pub fn write(points: &[RenderPoint]) -> String {
+    let mut s = format!("{HEADER}\n");
+    for p in points {
+        s += &format!("{},{},{},{},{:e},{:e}\n", p.scene, p.strategy, p.sampler, p.spp, p.seconds, p.rel_mse);
+    }
+    s
+}
+
+/// Parses what [`write`] wrote.
+pub fn read(text: &str) -> Result<Vec<RenderPoint>, String> {
+    let mut lines = text.lines();
+    if lines.next() != Some(HEADER) {
+        return Err("not a convergence render CSV".into());
+    }
+    lines
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            let bad = || format!("bad line: {l}");
+            if f.len() != 6 {
+                return Err(bad());
+            }
+            Ok(RenderPoint {
+                scene: f[0].into(),
+                strategy: f[1].into(),
+                sampler: f[2].into(),
+                spp: f[3].parse().map_err(|_| bad())?,
+                seconds: f[4].parse().map_err(|_| bad())?,
+                rel_mse: f[5].parse().map_err(|_| bad())?,
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trip() {
+        let p = RenderPoint {
+            scene: "veach-mis".into(),
+            strategy: "power".into(),
+            sampler: "sobol".into(),
+            spp: 64,
+            seconds: 1.25,
+            rel_mse: 3.5e-3,
+        };
+        let text = write(&[p.clone(), p.clone()]);
+        assert_eq!(read(&text), Ok(vec![p.clone(), p]));
+        assert!(read("nope\n").is_err());
+        assert!(read(&format!("{HEADER}\na,b,c,x,1,2\n")).is_err());
+    }
+}

@@ -1,0 +1,145 @@
+//! Assembles `convergence.md`: tables, links to the plots, and the explanations in
+//! [`crate::prose`].
+
+use crate::distribution::{DistEffort, DistRow};
+use crate::prose;
+use crate::render_study::{efficiency_table, RenderPoint};
+use crate::table::{markdown, num, ulps};
+use crate::warps::WarpRow;
+
+/// Where and how the figures were made.
+pub struct Context {
+    /// The command line.
+    pub command: String,
+    /// CPU and core count.
+    pub machine: String,
+    /// A remark on the conditions (e.g. other jobs sharing the cores).
+    pub note: String,
+    /// Whether `--quick` was given.
+    pub quick: bool,
+}
+
+/// The machine: CPU model from `/proc/cpuinfo` and the number of cores Rust sees.
+pub fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    format!("{cpu}, {cores} cores available, {} {}", std::env::consts::OS, std::env::consts::ARCH)
+}
+
+fn pair(s: crate::measure::ErrorStats) -> String {
+    format!("{} / {}", ulps(s.max), ulps(s.p99))
+}
+
+/// The warp table.
+pub fn warp_table(rows: &[WarpRow]) -> String {
+    let body: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.warp.clone(),
+                r.param.clone(),
+                pair(r.sample),
+                format!("{}: {}", r.key.name(), pair(r.key_err)),
+                pair(r.pdf),
+                pair(r.pdf_at),
+                num(r.ns_f32),
+                num(r.ns_f64),
+                num(r.ns_f64 / r.ns_f32),
+            ]
+        })
+        .collect();
+    markdown(
+        &["warp", "parameter", "sample", "key coordinate", "pdf", "pdf(p)", "ns f32", "ns f64", "f64 / f32"],
+        &body,
+    )
+}
+
+/// The distribution table.
+pub fn dist_table(rows: &[DistRow], n: usize) -> String {
+    let base = rows.first().map_or(f64::NAN, |r| r.rel_var);
+    let body: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                format!("{}×{}", r.width, r.height),
+                num(r.build_ms),
+                num(r.ns_sample),
+                num(r.rel_rmse),
+                num((r.rel_var / n as f64).sqrt()),
+                num(r.rel_var),
+                num(base / r.rel_var),
+                num(r.samples_for(0.01)),
+            ]
+        })
+        .collect();
+    markdown(
+        &[
+            "table",
+            "build (ms)",
+            "ns / sample",
+            &format!("relRMSE, N = {n} (measured)"),
+            &format!("relRMSE, N = {n} (predicted)"),
+            "relative variance / sample",
+            "variance gain vs 1×1",
+            "samples for 1% relRMSE",
+        ],
+        &body,
+    )
+}
+
+/// The whole document.
+pub fn document(
+    ctx: &Context,
+    warps: &[WarpRow],
+    dist: &[DistRow],
+    de: DistEffort,
+    truth: f64,
+    render: Result<&[RenderPoint], &str>,
+) -> String {
+    let mut d = String::new();
+    d += prose::TITLE;
+    d += &format!(
+        "Made with `{}`{}.\n\nMachine: {}. {}\n\n",
+        ctx.command,
+        if ctx.quick { " (quick mode: fewer points, smaller tables, fewer spp)" } else { "" },
+        ctx.machine,
+        ctx.note
+    );
+    d += prose::WARPS_INTRO;
+    d += &warp_table(warps);
+    d += "\n![θ error against u₁](convergence/warp-theta-error.png)\n\n";
+    d += prose::WARPS_FINDINGS;
+    d += &prose::DIST_INTRO
+        .replace("{n}", &de.n.to_string())
+        .replace("{m}", &de.m.to_string())
+        .replace("{bw}", &de.base_width.to_string())
+        .replace("{bh}", &(de.base_width / 2).to_string())
+        .replace("{truth}", &format!("{truth:.6}"));
+    d += &dist_table(dist, de.n);
+    d += "\n![error against resolution](convergence/distribution-resolution.png)\n\n";
+    d += "![error against time per sample](convergence/distribution-time.png)\n\n";
+    d += prose::DIST_FINDINGS;
+    d += prose::RENDER_INTRO;
+    match render {
+        Ok(points) => {
+            for scene in ["cornell-box", "veach-mis"] {
+                if points.iter().any(|p| p.scene == scene) {
+                    d += &format!("### {scene}\n\n![{scene}: relMSE against time](convergence/render-{scene}.png)\n\n");
+                    d += &efficiency_table(points, scene);
+                    d += "\n";
+                }
+            }
+            d += prose::RENDER_FINDINGS;
+        }
+        Err(why) => d += &format!("{}{why}\n", prose::RENDER_PENDING),
+    }
+    d
+}
