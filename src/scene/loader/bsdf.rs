@@ -1,0 +1,217 @@
+//! `<bsdf>`: `diffuse`, `conductor`, `roughconductor`, `dielectric` and `twosided`, and
+//! `<ref>` to a BSDF declared elsewhere.
+
+use super::context::{Ctx, Res};
+use super::error::SceneErrorKind;
+use super::props::{Props, Value};
+use super::tree::Elem;
+use super::{no_objects, plugin_type, unknown_plugin};
+use crate::scene::description::{BsdfDesc, ConductorFresnel, MicrofacetKind};
+use glam::Vec3;
+
+/// A `<bsdf>` element, or a `<ref>` whose id names one.
+pub(crate) fn read_bsdf_or_ref<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<BsdfDesc> {
+    read_bsdf(ctx, resolve(ctx, e)?)
+}
+
+/// Follows a `<ref>` to the BSDF it names (a `<bsdf>` is returned as is).
+fn resolve<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<&'a Elem> {
+    if e.tag != "ref" {
+        return Ok(e);
+    }
+    super::transform::check_attrs(ctx, e, &["id", "name"], &["id"])?;
+    let id = e.attr("id").unwrap_or("");
+    match ctx.ids.get(id) {
+        Some(target) if target.tag == "bsdf" => Ok(target),
+        Some(target) => Err(ctx.err(
+            e,
+            SceneErrorKind::UndefinedReference(format!(
+                "id \"{id}\" names a <{}> (line {}), not a <bsdf>",
+                target.tag, target.line
+            )),
+        )),
+        None => Err(ctx.err(
+            e,
+            SceneErrorKind::UndefinedReference(format!("no object has id \"{id}\"")),
+        )),
+    }
+}
+
+/// Reads a `<bsdf>` element.
+pub(crate) fn read_bsdf(ctx: &Ctx, e: &Elem) -> Res<BsdfDesc> {
+    let ty = plugin_type(ctx, e)?;
+    let mut p = Props::new(ctx, e)?;
+    if ty == "twosided" {
+        return twosided(ctx, e, p);
+    }
+    no_objects(ctx, &p)?;
+    let one = Vec3::ONE;
+    let desc = match ty {
+        "diffuse" => BsdfDesc::Diffuse {
+            reflectance: p.rgb("reflectance")?.unwrap_or(Vec3::splat(0.5)),
+        },
+        "conductor" => BsdfDesc::Conductor {
+            fresnel: fresnel(ctx, e, &mut p)?,
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+        },
+        "roughconductor" => {
+            let distribution = p.string("distribution")?.map(|d| d.to_ascii_lowercase());
+            let distribution = match distribution.as_deref() {
+                None | Some("beckmann") => MicrofacetKind::Beckmann,
+                Some("ggx") => MicrofacetKind::Ggx,
+                Some(other) => {
+                    return Err(p.invalid(
+                        "distribution",
+                        e,
+                        &format!("\"{other}\" is not beckmann or ggx"),
+                    ))
+                }
+            };
+            let alpha = roughness(e, &mut p)?;
+            // Visible-normal sampling only changes the noise, never the expected value.
+            p.bool("sample_visible")?;
+            BsdfDesc::RoughConductor {
+                distribution,
+                alpha,
+                fresnel: fresnel(ctx, e, &mut p)?,
+                specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            }
+        }
+        "dielectric" => {
+            let int_ior = ior(e, &mut p, "int_ior", 1.5046)?;
+            let ext_ior = ior(e, &mut p, "ext_ior", 1.000277)?;
+            BsdfDesc::Dielectric {
+                int_ior,
+                ext_ior,
+                specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+                specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+            }
+        }
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    p.finish()?;
+    Ok(desc)
+}
+
+/// `twosided`: exactly one nested BSDF, which must not itself be two-sided.
+fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>) -> Res<BsdfDesc> {
+    let nested: Vec<&Elem> = p.objects.clone();
+    p.finish()?;
+    let [inner] = nested.as_slice() else {
+        return Err(ctx.err(
+            e,
+            SceneErrorKind::Unsupported(format!(
+                "twosided needs exactly one nested BSDF, found {}",
+                nested.len()
+            )),
+        ));
+    };
+    if inner.tag != "bsdf" && inner.tag != "ref" {
+        return Err(ctx.err(
+            inner,
+            SceneErrorKind::Misplaced(format!("<{}> inside a twosided BSDF", inner.tag)),
+        ));
+    }
+    let target = resolve(ctx, inner)?;
+    if target.attr("type") == Some("twosided") {
+        return Err(ctx.err(
+            inner,
+            SceneErrorKind::InvalidValue("a twosided BSDF cannot nest another".into()),
+        ));
+    }
+    Ok(BsdfDesc::TwoSided(Box::new(read_bsdf(ctx, target)?)))
+}
+
+/// The isotropic roughness: `alpha`, or `alpha_u` = `alpha_v`.
+fn roughness(e: &Elem, p: &mut Props) -> Res<f32> {
+    let alpha = p.float("alpha")?;
+    let (au, av) = (p.float("alpha_u")?, p.float("alpha_v")?);
+    let alpha = match (alpha, au, av) {
+        (a, None, None) => a.unwrap_or(0.1),
+        (None, Some(u), Some(v)) if u == v => u,
+        (None, Some(_), Some(_)) => {
+            return Err(p.invalid(
+                "alpha_u",
+                e,
+                "differs from alpha_v (anisotropy is unsupported)",
+            ))
+        }
+        _ => return Err(p.invalid("alpha", e, "give either alpha or both alpha_u and alpha_v")),
+    };
+    if !(alpha > 0.0 && alpha <= 10.0) {
+        return Err(p.invalid("alpha", e, "must lie in (0, 10]"));
+    }
+    Ok(alpha)
+}
+
+/// Mitsuba's conductor rule: `material = "none"` (the default) without `eta` or `k` is a
+/// perfect mirror; `eta`/`k` (defaults 0 and 1) give a complex IOR; named materials are
+/// not supported.
+fn fresnel(ctx: &Ctx, e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
+    let material = p.string("material")?.unwrap_or_else(|| "none".into());
+    if material != "none" {
+        return Err(ctx.err(
+            e,
+            SceneErrorKind::Unsupported(format!(
+                "conductor material \"{material}\" (give eta and k as rgb values)"
+            )),
+        ));
+    }
+    let (eta, k) = (p.rgb("eta")?, p.rgb("k")?);
+    if eta.is_none() && k.is_none() {
+        return Ok(ConductorFresnel::Perfect);
+    }
+    let eta = eta.unwrap_or(Vec3::ZERO);
+    let k = k.unwrap_or(Vec3::ONE);
+    if eta.min_element() < 0.0 || k.min_element() < 0.0 {
+        return Err(p.invalid("eta", e, "and k must be non-negative"));
+    }
+    Ok(ConductorFresnel::Complex { eta, k })
+}
+
+/// An index of refraction given as a number or as one of Mitsuba's named media.
+fn ior(e: &Elem, p: &mut Props, name: &str, default: f32) -> Res<f32> {
+    let value = match p.raw(name) {
+        None => default,
+        Some((Value::Str(s), _)) => named_ior(&s)
+            .ok_or_else(|| p.invalid(name, e, &format!("\"{s}\" is not a known medium")))?,
+        Some((Value::Float(v), _)) => v,
+        Some((Value::Int(v), _)) => v as f32,
+        Some((_, el)) => return Err(p.wrong(el, name, "a <float> or a <string>")),
+    };
+    if value <= 0.0 {
+        return Err(p.invalid(name, e, "must be positive"));
+    }
+    Ok(value)
+}
+
+/// Mitsuba's table of named indices of refraction.
+fn named_ior(name: &str) -> Option<f32> {
+    const TABLE: &[(&str, f32)] = &[
+        ("vacuum", 1.0),
+        ("helium", 1.000036),
+        ("hydrogen", 1.000132),
+        ("air", 1.000277),
+        ("carbon dioxide", 1.00045),
+        ("water", 1.333),
+        ("acetone", 1.36),
+        ("ethanol", 1.361),
+        ("carbon tetrachloride", 1.461),
+        ("glycerol", 1.4729),
+        ("benzene", 1.501),
+        ("silicone oil", 1.52045),
+        ("bromine", 1.661),
+        ("water ice", 1.31),
+        ("fused quartz", 1.458),
+        ("pyrex", 1.47),
+        ("acrylic glass", 1.49),
+        ("polypropylene", 1.49),
+        ("bk7", 1.5046),
+        ("sodium chloride", 1.544),
+        ("amber", 1.55),
+        ("pet", 1.575),
+        ("diamond", 2.419),
+    ];
+    let lower = name.to_ascii_lowercase();
+    TABLE.iter().find(|(n, _)| *n == lower).map(|(_, v)| *v)
+}

@@ -1,0 +1,93 @@
+//! `<emitter>`: `area` (inside a shape), `point`, `constant` and `envmap`.
+
+use super::context::{Ctx, Res};
+use super::error::SceneErrorKind;
+use super::props::Props;
+use super::tree::Elem;
+use super::{no_objects, plugin_type, unknown_plugin};
+use crate::scene::description::{AreaEmitterDesc, EmitterDesc};
+use glam::{Mat4, Vec3};
+
+/// The first bytes of every OpenEXR file.
+const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+
+/// Reads an `<emitter>` nested in a shape: it must be `area`.
+pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<AreaEmitterDesc> {
+    let ty = plugin_type(ctx, e)?;
+    if ty != "area" {
+        let msg = if matches!(ty, "point" | "constant" | "envmap") {
+            format!("a \"{ty}\" emitter inside a <shape> (only \"area\" belongs there)")
+        } else {
+            return Err(unknown_plugin(ctx, e, ty));
+        };
+        return Err(ctx.err(e, SceneErrorKind::Misplaced(msg)));
+    }
+    let mut p = Props::new(ctx, e)?;
+    no_objects(ctx, &p)?;
+    let radiance = non_negative(e, &mut p, "radiance")?;
+    p.finish()?;
+    Ok(AreaEmitterDesc { radiance })
+}
+
+/// Reads a top-level `<emitter>`: `point`, `constant` or `envmap`.
+pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
+    let ty = plugin_type(ctx, e)?;
+    let mut p = Props::new(ctx, e)?;
+    no_objects(ctx, &p)?;
+    let desc = match ty {
+        "point" => {
+            let intensity = non_negative(e, &mut p, "intensity")?;
+            let position = match (p.point("position")?, p.transform("to_world")?) {
+                (Some(_), Some(_)) => {
+                    return Err(p.invalid("position", e, "and to_world cannot both be given"))
+                }
+                (Some(pos), None) => pos,
+                (None, Some(m)) => m.transform_point3(Vec3::ZERO),
+                (None, None) => Vec3::ZERO,
+            };
+            EmitterDesc::Point {
+                position,
+                intensity,
+            }
+        }
+        "constant" => EmitterDesc::Constant {
+            radiance: non_negative(e, &mut p, "radiance")?,
+        },
+        "envmap" => {
+            let name = p.string("filename")?.ok_or_else(|| {
+                ctx.err(
+                    e,
+                    SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
+                )
+            })?;
+            let filename = ctx.readable_file(e, &name, Some(&EXR_MAGIC))?;
+            let scale = p.float("scale")?.unwrap_or(1.0);
+            if scale < 0.0 {
+                return Err(p.invalid("scale", e, "must be non-negative"));
+            }
+            EmitterDesc::EnvMap {
+                filename,
+                scale,
+                to_world: p.transform("to_world")?.unwrap_or(Mat4::IDENTITY),
+            }
+        }
+        "area" => {
+            return Err(ctx.err(
+                e,
+                SceneErrorKind::Misplaced("an \"area\" emitter must be inside a <shape>".into()),
+            ))
+        }
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    p.finish()?;
+    Ok(desc)
+}
+
+/// A colour parameter with default 1 whose channels must be non-negative.
+fn non_negative(e: &Elem, p: &mut Props, name: &str) -> Res<Vec3> {
+    let v = p.rgb(name)?.unwrap_or(Vec3::ONE);
+    if v.min_element() < 0.0 {
+        return Err(p.invalid(name, e, "must be non-negative"));
+    }
+    Ok(v)
+}

@@ -1,0 +1,277 @@
+//! The parameters of one plugin element: typed values read from its property children,
+//! with every lookup recorded so that a parameter nobody asked for is reported as unknown
+//! (Mitsuba 3 does the same with its "unreferenced property" check).
+
+use super::context::{Ctx, Res};
+use super::error::SceneErrorKind;
+use super::transform::{check_attrs, read_transform, xyz};
+use super::tree::Elem;
+use super::values::{parse_bool, parse_float, parse_int, parse_triple};
+use glam::{Mat4, Vec3};
+
+/// One parsed property value.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Value {
+    Int(i64),
+    Float(f32),
+    Bool(bool),
+    Str(String),
+    Rgb(Vec3),
+    Vec3(Vec3),
+    Transform(Mat4),
+}
+
+struct Prop<'a> {
+    name: String,
+    value: Value,
+    elem: &'a Elem,
+    used: bool,
+}
+
+/// Tags of nested objects (plugins and references).
+pub(crate) const OBJECT_TAGS: &[&str] = &[
+    "integrator",
+    "sensor",
+    "sampler",
+    "film",
+    "rfilter",
+    "shape",
+    "bsdf",
+    "emitter",
+    "ref",
+];
+
+/// Tags Mitsuba knows that this loader does not support.
+const UNSUPPORTED_TAGS: &[&str] = &[
+    "spectrum", "texture", "medium", "phase", "volume", "include", "path", "alias",
+];
+
+/// The parameters and nested objects of a plugin element.
+pub(crate) struct Props<'c, 'a> {
+    ctx: &'c Ctx<'a>,
+    plugin: String,
+    props: Vec<Prop<'a>>,
+    /// Nested plugin and `ref` elements, in file order.
+    pub objects: Vec<&'a Elem>,
+}
+
+impl<'c, 'a> Props<'c, 'a> {
+    /// Reads the children of plugin element `e`, whose category is `e.tag`.
+    pub fn new(ctx: &'c Ctx<'a>, e: &'a Elem) -> Res<Self> {
+        let plugin = format!("{} \"{}\"", e.tag, e.attr("type").unwrap_or(""));
+        let mut out = Self {
+            ctx,
+            plugin,
+            props: Vec::new(),
+            objects: Vec::new(),
+        };
+        for c in &e.children {
+            if OBJECT_TAGS.contains(&c.tag.as_str()) {
+                out.objects.push(c);
+                continue;
+            }
+            let value = read_value(ctx, c)?;
+            let name = c.attr("name").unwrap_or("").to_string();
+            if out.props.iter().any(|p| p.name == name) {
+                return Err(ctx.err(c, SceneErrorKind::DuplicateParameter(name)));
+            }
+            out.props.push(Prop {
+                name,
+                value,
+                elem: c,
+                used: false,
+            });
+        }
+        Ok(out)
+    }
+
+    /// Looks up `name`, marking it used; returns its value and element.
+    pub fn raw(&mut self, name: &str) -> Option<(Value, &'a Elem)> {
+        let p = self.props.iter_mut().find(|p| p.name == name)?;
+        p.used = true;
+        Some((p.value.clone(), p.elem))
+    }
+
+    /// Whether `name` is given (does not mark it used).
+    pub fn has(&self, name: &str) -> bool {
+        self.props.iter().any(|p| p.name == name)
+    }
+
+    /// A wrong-type error for parameter `name` given by element `e`.
+    pub fn wrong(&self, e: &Elem, name: &str, expected: &'static str) -> super::error::SceneError {
+        self.ctx.err(
+            e,
+            SceneErrorKind::WrongType {
+                name: name.to_string(),
+                expected,
+                found: e.tag.clone(),
+            },
+        )
+    }
+
+    /// An error about the value of parameter `name` (or the plugin, if it is absent).
+    pub fn invalid(&self, name: &str, owner: &Elem, msg: &str) -> super::error::SceneError {
+        let e = self
+            .props
+            .iter()
+            .find(|p| p.name == name)
+            .map(|p| p.elem)
+            .unwrap_or(owner);
+        self.ctx
+            .err(e, SceneErrorKind::InvalidValue(format!("\"{name}\" {msg}")))
+    }
+
+    /// A float (an `<integer>` is accepted too).
+    pub fn float(&mut self, name: &str) -> Res<Option<f32>> {
+        match self.raw(name) {
+            None => Ok(None),
+            Some((Value::Float(v), _)) => Ok(Some(v)),
+            Some((Value::Int(v), _)) => Ok(Some(v as f32)),
+            Some((_, e)) => Err(self.wrong(e, name, "a <float>")),
+        }
+    }
+
+    /// An integer.
+    pub fn int(&mut self, name: &str) -> Res<Option<(i64, &'a Elem)>> {
+        match self.raw(name) {
+            None => Ok(None),
+            Some((Value::Int(v), e)) => Ok(Some((v, e))),
+            Some((_, e)) => Err(self.wrong(e, name, "an <integer>")),
+        }
+    }
+
+    /// An integer in `lo..=hi`.
+    pub fn int_in(&mut self, name: &str, lo: i64, hi: i64) -> Res<Option<i64>> {
+        match self.int(name)? {
+            None => Ok(None),
+            Some((v, _)) if (lo..=hi).contains(&v) => Ok(Some(v)),
+            Some((v, e)) => Err(self.ctx.err(
+                e,
+                SceneErrorKind::InvalidValue(format!("\"{name}\" = {v} is outside [{lo}, {hi}]")),
+            )),
+        }
+    }
+
+    /// A boolean.
+    pub fn bool(&mut self, name: &str) -> Res<Option<bool>> {
+        match self.raw(name) {
+            None => Ok(None),
+            Some((Value::Bool(v), _)) => Ok(Some(v)),
+            Some((_, e)) => Err(self.wrong(e, name, "a <boolean>")),
+        }
+    }
+
+    /// A string.
+    pub fn string(&mut self, name: &str) -> Res<Option<String>> {
+        match self.raw(name) {
+            None => Ok(None),
+            Some((Value::Str(v), _)) => Ok(Some(v)),
+            Some((_, e)) => Err(self.wrong(e, name, "a <string>")),
+        }
+    }
+
+    /// A colour: `<rgb>`, or a `<float>`/`<integer>` used for all three channels.
+    pub fn rgb(&mut self, name: &str) -> Res<Option<Vec3>> {
+        match self.raw(name) {
+            None => Ok(None),
+            Some((Value::Rgb(v), _)) => Ok(Some(v)),
+            Some((Value::Float(v), _)) => Ok(Some(Vec3::splat(v))),
+            Some((Value::Int(v), _)) => Ok(Some(Vec3::splat(v as f32))),
+            Some((_, e)) => Err(self.wrong(e, name, "an <rgb> or a <float>")),
+        }
+    }
+
+    /// A `<point>` or `<vector>`.
+    pub fn point(&mut self, name: &str) -> Res<Option<Vec3>> {
+        match self.raw(name) {
+            None => Ok(None),
+            Some((Value::Vec3(v), _)) => Ok(Some(v)),
+            Some((_, e)) => Err(self.wrong(e, name, "a <point>")),
+        }
+    }
+
+    /// A `<transform>`.
+    pub fn transform(&mut self, name: &str) -> Res<Option<Mat4>> {
+        match self.raw(name) {
+            None => Ok(None),
+            Some((Value::Transform(v), _)) => Ok(Some(v)),
+            Some((_, e)) => Err(self.wrong(e, name, "a <transform>")),
+        }
+    }
+
+    /// Errors on the first parameter that no lookup asked for.
+    pub fn finish(self) -> Res<()> {
+        match self.props.iter().find(|p| !p.used) {
+            None => Ok(()),
+            Some(p) => Err(self.ctx.err(
+                p.elem,
+                SceneErrorKind::UnknownParameter {
+                    plugin: self.plugin.clone(),
+                    name: p.name.clone(),
+                },
+            )),
+        }
+    }
+}
+
+/// Parses one property element.
+pub(crate) fn read_value(ctx: &Ctx, c: &Elem) -> Res<Value> {
+    let tag = c.tag.as_str();
+    let malformed = |m: String| ctx.err(c, SceneErrorKind::Malformed(m));
+    let simple = |c: &Elem| -> Res<String> {
+        check_attrs(ctx, c, &["name", "value"], &["name", "value"])?;
+        no_children(ctx, c)?;
+        Ok(c.attr("value").unwrap_or("").to_string())
+    };
+    let name = c.attr("name").unwrap_or("");
+    if name.starts_with('_') {
+        return Err(ctx.err(
+            c,
+            SceneErrorKind::InvalidValue(format!(
+                "parameter name \"{name}\": leading underscores are reserved"
+            )),
+        ));
+    }
+    Ok(match tag {
+        "integer" => Value::Int(parse_int(&simple(c)?).map_err(malformed)?),
+        "float" => Value::Float(parse_float(&simple(c)?).map_err(malformed)?),
+        "boolean" => Value::Bool(parse_bool(&simple(c)?).map_err(malformed)?),
+        "string" => Value::Str(simple(c)?),
+        "rgb" => Value::Rgb(parse_triple(&simple(c)?, "rgb").map_err(malformed)?),
+        "point" | "vector" => {
+            check_attrs(ctx, c, &["name", "value", "x", "y", "z"], &["name"])?;
+            no_children(ctx, c)?;
+            if c.attr("value").is_none() {
+                check_attrs(ctx, c, &["name", "x", "y", "z"], &["x", "y", "z"])?;
+            }
+            Value::Vec3(xyz(ctx, c, &["name"], 0.0)?)
+        }
+        "transform" => Value::Transform(read_transform(ctx, c)?),
+        t if UNSUPPORTED_TAGS.contains(&t) => {
+            return Err(ctx.err(c, SceneErrorKind::Unsupported(format!("<{t}> elements"))))
+        }
+        "lookat" | "matrix" | "translate" | "rotate" | "scale" => {
+            return Err(ctx.err(
+                c,
+                SceneErrorKind::Misplaced(format!("<{tag}> outside a <transform>")),
+            ))
+        }
+        "scene" | "default" => {
+            return Err(ctx.err(
+                c,
+                SceneErrorKind::Misplaced(format!("<{tag}> inside another element")),
+            ))
+        }
+        t => return Err(ctx.err(c, SceneErrorKind::UnknownElement(t.to_string()))),
+    })
+}
+
+fn no_children(ctx: &Ctx, c: &Elem) -> Res<()> {
+    match c.children.first() {
+        None => Ok(()),
+        Some(k) => Err(ctx.err(
+            k,
+            SceneErrorKind::Misplaced(format!("<{}> inside a property <{}>", k.tag, c.tag)),
+        )),
+    }
+}

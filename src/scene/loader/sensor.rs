@@ -1,0 +1,169 @@
+//! `<sensor type="perspective">` with its `<sampler>`, `<film type="hdrfilm">` and
+//! `<rfilter>`.
+
+use super::context::{Ctx, Res};
+use super::error::SceneErrorKind;
+use super::props::Props;
+use super::tree::Elem;
+use super::{no_objects, plugin_type, unknown_plugin};
+use crate::scene::description::{
+    FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc,
+};
+
+/// Largest accepted film side, in pixels.
+pub(crate) const MAX_RESOLUTION: i64 = 1 << 15;
+
+/// Reads a `<sensor>` element.
+pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
+    let ty = plugin_type(ctx, e)?;
+    if ty != "perspective" {
+        return Err(unknown_plugin(ctx, e, ty));
+    }
+    let mut p = Props::new(ctx, e)?;
+    let mut s = SensorDesc::default();
+    if let Some(fov) = p.float("fov")? {
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(p.invalid("fov", e, "must lie strictly between 0 and 180 degrees"));
+        }
+        s.fov = fov;
+    }
+    if let Some(axis) = p.string("fov_axis")? {
+        s.fov_axis = match axis.to_ascii_lowercase().as_str() {
+            "x" => FovAxis::X,
+            "y" => FovAxis::Y,
+            "smaller" => FovAxis::Smaller,
+            "larger" => FovAxis::Larger,
+            _ => {
+                return Err(p.invalid(
+                    "fov_axis",
+                    e,
+                    &format!("\"{axis}\" is not supported (x, y, smaller or larger)"),
+                ))
+            }
+        };
+    }
+    s.near_clip = p.float("near_clip")?.unwrap_or(s.near_clip);
+    s.far_clip = p.float("far_clip")?.unwrap_or(s.far_clip);
+    if !(s.near_clip > 0.0 && s.far_clip > s.near_clip) {
+        return Err(p.invalid("near_clip", e, "must be positive and below far_clip"));
+    }
+    s.to_world = p.transform("to_world")?.unwrap_or(s.to_world);
+    let (mut film, mut sampler) = (None, None);
+    for o in &p.objects {
+        let slot_is_free = match o.tag.as_str() {
+            "film" => film.replace(read_film(ctx, o)?).is_none(),
+            "sampler" => sampler.replace(read_sampler(ctx, o)?).is_none(),
+            _ => {
+                return Err(ctx.err(
+                    o,
+                    SceneErrorKind::Misplaced(format!("<{}> inside a <sensor>", o.tag)),
+                ))
+            }
+        };
+        if !slot_is_free {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::Misplaced(format!("a second <{}> in the sensor", o.tag)),
+            ));
+        }
+    }
+    s.film = film.unwrap_or_default();
+    s.sampler = sampler.unwrap_or_default();
+    p.finish()?;
+    Ok(s)
+}
+
+/// Reads a `<sampler>` element.
+fn read_sampler(ctx: &Ctx, e: &Elem) -> Res<SamplerDesc> {
+    let kind = match plugin_type(ctx, e)? {
+        "independent" => SamplerKind::Independent,
+        "stratified" => SamplerKind::Stratified,
+        "ldsampler" => SamplerKind::LowDiscrepancy,
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    let mut p = Props::new(ctx, e)?;
+    no_objects(ctx, &p)?;
+    let mut s = SamplerDesc {
+        kind,
+        ..SamplerDesc::default()
+    };
+    if let Some(n) = p.int_in("sample_count", 1, u32::MAX as i64)? {
+        s.sample_count = n as u32;
+    }
+    if let Some(seed) = p.int_in("seed", 0, i64::MAX)? {
+        s.seed = seed as u64;
+    }
+    if kind == SamplerKind::Stratified && p.bool("jitter")? == Some(false) {
+        return Err(ctx.err(e, SceneErrorKind::Unsupported("jitter = false".into())));
+    }
+    p.finish()?;
+    Ok(s)
+}
+
+/// Reads a `<film>` element.
+fn read_film(ctx: &Ctx, e: &Elem) -> Res<FilmDesc> {
+    let ty = plugin_type(ctx, e)?;
+    if ty != "hdrfilm" {
+        return Err(unknown_plugin(ctx, e, ty));
+    }
+    let mut p = Props::new(ctx, e)?;
+    let mut f = FilmDesc::default();
+    if let Some(w) = p.int_in("width", 1, MAX_RESOLUTION)? {
+        f.width = w as u32;
+    }
+    if let Some(h) = p.int_in("height", 1, MAX_RESOLUTION)? {
+        f.height = h as u32;
+    }
+    // Output-format options: accepted and ignored (the renderer writes float RGB EXR).
+    for name in ["file_format", "pixel_format", "component_format"] {
+        p.string(name)?;
+    }
+    for name in ["sample_border", "compensate"] {
+        p.bool(name)?;
+    }
+    for name in [
+        "crop_offset_x",
+        "crop_offset_y",
+        "crop_width",
+        "crop_height",
+    ] {
+        if p.has(name) {
+            return Err(ctx.err(e, SceneErrorKind::Unsupported(format!("film \"{name}\""))));
+        }
+    }
+    let mut filter = None;
+    for o in &p.objects {
+        if o.tag != "rfilter" {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::Misplaced(format!("<{}> inside a <film>", o.tag)),
+            ));
+        }
+        if filter.replace(read_filter(ctx, o)?).is_some() {
+            return Err(ctx.err(o, SceneErrorKind::Misplaced("a second <rfilter>".into())));
+        }
+    }
+    f.filter = filter.unwrap_or_default();
+    p.finish()?;
+    Ok(f)
+}
+
+/// Reads an `<rfilter>` element.
+fn read_filter(ctx: &Ctx, e: &Elem) -> Res<FilterDesc> {
+    let ty = plugin_type(ctx, e)?;
+    let mut p = Props::new(ctx, e)?;
+    no_objects(ctx, &p)?;
+    let f = match ty {
+        "box" => FilterDesc::Box,
+        "gaussian" => {
+            let stddev = p.float("stddev")?.unwrap_or(0.5);
+            if !(stddev > 0.0 && stddev <= 16.0) {
+                return Err(p.invalid("stddev", e, "must lie in (0, 16] pixels"));
+            }
+            FilterDesc::Gaussian { stddev }
+        }
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    p.finish()?;
+    Ok(f)
+}

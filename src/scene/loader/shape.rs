@@ -1,0 +1,75 @@
+//! `<shape>`: `rectangle`, `cube`, `disk`, `sphere` and `obj`, each with an optional BSDF
+//! (or `<ref>`) and an optional `area` emitter.
+
+use super::bsdf::read_bsdf_or_ref;
+use super::context::{Ctx, Res};
+use super::emitter::read_area;
+use super::error::SceneErrorKind;
+use super::props::Props;
+use super::tree::Elem;
+use super::{plugin_type, unknown_plugin};
+use crate::scene::description::{ShapeDesc, ShapeKind};
+use glam::Vec3;
+
+/// Reads a `<shape>` element.
+pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
+    let ty = plugin_type(ctx, e)?;
+    let mut p = Props::new(ctx, e)?;
+    let kind = match ty {
+        "rectangle" => ShapeKind::Rectangle,
+        "cube" => ShapeKind::Cube,
+        "disk" => ShapeKind::Disk,
+        "sphere" => {
+            let center = p.point("center")?.unwrap_or(Vec3::ZERO);
+            let radius = p.float("radius")?.unwrap_or(1.0);
+            if radius <= 0.0 {
+                return Err(p.invalid("radius", e, "must be positive"));
+            }
+            ShapeKind::Sphere { center, radius }
+        }
+        "obj" => {
+            let name = p.string("filename")?.ok_or_else(|| {
+                ctx.err(
+                    e,
+                    SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
+                )
+            })?;
+            let filename = ctx.readable_file(e, &name, None)?;
+            let face_normals = p.bool("face_normals")?.unwrap_or(false);
+            // Texture coordinates are not used by any supported material.
+            p.bool("flip_tex_coords")?;
+            ShapeKind::Obj {
+                filename,
+                face_normals,
+            }
+        }
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    let mut shape = ShapeDesc::new(kind);
+    shape.id = e.attr("id").map(str::to_string);
+    shape.to_world = p.transform("to_world")?.unwrap_or(shape.to_world);
+    shape.flip_normals = p.bool("flip_normals")?.unwrap_or(false);
+    let (mut bsdf, mut emitter) = (None, None);
+    for o in &p.objects {
+        let first = match o.tag.as_str() {
+            "bsdf" | "ref" => bsdf.replace(read_bsdf_or_ref(ctx, o)?).is_none(),
+            "emitter" => emitter.replace(read_area(ctx, o)?).is_none(),
+            _ => {
+                return Err(ctx.err(
+                    o,
+                    SceneErrorKind::Misplaced(format!("<{}> inside a <shape>", o.tag)),
+                ))
+            }
+        };
+        if !first {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::Misplaced(format!("a second <{}> in the shape", o.tag)),
+            ));
+        }
+    }
+    shape.bsdf = bsdf.unwrap_or_default();
+    shape.emitter = emitter;
+    p.finish()?;
+    Ok(shape)
+}

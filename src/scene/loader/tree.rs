@@ -1,0 +1,347 @@
+//! Reads the XML text into a small owned element tree, checking the version, applying
+//! `<default>` parameters and `-D` defines, and substituting `$name` in every attribute
+//! value in document order, as Mitsuba 3 does.
+
+use super::error::{SceneError, SceneErrorKind};
+use std::path::Path;
+
+/// Deepest element nesting accepted (real scenes use fewer than ten levels).
+const MAX_DEPTH: usize = 64;
+
+/// One XML element after parameter substitution.
+#[derive(Debug, Clone)]
+pub(crate) struct Elem {
+    /// The tag name.
+    pub tag: String,
+    /// Attributes in file order, values substituted.
+    pub attrs: Vec<(String, String)>,
+    /// Child elements (comments and `<default>` removed).
+    pub children: Vec<Elem>,
+    /// 1-based line of the start tag.
+    pub line: u32,
+    /// 1-based column of the start tag.
+    pub column: u32,
+}
+
+impl Elem {
+    /// The value of an attribute.
+    pub fn attr(&self, name: &str) -> Option<&str> {
+        self.attrs
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_str())
+    }
+
+    /// The start tag with its identifying attributes, for messages.
+    pub fn describe(&self) -> String {
+        let mut s = format!("<{}", self.tag);
+        for key in ["type", "name", "id"] {
+            if let Some(v) = self.attr(key) {
+                s.push_str(&format!(" {key}=\"{v}\""));
+            }
+        }
+        s.push('>');
+        s
+    }
+}
+
+/// Parses `xml` into the `<scene>` element tree.
+pub(crate) fn read_tree(
+    xml: &str,
+    file: Option<&Path>,
+    defines: &[(String, String)],
+) -> Result<Elem, SceneError> {
+    let opts = roxmltree::ParsingOptions {
+        allow_dtd: false,
+        nodes_limit: 10_000_000,
+    };
+    // roxmltree parses nested elements recursively: refuse deep nesting before it does.
+    if let Some(offset) = too_deep(xml) {
+        let (line, column) = line_column(xml, offset);
+        return Err(SceneError::new(
+            file,
+            Some(line),
+            Some(column),
+            None,
+            SceneErrorKind::Xml(format!("elements nested deeper than {MAX_DEPTH}")),
+        ));
+    }
+    let doc = roxmltree::Document::parse_with_options(xml, opts).map_err(|e| {
+        let pos = e.pos();
+        SceneError::new(
+            file,
+            Some(pos.row),
+            Some(pos.col),
+            None,
+            SceneErrorKind::Xml(e.to_string()),
+        )
+    })?;
+    let mut params: Vec<(String, String)> = defines.to_vec();
+    let mut reader = Reader {
+        doc: &doc,
+        file,
+        params: &mut params,
+    };
+    let root = reader.convert(doc.root_element(), 0)?;
+    let err = |kind| {
+        Err(SceneError::new(
+            file,
+            Some(root.line),
+            Some(root.column),
+            Some(root.describe()),
+            kind,
+        ))
+    };
+    if root.tag != "scene" {
+        return err(SceneErrorKind::Misplaced(format!(
+            "the root element must be <scene>, not <{}>",
+            root.tag
+        )));
+    }
+    match root.attr("version") {
+        None => err(SceneErrorKind::Version(
+            "missing \"version\" attribute".into(),
+        )),
+        Some(v) => match check_version(v) {
+            Ok(()) => Ok(root),
+            Err(m) => err(SceneErrorKind::Version(m)),
+        },
+    }
+}
+
+/// The byte offset of the first start tag nested deeper than [`MAX_DEPTH`], by a scan
+/// that skips comments, CDATA, processing instructions and quoted attribute values.
+fn too_deep(xml: &str) -> Option<usize> {
+    let b = xml.as_bytes();
+    let skip_to = |from: usize, end: &str| {
+        xml[from..]
+            .find(end)
+            .map_or(b.len(), |k| from + k + end.len())
+    };
+    let (mut i, mut depth) = (0usize, 0usize);
+    while i < b.len() {
+        if b[i] != b'<' {
+            i += 1;
+            continue;
+        }
+        let rest = &xml[i..];
+        if rest.starts_with("<!--") {
+            i = skip_to(i, "-->");
+        } else if rest.starts_with("<![CDATA[") {
+            i = skip_to(i, "]]>");
+        } else if rest.starts_with("<?") {
+            i = skip_to(i, "?>");
+        } else if rest.starts_with("</") {
+            depth = depth.saturating_sub(1);
+            i = skip_to(i, ">");
+        } else {
+            let start = i;
+            let (end, self_closing) = tag_end(b, i + 1);
+            if !self_closing {
+                depth += 1;
+                if depth > MAX_DEPTH + 1 {
+                    return Some(start);
+                }
+            }
+            i = end;
+        }
+    }
+    None
+}
+
+/// The index after the `>` closing a start tag that begins at `i`, and whether it is
+/// self-closing (`/>`). Quoted values may contain `>`.
+fn tag_end(b: &[u8], mut i: usize) -> (usize, bool) {
+    let mut quote: Option<u8> = None;
+    while i < b.len() {
+        match (quote, b[i]) {
+            (Some(q), c) if c == q => quote = None,
+            (None, b'"' | b'\'') => quote = Some(b[i]),
+            (None, b'>') => return (i + 1, i > 0 && b[i - 1] == b'/'),
+            _ => {}
+        }
+        i += 1;
+    }
+    (b.len(), false)
+}
+
+/// 1-based line and column (in characters) of a byte offset.
+fn line_column(xml: &str, offset: usize) -> (u32, u32) {
+    let before = &xml[..offset.min(xml.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(col).unwrap_or(u32::MAX),
+    )
+}
+
+/// Accepts `major.minor.patch` with major 2 or more (older files need Mitsuba's
+/// camelCase upgrade, which is not supported).
+fn check_version(v: &str) -> Result<(), String> {
+    let parts: Vec<&str> = v.split(['.', ' ']).filter(|s| !s.is_empty()).collect();
+    let nums: Option<Vec<u32>> = parts.iter().map(|p| p.parse().ok()).collect();
+    match nums {
+        Some(n) if n.len() == 3 && n[0] >= 2 => Ok(()),
+        Some(n) if n.len() == 3 => Err(format!(
+            "version \"{v}\" predates 2.0.0 (camelCase parameter names are not supported)"
+        )),
+        _ => Err(format!(
+            "could not parse version \"{v}\" (expected major.minor.patch)"
+        )),
+    }
+}
+
+struct Reader<'a, 'd> {
+    doc: &'a roxmltree::Document<'d>,
+    file: Option<&'a Path>,
+    params: &'a mut Vec<(String, String)>,
+}
+
+impl Reader<'_, '_> {
+    fn convert(&mut self, node: roxmltree::Node, depth: usize) -> Result<Elem, SceneError> {
+        let pos = self.doc.text_pos_at(node.range().start);
+        let mut elem = Elem {
+            tag: node.tag_name().name().to_string(),
+            attrs: Vec::new(),
+            children: Vec::new(),
+            line: pos.row,
+            column: pos.col,
+        };
+        let raw: Vec<(String, String)> = node
+            .attributes()
+            .map(|a| (a.name().to_string(), a.value().to_string()))
+            .collect();
+        // Describe with the raw attributes until substitution succeeds.
+        elem.attrs = raw.clone();
+        for (name, value) in raw {
+            let value = self.substitute(&value).map_err(|m| self.err(&elem, m))?;
+            if let Some(slot) = elem.attrs.iter_mut().find(|(n, _)| *n == name) {
+                slot.1 = value;
+            }
+        }
+        if depth > MAX_DEPTH {
+            return Err(self.err(
+                &elem,
+                SceneErrorKind::Misplaced(format!("elements nested deeper than {MAX_DEPTH}")),
+            ));
+        }
+        for child in node.children() {
+            if child.is_text() {
+                let text = child.text().unwrap_or("");
+                if !text.trim().is_empty() {
+                    return Err(self.err(
+                        &elem,
+                        SceneErrorKind::Misplaced(format!(
+                            "unexpected text \"{}\"",
+                            text.trim().chars().take(40).collect::<String>()
+                        )),
+                    ));
+                }
+            } else if child.is_element() {
+                let c = self.convert(child, depth + 1)?;
+                if c.tag == "default" {
+                    self.add_default(&c)?;
+                } else {
+                    elem.children.push(c);
+                }
+            }
+        }
+        Ok(elem)
+    }
+
+    /// `<default name value>`: defines `name` unless a define or earlier default did.
+    fn add_default(&mut self, e: &Elem) -> Result<(), SceneError> {
+        for (n, _) in &e.attrs {
+            if n != "name" && n != "value" {
+                return Err(self.err(e, SceneErrorKind::UnknownAttribute(n.clone())));
+            }
+        }
+        let name = e
+            .attr("name")
+            .ok_or_else(|| self.err(e, SceneErrorKind::MissingAttribute("name".into())))?;
+        let value = e
+            .attr("value")
+            .ok_or_else(|| self.err(e, SceneErrorKind::MissingAttribute("value".into())))?;
+        if name.is_empty() {
+            return Err(self.err(
+                e,
+                SceneErrorKind::InvalidValue("<default> needs a non-empty name".into()),
+            ));
+        }
+        if !self.params.iter().any(|(n, _)| n == name) {
+            self.params.push((name.to_string(), value.to_string()));
+        }
+        Ok(())
+    }
+
+    /// Mitsuba's rule: replace `$name` for every known parameter, longest names first;
+    /// any `$` left over is an undefined parameter.
+    fn substitute(&self, value: &str) -> Result<String, SceneErrorKind> {
+        if !value.contains('$') {
+            return Ok(value.to_string());
+        }
+        let mut order: Vec<&(String, String)> = self.params.iter().collect();
+        order.sort_by_key(|p| std::cmp::Reverse(p.0.len()));
+        let mut out = value.to_string();
+        for (name, val) in order {
+            out = out.replace(&format!("${name}"), val);
+        }
+        if out.contains('$') {
+            return Err(SceneErrorKind::UndefinedParameter(format!(
+                "\"{value}\" refers to a parameter that no <default> or define gives"
+            )));
+        }
+        Ok(out)
+    }
+
+    fn err(&self, e: &Elem, kind: SceneErrorKind) -> SceneError {
+        SceneError::new(
+            self.file,
+            Some(e.line),
+            Some(e.column),
+            Some(e.describe()),
+            kind,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn deep_nesting_is_refused_before_parsing() {
+        let deep = |n: usize| {
+            format!(
+                "<scene version=\"3.0.0\">{}{}</scene>",
+                "<a>".repeat(n),
+                "</a>".repeat(n)
+            )
+        };
+        assert_eq!(too_deep(&deep(MAX_DEPTH)), None);
+        assert!(too_deep(&deep(MAX_DEPTH + 1)).is_some());
+        let e = read_tree(&deep(1_000_000), None, &[]).unwrap_err();
+        assert!(matches!(e.kind, SceneErrorKind::Xml(_)), "{e}");
+        let flat = "<s>\n<!-- <a><a> --><b x=\">\"/><c/></s>";
+        assert_eq!(too_deep(flat), None);
+        assert_eq!(line_column(flat, 4), (2, 1));
+    }
+
+    #[test]
+    fn versions() {
+        assert!(check_version("3.0.0").is_ok());
+        assert!(check_version("2.1.0").is_ok());
+        assert!(check_version("0.6.0").is_err());
+        assert!(check_version("3.0").is_err());
+        assert!(check_version("x.0.0").is_err());
+    }
+
+    #[test]
+    fn defines_beat_defaults_and_longest_name_wins() {
+        let xml = r#"<scene version="3.0.0"><default name="a" value="1"/>
+            <default name="ab" value="2"/><x v="$a $ab"/></scene>"#;
+        let t = read_tree(xml, None, &[("a".into(), "9".into())]).unwrap();
+        assert_eq!(t.children[0].attr("v"), Some("9 2"));
+    }
+}

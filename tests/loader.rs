@@ -1,0 +1,303 @@
+//! The Mitsuba 3 XML loader on the shipped scenes, `$name` substitution and `-D`
+//! overrides, and one test per error kind (each message names file, line and element).
+
+use mcrt::glam::{Mat4, Vec3};
+use mcrt::scene::cornell_box::{cornell_box, cornell_box_with};
+use mcrt::scene::description::{
+    BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
+    SceneDescription, ShapeKind,
+};
+use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError};
+use std::path::Path;
+
+const CORNELL: &str = "tests/data/cornell-box.xml";
+const VEACH: &str = "tests/data/veach-mis.xml";
+
+fn load(path: &str, defines: &[(&str, &str)]) -> SceneDescription {
+    let d: Vec<(String, String)> = defines
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
+    load_scene(Path::new(path), &d).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn assert_mat_close(a: Mat4, b: Mat4, tol: f32) {
+    for (x, y) in a.to_cols_array().iter().zip(b.to_cols_array()) {
+        assert!(x.is_finite() && y.is_finite(), "{a} vs {b}");
+        assert!((x - y).abs() <= tol, "{a} vs {b}");
+    }
+}
+
+#[test]
+fn cornell_box_file_equals_the_scene_built_in_code() {
+    let mut parsed = load(CORNELL, &[]);
+    assert_eq!(parsed.source.as_deref(), Some(Path::new(CORNELL)));
+    parsed.source = None;
+    assert_eq!(parsed, cornell_box());
+}
+
+#[test]
+fn cornell_box_defines_override_defaults() {
+    let mut parsed = load(CORNELL, &[("max_depth", "2"), ("spp", "16"), ("res", "32")]);
+    parsed.source = None;
+    assert_eq!(parsed, cornell_box_with(16, 32, 2));
+    assert_eq!(
+        parsed.integrator,
+        IntegratorDesc::Path {
+            max_depth: 2,
+            rr_depth: 5
+        }
+    );
+}
+
+#[test]
+fn cornell_box_camera() {
+    let d = load(CORNELL, &[]);
+    assert_eq!(d.sensor.fov, 39.3077);
+    assert_eq!(d.sensor.fov_axis, FovAxis::Smaller);
+    assert_eq!(d.sensor.film.filter, FilterDesc::Box);
+    let expected = Mat4::from_cols_array(&[
+        -1., 0., 0., 0., 0., 1., 0., 0., 0., 0., -1., 0., 0., 0., 3.9, 1.,
+    ]);
+    assert_mat_close(d.sensor.to_world, expected, 1e-6);
+}
+
+#[test]
+fn veach_plates_are_ggx_mirrors_of_rising_roughness() {
+    let d = load(VEACH, &[]);
+    assert_eq!(d.shapes.len(), 11);
+    for (i, alpha) in [0.005f32, 0.02, 0.05, 0.1].into_iter().enumerate() {
+        let s = &d.shapes[i];
+        assert_eq!(s.id.as_deref(), Some(format!("plate{i}").as_str()));
+        assert_eq!(s.kind, ShapeKind::Rectangle);
+        assert_eq!(
+            s.bsdf,
+            BsdfDesc::RoughConductor {
+                distribution: MicrofacetKind::Ggx,
+                alpha,
+                fresnel: ConductorFresnel::Perfect,
+                specular_reflectance: Vec3::ONE,
+            }
+        );
+        assert!(s.emitter.is_none());
+    }
+    let m = d.shapes[0].to_world;
+    assert_eq!(
+        m.row(1),
+        mcrt::glam::Vec4::new(0., 0.048321, 0.996133, -1.9)
+    );
+}
+
+#[test]
+fn veach_sphere_lights() {
+    let d = load(VEACH, &[]);
+    let expected = [
+        (-3.75, 0.05, 300.0),
+        (-1.25, 0.15, 33.3333),
+        (1.25, 0.45, 3.7037),
+        (3.75, 1.0, 0.75),
+    ];
+    for (i, (x, r, l)) in expected.into_iter().enumerate() {
+        let s = &d.shapes[4 + i];
+        assert_eq!(
+            s.kind,
+            ShapeKind::Sphere {
+                center: Vec3::new(x, 4.2, -1.0),
+                radius: r
+            }
+        );
+        assert_eq!(s.emitter.map(|e| e.radiance), Some(Vec3::splat(l)));
+        assert_eq!(s.to_world, Mat4::IDENTITY);
+        // A shape without a BSDF gets Mitsuba's default: diffuse 0.5.
+        assert_eq!(s.bsdf, BsdfDesc::default());
+    }
+    let fill = &d.shapes[10];
+    assert_eq!(fill.id.as_deref(), Some("fill"));
+    assert_eq!(fill.emitter.map(|e| e.radiance), Some(Vec3::splat(1.2)));
+}
+
+#[test]
+fn veach_walls_compose_transforms_in_mitsuba_order() {
+    let d = load(VEACH, &[]);
+    let wall = BsdfDesc::Diffuse {
+        reflectance: Vec3::splat(0.4),
+    };
+    let back = &d.shapes[8];
+    assert_eq!(back.id.as_deref(), Some("back"));
+    assert_eq!(back.bsdf, wall);
+    // scale, then translate: T · S.
+    let expected = Mat4::from_translation(Vec3::new(0.0, 0.0, -4.0))
+        * Mat4::from_scale(Vec3::new(20.0, 10.0, 1.0));
+    assert_mat_close(back.to_world, expected, 0.0);
+    assert_eq!(
+        back.to_world.transform_point3(Vec3::new(1., 1., 0.)),
+        Vec3::new(20., 10., -4.)
+    );
+    let floor = &d.shapes[9];
+    // The rectangle's +z normal is rotated to +y, and the floor sits at y = −2.5.
+    let n = floor.to_world.transform_vector3(Vec3::Z);
+    assert!((n.normalize() - Vec3::Y).length() < 1e-6, "{n}");
+    let c = floor.to_world.transform_point3(Vec3::new(1.0, 1.0, 0.0));
+    assert!((c - Vec3::new(20.0, -2.5, -20.0)).length() < 1e-5, "{c}");
+}
+
+#[test]
+fn veach_camera() {
+    let d = load(VEACH, &[]);
+    assert_eq!(d.sensor.fov, 40.0);
+    assert_eq!(d.sensor.fov_axis, FovAxis::X);
+    assert_eq!((d.sensor.film.width, d.sensor.film.height), (384, 256));
+    assert_eq!(d.sensor.near_clip, 0.01);
+    assert_eq!(d.sensor.far_clip, 1e4);
+    let m = look_at(Vec3::new(0., 2., 15.), Vec3::new(0., 1., 0.), Vec3::Y).unwrap();
+    assert_eq!(d.sensor.to_world, m);
+    let dir = m.transform_vector3(Vec3::Z);
+    let expected = Vec3::new(0.0, -1.0, -15.0).normalize();
+    assert!((dir - expected).length() < 1e-6);
+    // Mitsuba's camera: +x is the image's left, so for a camera looking down −z it is −x.
+    assert!((m.transform_vector3(Vec3::X) - Vec3::NEG_X).length() < 1e-6);
+    assert_eq!(d.sensor.sampler.sample_count, 64);
+    let d = load(VEACH, &[("spp", "7")]);
+    assert_eq!(d.sensor.sampler.sample_count, 7);
+}
+
+fn parse(xml: &str, defines: &[(&str, &str)]) -> Result<SceneDescription, SceneError> {
+    let d: Vec<(String, String)> = defines
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
+    parse_scene(xml, Some(Path::new("tests/data/inline.xml")), &d)
+}
+
+#[test]
+fn substitution_works_in_any_attribute_and_defines_win() {
+    let xml = r#"<scene version="3.0.0">
+        <default name="kind" value="diffuse"/>
+        <default name="r" value="0.25"/>
+        <default name="rr" value="0.75"/>
+        <shape type="sphere"><bsdf type="$kind"><rgb name="reflectance" value="$r, $rr, $r"/></bsdf></shape>
+    </scene>"#;
+    let d = parse(xml, &[]).unwrap();
+    let refl = |d: &SceneDescription| d.shapes[0].bsdf.clone();
+    assert_eq!(
+        refl(&d),
+        BsdfDesc::Diffuse {
+            reflectance: Vec3::new(0.25, 0.75, 0.25)
+        }
+    );
+    let d = parse(xml, &[("r", "0.5"), ("kind", "diffuse")]).unwrap();
+    assert_eq!(
+        refl(&d),
+        BsdfDesc::Diffuse {
+            reflectance: Vec3::new(0.5, 0.75, 0.5)
+        }
+    );
+    // A define unused by the file is harmless.
+    assert!(parse(xml, &[("unused", "1")]).is_ok());
+}
+
+#[test]
+fn transform_elements() {
+    let xml = r#"<scene version="3.0.0"><shape type="cube"><transform name="to_world">
+        <translate value="1, 2, 3"/><rotate y="1" angle="90"/><scale value="2"/>
+        <matrix value="1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/>
+    </transform></shape></scene>"#;
+    let m = parse(xml, &[]).unwrap().shapes[0].to_world;
+    // Each later element applies after: p ↦ 2 · R_y(90°) · (p + (1, 2, 3)).
+    let p = m.transform_point3(Vec3::ZERO);
+    assert!((p - Vec3::new(6.0, 4.0, -2.0)).length() < 1e-5, "{p}");
+}
+
+#[test]
+fn materials_emitters_and_integrators() {
+    let xml = r#"<scene version="3.0.0">
+        <integrator type="direct"><integer name="shading_samples" value="3"/>
+            <integer name="bsdf_samples" value="2"/></integrator>
+        <sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/>
+            <integer name="height" value="4"/><string name="pixel_format" value="rgba"/></film>
+            <sampler type="ldsampler"><integer name="sample_count" value="16"/>
+            <integer name="seed" value="9"/></sampler></sensor>
+        <bsdf type="twosided" id="two"><bsdf type="conductor">
+            <rgb name="eta" value="0.2, 0.9, 1.1"/><rgb name="k" value="3.9, 2.4, 2.2"/></bsdf></bsdf>
+        <shape type="disk"><ref id="two"/></shape>
+        <shape type="rectangle"><bsdf type="dielectric"><string name="int_ior" value="water"/>
+            <float name="ext_ior" value="1"/></bsdf><boolean name="flip_normals" value="true"/></shape>
+        <shape type="obj"><string name="filename" value="cornell-box.xml"/></shape>
+        <emitter type="point"><point name="position" value="1, 2, 3"/><rgb name="intensity" value="5"/></emitter>
+        <emitter type="constant"><rgb name="radiance" value="0.5"/></emitter>
+        <emitter type="envmap"><string name="filename" value="veach-mis.exr"/><float name="scale" value="2"/></emitter>
+    </scene>"#;
+    let d = parse(xml, &[]).unwrap();
+    assert_eq!(
+        d.integrator,
+        IntegratorDesc::Direct {
+            emitter_samples: 3,
+            bsdf_samples: 2
+        }
+    );
+    assert_eq!((d.sensor.film.width, d.sensor.film.height), (8, 4));
+    assert_eq!(d.sensor.film.filter, FilterDesc::Gaussian { stddev: 0.5 });
+    assert_eq!(d.sensor.sampler.sample_count, 16);
+    assert_eq!(d.sensor.sampler.seed, 9);
+    let BsdfDesc::TwoSided(inner) = &d.shapes[0].bsdf else {
+        panic!("{:?}", d.shapes[0].bsdf)
+    };
+    assert!(matches!(
+        **inner,
+        BsdfDesc::Conductor {
+            fresnel: ConductorFresnel::Complex { .. },
+            ..
+        }
+    ));
+    assert!(
+        matches!(d.shapes[1].bsdf, BsdfDesc::Dielectric { int_ior, ext_ior, .. }
+        if int_ior == 1.333 && ext_ior == 1.0)
+    );
+    assert!(d.shapes[1].flip_normals);
+    let ShapeKind::Obj {
+        filename,
+        face_normals,
+    } = &d.shapes[2].kind
+    else {
+        panic!()
+    };
+    assert_eq!(filename, Path::new("tests/data/cornell-box.xml"));
+    assert!(!face_normals);
+    assert_eq!(d.emitters.len(), 3);
+}
+
+#[test]
+fn cornell_box_direct_lighting_define() {
+    let mut parsed = load(CORNELL, &[("max_depth", "2")]);
+    parsed.source = None;
+    assert_eq!(parsed, cornell_box_with(64, 256, 2));
+}
+
+#[test]
+fn obj_shapes_resolve_against_the_scene_folder_and_read() {
+    let dir = std::env::temp_dir().join(format!("mcrt-loader-obj-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("meshes")).unwrap();
+    let obj = "# a quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
+    std::fs::write(dir.join("meshes/quad.obj"), obj).unwrap();
+    let scene = r#"<scene version="3.0.0"><shape type="obj">
+        <string name="filename" value="meshes/quad.obj"/>
+        <boolean name="face_normals" value="true"/>
+    </shape></scene>"#;
+    std::fs::write(dir.join("scene.xml"), scene).unwrap();
+    let d = load_scene(&dir.join("scene.xml"), &[]).unwrap();
+    let ShapeKind::Obj {
+        filename,
+        face_normals,
+    } = &d.shapes[0].kind
+    else {
+        panic!("{:?}", d.shapes[0].kind)
+    };
+    assert!(*face_normals);
+    assert_eq!(filename, &dir.join("meshes/quad.obj"));
+    let mesh = mcrt::scene::obj::read_obj(filename).unwrap();
+    assert_eq!(mesh.indices, vec![[0, 1, 2], [0, 2, 3]]);
+    assert_eq!(mesh.normals, vec![Vec3::Z; 4]);
+    let missing = mcrt::scene::obj::read_obj(&dir.join("nope.obj")).unwrap_err();
+    assert!(missing.to_string().contains("nope.obj"), "{missing}");
+    std::fs::remove_dir_all(&dir).ok();
+}

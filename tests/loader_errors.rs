@@ -1,0 +1,193 @@
+//! Every kind of loader error: the message names the file, the line and the element, and
+//! says what is wrong.
+
+use mcrt::scene::loader::{load_scene, parse_scene, SceneError, SceneErrorKind};
+use std::path::Path;
+
+const FILE: &str = "tests/data/broken-test.xml";
+
+/// Parses `body` inside a scene element whose start tag is on line 1.
+fn err(body: &str) -> SceneError {
+    let xml = format!("<scene version=\"3.0.0\">\n{body}\n</scene>");
+    match parse_scene(&xml, Some(Path::new(FILE)), &[]) {
+        Ok(d) => panic!("expected an error, got {d:?}"),
+        Err(e) => e,
+    }
+}
+
+/// Checks the position and that the message names file, line and `element`.
+fn check(e: &SceneError, line: u32, element: &str, words: &str) {
+    let msg = e.to_string();
+    assert_eq!(e.line, Some(line), "{msg}");
+    assert!(msg.contains(FILE), "{msg}");
+    assert!(msg.contains(&format!("line {line}")), "{msg}");
+    assert!(msg.contains(element), "{msg}");
+    assert!(msg.contains(words), "{msg}");
+}
+
+#[test]
+fn malformed_xml() {
+    let e = err("<shape type=\"cube\">\n<float name=\"x\" value=\"1\">\n</shape>");
+    assert!(matches!(e.kind, SceneErrorKind::Xml(_)), "{e}");
+    assert!(e.line.is_some_and(|l| l >= 3), "{e}");
+    assert!(e.to_string().contains(FILE));
+}
+
+#[test]
+fn bad_or_missing_version() {
+    for (xml, words) in [
+        ("<scene version=\"0.6.0\"/>", "0.6.0"),
+        ("<scene version=\"three\"/>", "three"),
+        ("<scene/>", "missing"),
+    ] {
+        let e = parse_scene(xml, Some(Path::new(FILE)), &[]).unwrap_err();
+        assert!(matches!(e.kind, SceneErrorKind::Version(_)), "{e}");
+        check(&e, 1, "<scene>", words);
+    }
+}
+
+#[test]
+fn unknown_element_attribute_plugin_and_parameter() {
+    let e = err("<shape type=\"cube\">\n<color name=\"x\" value=\"1\"/></shape>");
+    assert!(matches!(e.kind, SceneErrorKind::UnknownElement(_)), "{e}");
+    check(&e, 3, "<color name=\"x\">", "unknown element <color>");
+
+    let e = err("<shape type=\"cube\" size=\"2\"/>");
+    assert!(matches!(e.kind, SceneErrorKind::UnknownAttribute(_)), "{e}");
+    check(&e, 2, "<shape type=\"cube\">", "\"size\"");
+
+    let e = err("\n<bsdf type=\"plastic\"/>");
+    assert!(
+        matches!(e.kind, SceneErrorKind::UnknownPlugin { .. }),
+        "{e}"
+    );
+    check(
+        &e,
+        3,
+        "<bsdf type=\"plastic\">",
+        "unknown bsdf plugin type \"plastic\"",
+    );
+
+    let e = err("<sensor type=\"perspective\">\n<float name=\"fvo\" value=\"40\"/>\n</sensor>");
+    assert!(
+        matches!(e.kind, SceneErrorKind::UnknownParameter { .. }),
+        "{e}"
+    );
+    check(
+        &e,
+        3,
+        "<float name=\"fvo\">",
+        "unknown parameter \"fvo\" for sensor \"perspective\"",
+    );
+}
+
+#[test]
+fn wrong_types_and_malformed_values() {
+    let e = err("<sensor type=\"perspective\"><string name=\"fov\" value=\"40\"/></sensor>");
+    assert!(matches!(e.kind, SceneErrorKind::WrongType { .. }), "{e}");
+    check(&e, 2, "<string name=\"fov\">", "must be a <float>");
+
+    let cases = [
+        ("<float name=\"fov\" value=\"4o\"/>", "<float name=\"fov\">"),
+        (
+            "<integer name=\"x\" value=\"1.5\"/>",
+            "<integer name=\"x\">",
+        ),
+        (
+            "<boolean name=\"x\" value=\"yes\"/>",
+            "<boolean name=\"x\">",
+        ),
+        ("<rgb name=\"x\" value=\"1, 2\"/>", "<rgb name=\"x\">"),
+        (
+            "<point name=\"x\" value=\"1 2 nan\"/>",
+            "<point name=\"x\">",
+        ),
+        ("<float name=\"x\" value=\"inf\"/>", "<float name=\"x\">"),
+    ];
+    for (prop, element) in cases {
+        let e = err(&format!("<shape type=\"sphere\">\n{prop}\n</shape>"));
+        assert!(matches!(e.kind, SceneErrorKind::Malformed(_)), "{e}");
+        check(&e, 3, element, "malformed");
+    }
+    let e = err("<shape type=\"cube\"><transform name=\"to_world\">\n<matrix value=\"1 0 0\"/>\n</transform></shape>");
+    assert!(matches!(e.kind, SceneErrorKind::Malformed(_)), "{e}");
+    check(&e, 3, "<matrix>", "16 or 9 values");
+}
+
+#[test]
+fn undefined_parameter_and_reference() {
+    let e = err(
+        "<integrator type=\"path\">\n<integer name=\"max_depth\" value=\"$depth\"/></integrator>",
+    );
+    assert!(
+        matches!(e.kind, SceneErrorKind::UndefinedParameter(_)),
+        "{e}"
+    );
+    check(&e, 3, "<integer name=\"max_depth\">", "$depth");
+
+    let e = err("<shape type=\"cube\">\n<ref id=\"nowhere\"/></shape>");
+    assert!(
+        matches!(e.kind, SceneErrorKind::UndefinedReference(_)),
+        "{e}"
+    );
+    check(&e, 3, "<ref id=\"nowhere\">", "nowhere");
+
+    let e = err("<shape type=\"cube\" id=\"c\"/>\n<shape type=\"cube\"><ref id=\"c\"/></shape>");
+    assert!(
+        matches!(e.kind, SceneErrorKind::UndefinedReference(_)),
+        "{e}"
+    );
+    check(&e, 3, "<ref id=\"c\">", "not a <bsdf>");
+
+    let e = err("<bsdf type=\"diffuse\" id=\"a\"/>\n<bsdf type=\"diffuse\" id=\"a\"/>");
+    assert!(matches!(e.kind, SceneErrorKind::DuplicateId(_)), "{e}");
+    check(&e, 3, "id=\"a\"", "duplicate id \"a\"");
+}
+
+#[test]
+fn missing_or_unreadable_files() {
+    let e = load_scene(Path::new("tests/data/no-such-scene.xml"), &[]).unwrap_err();
+    assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
+    assert!(e.to_string().contains("no-such-scene.xml"), "{e}");
+
+    let e = err("<shape type=\"obj\">\n<string name=\"filename\" value=\"missing.obj\"/></shape>");
+    assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
+    check(&e, 2, "<shape type=\"obj\">", "missing.obj");
+
+    let e = err("<emitter type=\"envmap\">\n<string name=\"filename\" value=\"cornell-box.xml\"/></emitter>");
+    assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
+    check(&e, 2, "<emitter type=\"envmap\">", "not an OpenEXR file");
+}
+
+#[test]
+fn unsupported_and_misplaced() {
+    let cases: [(&str, u32, &str, &str); 8] = [
+        ("<integrator type=\"path\"><boolean name=\"hide_emitters\" value=\"true\"/></integrator>",
+            2, "<integrator type=\"path\">", "hide_emitters"),
+        ("<sensor type=\"perspective\">\n<string name=\"fov_axis\" value=\"diagonal\"/></sensor>",
+            3, "<string name=\"fov_axis\">", "diagonal"),
+        ("<bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.2\"/></bsdf>",
+            2, "<float name=\"alpha_u\">", "anisotropy"),
+        ("<emitter type=\"area\"/>", 2, "<emitter type=\"area\">", "inside a <shape>"),
+        ("<shape type=\"cube\"><emitter type=\"point\"/></shape>", 2, "<emitter type=\"point\">", "only \"area\""),
+        ("<shape type=\"cube\">\n<texture type=\"bitmap\"/></shape>", 3, "<texture type=\"bitmap\">", "unsupported"),
+        ("<shape type=\"cube\"><translate x=\"1\"/></shape>", 2, "<translate>", "outside a <transform>"),
+        ("<shape type=\"sphere\"><float name=\"radius\" value=\"-1\"/></shape>", 2, "<float name=\"radius\">", "positive"),
+    ];
+    for (body, line, element, words) in cases {
+        let e = err(body);
+        check(&e, line, element, words);
+    }
+}
+
+#[test]
+fn duplicate_parameter_and_second_sensor() {
+    let e = err("<shape type=\"sphere\"><float name=\"radius\" value=\"1\"/>\n<float name=\"radius\" value=\"2\"/></shape>");
+    assert!(
+        matches!(e.kind, SceneErrorKind::DuplicateParameter(_)),
+        "{e}"
+    );
+    check(&e, 3, "<float name=\"radius\">", "given twice");
+    let e = err("<sensor type=\"perspective\"/>\n<sensor type=\"perspective\"/>");
+    check(&e, 3, "<sensor type=\"perspective\">", "second <sensor>");
+}
