@@ -10,7 +10,10 @@ const HEADER: &str = "scene,strategy,sampler,spp,seconds,rel_mse";
 pub fn write(points: &[RenderPoint]) -> String {
     let mut s = format!("{HEADER}\n");
     for p in points {
-        s += &format!("{},{},{},{},{:e},{:e}\n", p.scene, p.strategy, p.sampler, p.spp, p.seconds, p.rel_mse);
+        s += &format!(
+            "{},{},{},{},{:e},{:e}\n",
+            p.scene, p.strategy, p.sampler, p.spp, p.seconds, p.rel_mse
+        );
     }
     s
 }

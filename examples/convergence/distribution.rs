@@ -21,7 +21,7 @@ pub struct DistEffort {
     pub n: usize,
     /// Independent estimates for the measured RMSE.
     pub m: usize,
-    /// Timed runs (median reported).
+    /// Timed builds (median reported); sampling is timed over 4 × runs + 1 short runs.
     pub runs: usize,
 }
 
@@ -109,7 +109,9 @@ pub fn run(e: DistEffort) -> Result<(Vec<DistRow>, f64), String> {
     let base = env::image(bw, bh);
     let us: Vec<Vec2> = {
         let mut rng = Pcg32::seed_from_u64(7);
-        (0..4096).map(|_| next_u(&mut rng)).collect()
+        (0..crate::warps::TIMING_POINTS)
+            .map(|_| next_u(&mut rng))
+            .collect()
     };
     let mut rows = Vec::new();
     for (w, h) in resolutions(e.max_width) {
@@ -127,7 +129,7 @@ pub fn run(e: DistEffort) -> Result<(Vec<DistRow>, f64), String> {
             width: w,
             height: h,
             build_ms: median(&mut builds),
-            ns_sample: ns_per_call(&us, e.runs, 8, |u| d.sample(u)),
+            ns_sample: ns_per_call(&us, 4 * e.runs + 1, 1, |u| d.sample(u)),
             rel_rmse: measured_rmse(&d, truth, e.n, e.m, 1 + w as u64),
             rel_var: predicted_rel_var(&d, truth, bw, bh),
         });
@@ -152,12 +154,18 @@ mod tests {
         assert!(truth.is_finite() && truth > 0.0);
         assert_eq!(rows.len(), 4);
         let (first, last) = (rows[0], rows[rows.len() - 1]);
-        assert!(last.rel_var.is_finite() && last.rel_var < 0.1 * first.rel_var, "{rows:?}");
+        assert!(
+            last.rel_var.is_finite() && last.rel_var < 0.1 * first.rel_var,
+            "{rows:?}"
+        );
         for r in &rows {
             let predicted = (r.rel_var / e.n as f64).sqrt();
             assert!(r.rel_rmse.is_finite() && predicted.is_finite());
             // 400 estimates give the RMSE to about ±10% (heavier tails at coarse tables).
-            assert!((r.rel_rmse / predicted - 1.0).abs() < 0.35, "{r:?} {predicted}");
+            assert!(
+                (r.rel_rmse / predicted - 1.0).abs() < 0.35,
+                "{r:?} {predicted}"
+            );
         }
     }
 

@@ -43,7 +43,12 @@ pub fn integrand(x: f64, y: f64) -> f64 {
 }
 
 /// Midpoint rule of `f` over `[x0,x1]×[y0,y1]` with `n × n` points.
-fn midpoint(f: impl Fn(f64, f64) -> f64, (x0, x1): (f64, f64), (y0, y1): (f64, f64), n: usize) -> f64 {
+fn midpoint(
+    f: impl Fn(f64, f64) -> f64,
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    n: usize,
+) -> f64 {
     let (hx, hy) = ((x1 - x0) / n as f64, (y1 - y0) / n as f64);
     let mut sum = 0.0;
     for j in 0..n {
@@ -97,7 +102,10 @@ mod tests {
     fn reference_integral_converges() {
         let a = reference_integral(512);
         let b = reference_integral(1024);
-        assert!(a.is_finite() && b.is_finite() && ((a - b) / b).abs() < 1e-4, "{a} {b}");
+        assert!(
+            a.is_finite() && b.is_finite() && ((a - b) / b).abs() < 1e-4,
+            "{a} {b}"
+        );
         let sun_only = midpoint(sun, (0.0, 1.0), (0.0, 1.0), 2000);
         let expect = SUN_RADIANCE * std::f64::consts::PI * SUN_RADIUS * SUN_RADIUS;
         assert!(((sun_only - expect) / expect).abs() < 1e-2);

@@ -32,7 +32,8 @@ pub fn read_exr(path: &Path) -> Result<Rgb, String> {
     })
 }
 
-/// Writes an RGB EXR (used by the tests and to keep rendered images for inspection).
+/// Writes an RGB EXR (for the round-trip test).
+#[cfg(test)]
 pub fn write_exr(path: &Path, img: &Rgb) -> Result<(), String> {
     exr::prelude::write_rgb_file(path, img.width, img.height, |x, y| {
         let p = img.pixels[y * img.width + x];
@@ -58,7 +59,11 @@ pub fn rel_mse(img: &Rgb, reference: &Rgb) -> Result<f64, String> {
         }
     }
     let n = 3 * img.pixels.len();
-    Ok(if sum.is_nan() { f64::INFINITY } else { sum / n.max(1) as f64 })
+    Ok(if sum.is_nan() {
+        f64::INFINITY
+    } else {
+        sum / n.max(1) as f64
+    })
 }
 
 #[cfg(test)]
@@ -104,7 +109,11 @@ mod tests {
         assert!(got.is_finite() && (got - want).abs() < 1e-6, "{got} {want}");
         a.pixels[2][1] = f32::NAN;
         assert_eq!(rel_mse(&a, &r), Ok(f64::INFINITY));
-        let small = Rgb { width: 1, height: 1, pixels: vec![[0.0; 3]] };
+        let small = Rgb {
+            width: 1,
+            height: 1,
+            pixels: vec![[0.0; 3]],
+        };
         assert!(rel_mse(&small, &r).is_err());
     }
 }

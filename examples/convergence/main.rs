@@ -21,6 +21,7 @@ mod naive;
 mod plot;
 mod prose;
 mod reference;
+mod reference_microfacet;
 mod render_study;
 mod renderer;
 mod report;
@@ -40,7 +41,8 @@ struct Options {
     note: String,
 }
 
-const USAGE: &str = "usage: convergence [--quick] [--out DIR] [--max-spp N] [--no-render] [--note TEXT]";
+const USAGE: &str =
+    "usage: convergence [--quick] [--out DIR] [--max-spp N] [--no-render] [--note TEXT]";
 
 fn parse() -> Result<Options, String> {
     let mut o = Options {
@@ -59,7 +61,10 @@ fn parse() -> Result<Options, String> {
             "--note" => o.note = it.next().ok_or("--note needs a text")?,
             "--max-spp" => {
                 let v = it.next().ok_or("--max-spp needs a number")?;
-                o.max_spp = Some(v.parse().map_err(|_| format!("--max-spp {v}: not a number"))?);
+                o.max_spp = Some(
+                    v.parse()
+                        .map_err(|_| format!("--max-spp {v}: not a number"))?,
+                );
             }
             "-h" | "--help" => return Err(USAGE.into()),
             other => return Err(format!("unknown argument {other}\n{USAGE}")),
@@ -77,23 +82,39 @@ fn draw(p: Option<plot::Plot>, path: &Path) -> Result<(), String> {
 
 /// Error against table size, and against time per sample.
 fn dist_plots(rows: &[distribution::DistRow], n: usize, dir: &Path) -> Result<(), String> {
-    let pts = |f: &dyn Fn(&distribution::DistRow) -> (f64, f64)| rows.iter().map(f).collect::<Vec<_>>();
-    let series = |label: &str, points| plot::Series { label: label.into(), points, guide: false };
+    let pts =
+        |f: &dyn Fn(&distribution::DistRow) -> (f64, f64)| rows.iter().map(f).collect::<Vec<_>>();
+    let series = |label: &str, points| plot::Series {
+        label: label.into(),
+        points,
+        guide: false,
+    };
     let res = plot::Plot {
         title: format!("Importance sampling from a table: relRMSE at N = {n}"),
         x_label: "table cells".into(),
         y_label: "relative RMSE".into(),
         series: vec![
-            series("measured", pts(&|r| ((r.width * r.height) as f64, r.rel_rmse))),
-            series("predicted", pts(&|r| ((r.width * r.height) as f64, (r.rel_var / n as f64).sqrt()))),
+            series(
+                "measured",
+                pts(&|r| ((r.width * r.height) as f64, r.rel_rmse)),
+            ),
+            series(
+                "predicted",
+                pts(&|r| ((r.width * r.height) as f64, (r.rel_var / n as f64).sqrt())),
+            ),
         ],
+        headroom: 1.5,
     };
     plot::draw(&res, &dir.join("distribution-resolution.png"), (960, 640))?;
     let time = plot::Plot {
         title: format!("relRMSE at N = {n} against time per sample"),
         x_label: "ns per sample (table lookup)".into(),
         y_label: "relative RMSE".into(),
-        series: vec![series("tables 1×1 … (left to right: coarse to fine)", pts(&|r| (r.ns_sample, r.rel_rmse)))],
+        series: vec![series(
+            "tables 1×1 … (left to right: coarse to fine)",
+            pts(&|r| (r.ns_sample, r.rel_rmse)),
+        )],
+        headroom: 1.5,
     };
     plot::draw(&time, &dir.join("distribution-time.png"), (960, 640))
 }
@@ -102,7 +123,8 @@ fn dist_plots(rows: &[distribution::DistRow], n: usize, dir: &Path) -> Result<()
 fn render_half(o: &Options, dir: &Path) -> Result<Vec<render_study::RenderPoint>, String> {
     let csv_path = dir.join("render.csv");
     let earlier = || -> Result<Vec<_>, String> {
-        let text = std::fs::read_to_string(&csv_path).map_err(|e| format!("{}: {e}", csv_path.display()))?;
+        let text = std::fs::read_to_string(&csv_path)
+            .map_err(|e| format!("{}: {e}", csv_path.display()))?;
         csv::read(&text)
     };
     let backend = match (o.render, renderer::backend()) {
@@ -111,11 +133,14 @@ fn render_half(o: &Options, dir: &Path) -> Result<Vec<render_study::RenderPoint>
             eprintln!("rendering study skipped: {why}");
             return earlier().map_err(|_| why);
         }
-        (false, _) => return earlier().map_err(|e| format!("--no-render and no earlier results ({e})")),
+        (false, _) => {
+            return earlier().map_err(|e| format!("--no-render and no earlier results ({e})"))
+        }
     };
     let max_spp = o.max_spp.unwrap_or(if o.quick { 16 } else { 1024 });
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let (points, skipped) = render_study::run(backend.as_ref(), &render_study::scenes(root), max_spp);
+    let (points, skipped) =
+        render_study::run(backend.as_ref(), &render_study::scenes(root), max_spp);
     for s in &skipped {
         eprintln!("skipped: {s}");
     }
@@ -127,18 +152,41 @@ fn run(o: &Options) -> Result<(), String> {
     let dir = o.out.join("convergence");
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let effort = if o.quick {
-        warps::Effort { points: 1 << 12, runs: 3, reps: 4 }
+        warps::Effort {
+            points: 1 << 12,
+            runs: 21,
+            reps: 1,
+        }
     } else {
-        warps::Effort { points: 1 << 16, runs: 9, reps: 16 }
+        warps::Effort {
+            points: 1 << 16,
+            runs: 101,
+            reps: 1,
+        }
     };
     eprintln!("warps: f32 against f64 …");
     let warp_rows = warps::run(effort);
-    draw(warp_curves::plot(if o.quick { 48 } else { 192 }), &dir.join("warp-theta-error.png"))?;
+    draw(
+        warp_curves::plot(if o.quick { 48 } else { 192 }),
+        &dir.join("warp-theta-error.png"),
+    )?;
     eprintln!("2D distribution: table resolution …");
     let de = if o.quick {
-        DistEffort { base_width: 1024, max_width: 256, n: 64, m: 300, runs: 3 }
+        DistEffort {
+            base_width: 1024,
+            max_width: 256,
+            n: 64,
+            m: 300,
+            runs: 5,
+        }
     } else {
-        DistEffort { base_width: 2048, max_width: 1024, n: 64, m: 2000, runs: 7 }
+        DistEffort {
+            base_width: 2048,
+            max_width: 1024,
+            n: 64,
+            m: 2000,
+            runs: 25,
+        }
     };
     let (dist_rows, truth) = distribution::run(de)?;
     dist_plots(&dist_rows, de.n, &dir)?;
@@ -146,7 +194,10 @@ fn run(o: &Options) -> Result<(), String> {
     let render = render_half(o, &dir);
     if let Ok(points) = &render {
         for scene in ["cornell-box", "veach-mis"] {
-            draw(render_study::plot(points, scene), &dir.join(format!("render-{scene}.png")))?;
+            draw(
+                render_study::plot(points, scene),
+                &dir.join(format!("render-{scene}.png")),
+            )?;
         }
     }
     let ctx = report::Context {

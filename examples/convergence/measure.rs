@@ -71,7 +71,8 @@ pub fn median(xs: &mut [f64]) -> f64 {
 }
 
 /// Nanoseconds per call of `f` over `inputs`: one warm-up pass, then the median over `runs`
-/// passes of `reps` sweeps each. Every result goes through [`black_box`].
+/// timed runs of `reps` sweeps each. Every result goes through [`black_box`]. Keep runs
+/// short on a shared machine: a run that is preempted counts as one outlier.
 pub fn ns_per_call<I: Copy, O>(inputs: &[I], runs: usize, reps: usize, f: impl Fn(I) -> O) -> f64 {
     let sweep = || {
         for &x in inputs {

@@ -31,6 +31,8 @@ pub struct Plot {
     pub y_label: String,
     /// The lines.
     pub series: Vec<Series>,
+    /// Factor of empty space above the highest point (room for the legend); 1.5 is snug.
+    pub headroom: f64,
 }
 
 fn register() -> Result<(), String> {
@@ -46,13 +48,19 @@ fn register() -> Result<(), String> {
 /// The usable points of a series on log axes.
 fn positive(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     let ok = |v: f64| v.is_finite() && v > 0.0;
-    points.iter().copied().filter(|&(x, y)| ok(x) && ok(y)).collect()
+    points
+        .iter()
+        .copied()
+        .filter(|&(x, y)| ok(x) && ok(y))
+        .collect()
 }
 
 /// The range of all plotted values along one axis, widened by a factor 1.5 each side.
 pub fn log_range(series: &[Series], axis: impl Fn((f64, f64)) -> f64) -> Option<(f64, f64)> {
     let vals = series.iter().flat_map(|s| positive(&s.points)).map(axis);
-    let (lo, hi) = vals.fold((f64::INFINITY, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let (lo, hi) = vals.fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
     (lo <= hi).then_some((lo / 1.5, hi * 1.5))
 }
 
@@ -62,6 +70,7 @@ pub fn draw(plot: &Plot, path: &Path, size: (u32, u32)) -> Result<(), String> {
     let err = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
     let xr = log_range(&plot.series, |p| p.0).ok_or("nothing to plot")?;
     let yr = log_range(&plot.series, |p| p.1).ok_or("nothing to plot")?;
+    let yr = (yr.0, yr.1 / 1.5 * plot.headroom.max(1.0));
     let root = BitMapBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let mut chart = ChartBuilder::on(&root)
@@ -75,8 +84,10 @@ pub fn draw(plot: &Plot, path: &Path, size: (u32, u32)) -> Result<(), String> {
         .configure_mesh()
         .x_desc(plot.x_label.as_str())
         .y_desc(plot.y_label.as_str())
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_labels(10)
+        .y_labels(10)
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
         .label_style(("sans-serif", 14))
         .draw()
         .map_err(|e| err(&e))?;
@@ -89,7 +100,9 @@ pub fn draw(plot: &Plot, path: &Path, size: (u32, u32)) -> Result<(), String> {
                 .draw_series(DashedLineSeries::new(pts, 8, 6, style))
                 .map_err(|e| err(&e))?
                 .label(s.label.as_str())
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(120, 120, 120)));
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(120, 120, 120))
+                });
             continue;
         }
         let c = Palette99::pick(colour).to_rgba();
@@ -112,6 +125,21 @@ pub fn draw(plot: &Plot, path: &Path, size: (u32, u32)) -> Result<(), String> {
         .draw()
         .map_err(|e| err(&e))?;
     root.present().map_err(|e| err(&e))
+}
+
+/// A tick label: plain below 10⁵ and above 10⁻³, else `1e-5` style.
+pub fn tick(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    if (1e-3..1e5).contains(&v.abs()) {
+        let s = format!("{v:.3}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    } else {
+        let s = format!("{v:.1e}");
+        s.replace(".0e", "e")
+    }
 }
 
 /// A guide line `y = y0 · (x / x0)^slope` across `[x0, x1]`.
@@ -139,6 +167,14 @@ mod tests {
         let g = slope_guide("1/N", (1.0, 1.0), 100.0, -1.0);
         let (a, b) = (g.points[0], g.points[g.points.len() - 1]);
         assert!((b.0 - 100.0).abs() < 1e-9 && (b.1 - 0.01).abs() < 1e-12 && a == (1.0, 1.0));
+    }
+
+    #[test]
+    fn ticks() {
+        assert_eq!(tick(100.0), "100");
+        assert_eq!(tick(0.25), "0.25");
+        assert_eq!(tick(1e-5), "1e-5");
+        assert_eq!(tick(2.5e7), "2.5e7");
     }
 
     #[test]
@@ -170,6 +206,7 @@ mod tests {
                 },
                 slope_guide("1/N", (1.0, 2.0), 10.0, -1.0),
             ],
+            headroom: 1.5,
         };
         draw(&plot, &path, (400, 300)).expect("drawn");
         let bytes = std::fs::read(&path).expect("written");

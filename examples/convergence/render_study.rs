@@ -44,7 +44,13 @@ pub trait Backend {
     /// Renders `scene` with a strategy and sampler (names from [`STRATEGIES`] and
     /// [`SAMPLERS`]) at `spp`; returns the image and the wall-clock render time in seconds.
     /// An `Err` skips that combination (e.g. a sampler the renderer lacks).
-    fn render(&self, scene: &SceneSpec, strategy: &str, sampler: &str, spp: u32) -> Result<(Rgb, f64), String>;
+    fn render(
+        &self,
+        scene: &SceneSpec,
+        strategy: &str,
+        sampler: &str,
+        spp: u32,
+    ) -> Result<(Rgb, f64), String>;
 }
 
 /// One render.
@@ -79,7 +85,11 @@ pub fn spp_ladder(max_spp: u32) -> Vec<u32> {
 }
 
 /// Renders every combination; returns the points and the messages of skipped ones.
-pub fn run(backend: &dyn Backend, scenes: &[SceneSpec], max_spp: u32) -> (Vec<RenderPoint>, Vec<String>) {
+pub fn run(
+    backend: &dyn Backend,
+    scenes: &[SceneSpec],
+    max_spp: u32,
+) -> (Vec<RenderPoint>, Vec<String>) {
     let (mut points, mut skipped) = (Vec::new(), Vec::new());
     for scene in scenes {
         let reference = match read_exr(&scene.reference) {
@@ -92,19 +102,25 @@ pub fn run(backend: &dyn Backend, scenes: &[SceneSpec], max_spp: u32) -> (Vec<Re
         for strategy in STRATEGIES {
             for sampler in SAMPLERS {
                 for spp in spp_ladder(max_spp) {
-                    let result = backend.render(scene, strategy, sampler, spp).and_then(|(img, s)| {
-                        Ok(RenderPoint {
-                            scene: scene.name.into(),
-                            strategy: strategy.into(),
-                            sampler: sampler.into(),
-                            spp,
-                            seconds: s,
-                            rel_mse: rel_mse(&img, &reference)?,
-                        })
-                    });
+                    let result =
+                        backend
+                            .render(scene, strategy, sampler, spp)
+                            .and_then(|(img, s)| {
+                                Ok(RenderPoint {
+                                    scene: scene.name.into(),
+                                    strategy: strategy.into(),
+                                    sampler: sampler.into(),
+                                    spp,
+                                    seconds: s,
+                                    rel_mse: rel_mse(&img, &reference)?,
+                                })
+                            });
                     match result {
                         Ok(p) => {
-                            eprintln!("  {} {strategy}/{sampler} {spp} spp: {:.2} s, relMSE {:.3e}", p.scene, p.seconds, p.rel_mse);
+                            eprintln!(
+                                "  {} {strategy}/{sampler} {spp} spp: {:.2} s, relMSE {:.3e}",
+                                p.scene, p.seconds, p.rel_mse
+                            );
                             points.push(p);
                         }
                         Err(e) => {
@@ -147,18 +163,29 @@ pub fn plot(points: &[RenderPoint], scene: &str) -> Option<Plot> {
             guide: false,
         })
         .collect();
-    let anchor = series.iter().flat_map(|s| s.points.iter().copied()).filter(|p| p.0 > 0.0 && p.1.is_finite());
-    let (t0, e0) = anchor.clone().fold((f64::INFINITY, 0.0), |a, p| if p.0 < a.0 { p } else { a });
+    let anchor = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(|p| p.0 > 0.0 && p.1.is_finite());
+    let (t0, e0) = anchor
+        .clone()
+        .fold((f64::INFINITY, 0.0), |a, p| if p.0 < a.0 { p } else { a });
     let t1 = anchor.map(|p| p.0).fold(0.0, f64::max);
     if series.is_empty() || t1 <= t0 {
         return None;
     }
-    series.push(slope_guide("relMSE ∝ 1/time (error ∝ 1/√N)", (t0, e0), t1, -1.0));
+    series.push(slope_guide(
+        "relMSE ∝ 1/time (error ∝ 1/√N)",
+        (t0, e0),
+        t1,
+        -1.0,
+    ));
     Some(Plot {
         title: format!("{scene}: relMSE against render time"),
         x_label: "render time (s)".into(),
         y_label: "relMSE".into(),
         series,
+        headroom: 30.0,
     })
 }
 
@@ -173,7 +200,11 @@ pub fn efficiency_table(points: &[RenderPoint], scene: &str) -> String {
         v.dedup();
         v
     };
-    let mut headers = vec!["strategy / sampler".to_string(), "relMSE (max spp)".into(), "time (s)".into()];
+    let mut headers = vec![
+        "strategy / sampler".to_string(),
+        "relMSE (max spp)".into(),
+        "time (s)".into(),
+    ];
     headers.extend(ladder.iter().map(|s| format!("eff. {s} spp")));
     headers.extend(["spp for 1e-3".into(), "time for 1e-3 (s)".into()]);
     let rows: Vec<Vec<String>> = ls
@@ -182,7 +213,11 @@ pub fn efficiency_table(points: &[RenderPoint], scene: &str) -> String {
             let last = pts.iter().max_by_key(|p| p.spp).expect("non-empty line");
             let mut r = vec![format!("{st} / {sa}"), num(last.rel_mse), num(last.seconds)];
             for s in &ladder {
-                r.push(pts.iter().find(|p| p.spp == *s).map_or("–".into(), |p| num(p.efficiency())));
+                r.push(
+                    pts.iter()
+                        .find(|p| p.spp == *s)
+                        .map_or("–".into(), |p| num(p.efficiency())),
+                );
             }
             let spp_needed = last.rel_mse * f64::from(last.spp) / 1e-3;
             r.push(num(spp_needed));
@@ -203,7 +238,13 @@ mod tests {
     struct Fake;
 
     impl Backend for Fake {
-        fn render(&self, scene: &SceneSpec, strategy: &str, sampler: &str, spp: u32) -> Result<(Rgb, f64), String> {
+        fn render(
+            &self,
+            scene: &SceneSpec,
+            strategy: &str,
+            sampler: &str,
+            spp: u32,
+        ) -> Result<(Rgb, f64), String> {
             if sampler == "sobol" {
                 return Err("no Sobol sampler".into());
             }
@@ -233,7 +274,10 @@ mod tests {
         let (points, skipped) = run(&Fake, &cornell, 16);
         assert_eq!(points.len(), 4 * 2 * 3);
         assert_eq!(skipped.len(), 4);
-        for w in points.windows(2).filter(|w| w[0].sampler == w[1].sampler && w[1].spp == 4 * w[0].spp) {
+        for w in points
+            .windows(2)
+            .filter(|w| w[0].sampler == w[1].sampler && w[1].spp == 4 * w[0].spp)
+        {
             let ratio = w[0].rel_mse / w[1].rel_mse;
             assert!(ratio.is_finite() && (ratio - 4.0).abs() < 1e-3, "{ratio}");
         }

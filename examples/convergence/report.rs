@@ -31,7 +31,11 @@ pub fn machine() -> String {
         })
         .unwrap_or_else(|| "unknown CPU".into());
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
-    format!("{cpu}, {cores} cores available, {} {}", std::env::consts::OS, std::env::consts::ARCH)
+    format!(
+        "{cpu}, {cores} cores available, {} {}",
+        std::env::consts::OS,
+        std::env::consts::ARCH
+    )
 }
 
 fn pair(s: crate::measure::ErrorStats) -> String {
@@ -57,7 +61,17 @@ pub fn warp_table(rows: &[WarpRow]) -> String {
         })
         .collect();
     markdown(
-        &["warp", "parameter", "sample", "key coordinate", "pdf", "pdf(p)", "ns f32", "ns f64", "f64 / f32"],
+        &[
+            "warp",
+            "parameter",
+            "sample",
+            "key coordinate",
+            "pdf",
+            "pdf(p)",
+            "ns f32",
+            "ns f64",
+            "f64 / f32",
+        ],
         &body,
     )
 }
@@ -109,7 +123,11 @@ pub fn document(
     d += &format!(
         "Made with `{}`{}.\n\nMachine: {}. {}\n\n",
         ctx.command,
-        if ctx.quick { " (quick mode: fewer points, smaller tables, fewer spp)" } else { "" },
+        if ctx.quick {
+            " (quick mode: fewer points, smaller tables, fewer spp)"
+        } else {
+            ""
+        },
         ctx.machine,
         ctx.note
     );

@@ -55,7 +55,7 @@ mod tests {
 
     #[test]
     fn numbers() {
-        assert_eq!(num(1234.5), "1235");
+        assert_eq!(num(1234.6), "1235");
         assert_eq!(num(0.012345), "0.0123");
         assert_eq!(num(3.14159), "3.14");
         assert_eq!(num(1.5e-5), "1.50e-5");

@@ -4,10 +4,11 @@
 use crate::measure::{ns_per_call, ulps, unit_square_points, ErrorStats};
 use crate::naive::{NaiveCone, NaivePowerCosine};
 use crate::reference::{self as r, Reference};
+use crate::reference_microfacet::{RefBeckmann, RefGgx};
 use mcrt::glam::{DVec2, DVec3, Vec2, Vec3};
 use mcrt::sampling::warp::{
-    CosineHemisphere, PowerCosineHemisphere, ThetaOverSinHemisphere, UniformCone, UniformDisk,
-    UniformDiskConcentric, UniformHemisphere, UniformSphere, UniformTriangle, Warp,
+    Beckmann, CosineHemisphere, Ggx, PowerCosineHemisphere, ThetaOverSinHemisphere, UniformCone,
+    UniformDisk, UniformDiskConcentric, UniformHemisphere, UniformSphere, UniformTriangle, Warp,
 };
 
 /// A point of a warp's domain seen in f64 (planar points get `z = 0`).
@@ -70,6 +71,10 @@ pub struct Effort {
     pub reps: usize,
 }
 
+/// Points per timed run: short runs (about 10–50 µs) mostly fit in one scheduler time slice,
+/// so on a loaded machine the median over many runs stays close to the unloaded time.
+pub const TIMING_POINTS: usize = 1024;
+
 /// One line of the warp table.
 #[derive(Debug, Clone)]
 pub struct WarpRow {
@@ -102,9 +107,7 @@ where
     let (q, qpdf) = rf.sample(DVec2::new(f64::from(u[0]), f64::from(u[1])));
     let pd = p.as_f64();
     let scale = q.abs().max_element();
-    let sample = (0..3)
-        .map(|i| ulps(pd[i], q[i], scale))
-        .fold(0.0, f64::max);
+    let sample = (0..3).map(|i| ulps(pd[i], q[i], scale)).fold(0.0, f64::max);
     let (k, kq) = (key.of(pd), key.of(q));
     let at = rf.pdf(pd);
     [
@@ -135,7 +138,7 @@ where
         }
     }
     let [s, k, p, a] = cols.map(|mut c| ErrorStats::of(&mut c));
-    let timing: Vec<[f32; 2]> = pts.iter().take(4096).copied().collect();
+    let timing: Vec<[f32; 2]> = pts.iter().take(TIMING_POINTS).copied().collect();
     let u32s: Vec<Vec2> = timing.iter().map(|&u| Vec2::from(u)).collect();
     let u64s: Vec<DVec2> = u32s.iter().map(|u| u.as_dvec2()).collect();
     WarpRow {
@@ -156,12 +159,54 @@ pub fn run(effort: Effort) -> Vec<WarpRow> {
     use Key::*;
     let mut rows = vec![
         measure("UniformDisk", "", Radius, &UniformDisk, &r::RefDisk, effort),
-        measure("UniformDiskConcentric", "", Radius, &UniformDiskConcentric, &r::RefConcentric, effort),
-        measure("UniformTriangle", "", B0, &UniformTriangle, &r::RefTriangle, effort),
-        measure("UniformHemisphere", "", Theta, &UniformHemisphere, &r::RefUniformHemisphere, effort),
-        measure("CosineHemisphere", "", Theta, &CosineHemisphere, &r::RefCosineHemisphere, effort),
-        measure("UniformSphere", "", Theta, &UniformSphere, &r::RefSphere, effort),
-        measure("ThetaOverSinHemisphere", "", Theta, &ThetaOverSinHemisphere, &r::RefThetaOverSin, effort),
+        measure(
+            "UniformDiskConcentric",
+            "",
+            Radius,
+            &UniformDiskConcentric,
+            &r::RefConcentric,
+            effort,
+        ),
+        measure(
+            "UniformTriangle",
+            "",
+            B0,
+            &UniformTriangle,
+            &r::RefTriangle,
+            effort,
+        ),
+        measure(
+            "UniformHemisphere",
+            "",
+            Theta,
+            &UniformHemisphere,
+            &r::RefUniformHemisphere,
+            effort,
+        ),
+        measure(
+            "CosineHemisphere",
+            "",
+            Theta,
+            &CosineHemisphere,
+            &r::RefCosineHemisphere,
+            effort,
+        ),
+        measure(
+            "UniformSphere",
+            "",
+            Theta,
+            &UniformSphere,
+            &r::RefSphere,
+            effort,
+        ),
+        measure(
+            "ThetaOverSinHemisphere",
+            "",
+            Theta,
+            &ThetaOverSinHemisphere,
+            &r::RefThetaOverSin,
+            effort,
+        ),
     ];
     for theta in [1.0f32, 1e-2, 1e-4] {
         let rf = r::RefCone::from_angle(f64::from(theta));
@@ -170,16 +215,61 @@ pub fn run(effort: Effort) -> Vec<WarpRow> {
             rows.push(measure("UniformCone", &param, Theta, &cone, &rf, effort));
         }
         let naive = NaiveCone::from_angle(theta);
-        rows.push(measure("naive cone (f32 cos θ)", &param, Theta, &naive, &rf, effort));
+        rows.push(measure(
+            "naive cone (f32 cos θ)",
+            &param,
+            Theta,
+            &naive,
+            &rf,
+            effort,
+        ));
     }
     for n in [10.0f32, 1e3, 1e6] {
         let rf = r::RefPowerCosine { n: f64::from(n) };
         let param = format!("n = {n:e}");
         if let Ok(lobe) = PowerCosineHemisphere::new(n) {
-            rows.push(measure("PowerCosineHemisphere", &param, Theta, &lobe, &rf, effort));
+            rows.push(measure(
+                "PowerCosineHemisphere",
+                &param,
+                Theta,
+                &lobe,
+                &rf,
+                effort,
+            ));
         }
         let naive = NaivePowerCosine { n };
-        rows.push(measure("naive power cosine (powf)", &param, Theta, &naive, &rf, effort));
+        rows.push(measure(
+            "naive power cosine (powf)",
+            &param,
+            Theta,
+            &naive,
+            &rf,
+            effort,
+        ));
+    }
+    for alpha in [0.5f32, 1e-3] {
+        let param = format!("α = {alpha:e}");
+        let a = f64::from(alpha);
+        if let Ok(d) = Beckmann::new(alpha) {
+            rows.push(measure(
+                "Beckmann",
+                &param,
+                Theta,
+                &d,
+                &RefBeckmann { alpha: a },
+                effort,
+            ));
+        }
+        if let Ok(d) = Ggx::new(alpha) {
+            rows.push(measure(
+                "Ggx",
+                &param,
+                Theta,
+                &d,
+                &RefGgx { alpha: a },
+                effort,
+            ));
+        }
     }
     rows
 }
@@ -196,8 +286,18 @@ mod tests {
 
     #[test]
     fn accurate_warps_stay_within_a_few_ulps() {
-        let row = measure("UniformSphere", "", Key::Theta, &UniformSphere, &r::RefSphere, QUICK);
-        assert!(row.sample.max.is_finite() && row.sample.max < 64.0, "{row:?}");
+        let row = measure(
+            "UniformSphere",
+            "",
+            Key::Theta,
+            &UniformSphere,
+            &r::RefSphere,
+            QUICK,
+        );
+        assert!(
+            row.sample.max.is_finite() && row.sample.max < 64.0,
+            "{row:?}"
+        );
         assert!(row.pdf.max.is_finite() && row.pdf.max <= 1.0, "{row:?}");
         assert!(row.ns_f32.is_finite() && row.ns_f32 > 0.0);
     }
@@ -205,11 +305,24 @@ mod tests {
     #[test]
     fn the_study_sees_the_naive_cone_fail() {
         let rf = r::RefCone::from_angle(f64::from(1e-4f32));
-        let naive = measure("naive", "", Key::Theta, &NaiveCone::from_angle(1e-4), &rf, QUICK);
+        let naive = measure(
+            "naive",
+            "",
+            Key::Theta,
+            &NaiveCone::from_angle(1e-4),
+            &rf,
+            QUICK,
+        );
         let stable = UniformCone::from_angle(1e-4).expect("valid cone");
         let good = measure("stable", "", Key::Theta, &stable, &rf, QUICK);
         assert!(naive.pdf.max.is_infinite());
-        assert!(good.key_err.p99.is_finite() && good.key_err.p99 < 16.0, "{good:?}");
-        assert!(naive.key_err.p99 > 1e3 * good.key_err.p99.max(1.0), "{naive:?}");
+        assert!(
+            good.key_err.p99.is_finite() && good.key_err.p99 < 16.0,
+            "{good:?}"
+        );
+        assert!(
+            naive.key_err.p99 > 1e3 * good.key_err.p99.max(1.0),
+            "{naive:?}"
+        );
     }
 }
