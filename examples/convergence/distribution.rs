@@ -1,8 +1,8 @@
-//! Table resolution against error and time: importance sampling the environment × lobe
-//! integrand of [`crate::environment`] from piecewise-constant 2D tables of the environment
-//! at increasing resolution.
+//! Table resolution against error and time: importance sampling the environment map × lobe
+//! integrand of [`crate::environment`] from piecewise-constant 2D tables of the map,
+//! box-filtered to increasing resolutions.
 
-use crate::environment as env;
+use crate::environment::EnvMap;
 use crate::measure::{median, ns_per_call};
 use mcrt::glam::Vec2;
 use mcrt::sampling::distribution::PiecewiseConstant2D;
@@ -13,7 +13,7 @@ use std::time::Instant;
 /// How much work the study does.
 #[derive(Debug, Clone, Copy)]
 pub struct DistEffort {
-    /// Width of the base image the tables are box-filtered from (height is half).
+    /// Width of the environment map (height is half); tables are box-filtered from it.
     pub base_width: usize,
     /// Widest table (tables are 2:1, from 16×8 up, plus a 1×1 uniform baseline).
     pub max_width: usize,
@@ -38,8 +38,8 @@ pub struct DistRow {
     pub ns_sample: f64,
     /// Measured relative RMSE of an `n`-sample estimate (over `m` estimates).
     pub rel_rmse: f64,
-    /// Relative variance of one sample, Var[g/p]/I², from quadrature (so the RMSE at `n`
-    /// samples is √(rel_var / n)).
+    /// Relative variance of one sample, Var[g/p]/I², by quadrature at the map's pixel
+    /// centres (so the RMSE at `n` samples is √(rel_var / n)).
     pub rel_var: f64,
 }
 
@@ -57,7 +57,13 @@ fn next_u(rng: &mut Pcg32) -> Vec2 {
 }
 
 /// Relative RMSE of `m` estimates of `n` samples each, against `truth`.
-fn measured_rmse(d: &PiecewiseConstant2D, truth: f64, n: usize, m: usize, seed: u64) -> f64 {
+fn measured_rmse(
+    map: &EnvMap,
+    d: &PiecewiseConstant2D,
+    truth: f64,
+    (n, m): (usize, usize),
+    seed: u64,
+) -> f64 {
     let mut rng = Pcg32::seed_from_u64(seed);
     let mut sq = 0.0;
     for _ in 0..m {
@@ -65,7 +71,7 @@ fn measured_rmse(d: &PiecewiseConstant2D, truth: f64, n: usize, m: usize, seed: 
         for _ in 0..n {
             let (p, pdf, _) = d.sample(next_u(&mut rng));
             if pdf > 0.0 {
-                sum += env::integrand(f64::from(p.x), f64::from(p.y)) / f64::from(pdf);
+                sum += map.integrand(f64::from(p.x), f64::from(p.y)) / f64::from(pdf);
             }
         }
         let e = sum / n as f64 - truth;
@@ -74,14 +80,15 @@ fn measured_rmse(d: &PiecewiseConstant2D, truth: f64, n: usize, m: usize, seed: 
     (sq / m as f64).sqrt() / truth
 }
 
-/// Var[g/p]/I² by quadrature on the base grid: ∫ g²/p dA / I² − 1.
-fn predicted_rel_var(d: &PiecewiseConstant2D, truth: f64, w: usize, h: usize) -> f64 {
+/// Var[g/p]/I² by quadrature at the map's pixel centres: ∫ g²/p dA / I² − 1.
+fn predicted_rel_var(map: &EnvMap, d: &PiecewiseConstant2D, truth: f64) -> f64 {
+    let (w, h) = (map.width, map.height);
     let mut second = 0.0;
     for j in 0..h {
         let y = (j as f64 + 0.5) / h as f64;
         for i in 0..w {
             let x = (i as f64 + 0.5) / w as f64;
-            let g = env::integrand(x, y);
+            let g = map.integrand(x, y);
             let p = f64::from(d.pdf(Vec2::new(x as f32, y as f32)));
             if g > 0.0 && p > 0.0 {
                 second += g * g / p;
@@ -91,7 +98,7 @@ fn predicted_rel_var(d: &PiecewiseConstant2D, truth: f64, w: usize, h: usize) ->
     second / (w * h) as f64 / (truth * truth) - 1.0
 }
 
-/// The table sizes studied: 1×1, then 16×8 doubling up to `max_width`.
+/// The table sizes studied: 1×1, then 16×8 doubling up to `max_width` (at most the map's).
 pub fn resolutions(max_width: usize) -> Vec<(usize, usize)> {
     let mut v = vec![(1, 1)];
     let mut w = 16;
@@ -104,9 +111,8 @@ pub fn resolutions(max_width: usize) -> Vec<(usize, usize)> {
 
 /// Runs the study; returns the rows and the reference integral.
 pub fn run(e: DistEffort) -> Result<(Vec<DistRow>, f64), String> {
-    let truth = env::reference_integral(2048);
-    let (bw, bh) = (e.base_width, e.base_width / 2);
-    let base = env::image(bw, bh);
+    let map = EnvMap::new(e.base_width, e.base_width / 2);
+    let truth = map.reference_integral(4);
     let us: Vec<Vec2> = {
         let mut rng = Pcg32::seed_from_u64(7);
         (0..crate::warps::TIMING_POINTS)
@@ -115,7 +121,7 @@ pub fn run(e: DistEffort) -> Result<(Vec<DistRow>, f64), String> {
     };
     let mut rows = Vec::new();
     for (w, h) in resolutions(e.max_width) {
-        let cells = env::downsample(&base, bw, bh, w, h);
+        let cells = map.downsample(w, h);
         let mut builds = Vec::new();
         let mut table = None;
         for _ in 0..e.runs {
@@ -130,8 +136,8 @@ pub fn run(e: DistEffort) -> Result<(Vec<DistRow>, f64), String> {
             height: h,
             build_ms: median(&mut builds),
             ns_sample: ns_per_call(&us, 4 * e.runs + 1, 1, |u| d.sample(u)),
-            rel_rmse: measured_rmse(&d, truth, e.n, e.m, 1 + w as u64),
-            rel_var: predicted_rel_var(&d, truth, bw, bh),
+            rel_rmse: measured_rmse(&map, &d, truth, (e.n, e.m), 1 + w as u64),
+            rel_var: predicted_rel_var(&map, &d, truth),
         });
     }
     Ok((rows, truth))

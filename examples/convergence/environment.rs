@@ -1,12 +1,13 @@
-//! An environment-like test function on `[0,1]²` — a smooth sky and a small bright sun disc —
-//! times a cosine-like lobe, with its integral computed by fine quadrature, and the images the
-//! importance tables are built from.
+//! An environment map for the distribution study: a smooth sky and a small bright sun disc,
+//! rasterised at the centres of a `width × height` grid (like an HDR environment image), and
+//! a cosine-like lobe it is multiplied by. The map is piecewise constant, so a table at the
+//! map's own resolution is exactly proportional to it.
 
 /// Sun centre in `[0,1]²`.
 const SUN: (f64, f64) = (0.62, 0.3);
 /// Sun radius (in units of the square).
 const SUN_RADIUS: f64 = 0.02;
-/// Sun radiance (the sun carries about two thirds of the function's integral).
+/// Sun radiance (the sun carries about two thirds of the map's integral).
 const SUN_RADIANCE: f64 = 2000.0;
 /// Lobe centre and squared radius.
 const LOBE: (f64, f64, f64) = (0.55, 0.35, 0.09);
@@ -26,72 +27,88 @@ pub fn sun(x: f64, y: f64) -> f64 {
     }
 }
 
-/// The environment: sky plus sun (what the tables are built from).
-pub fn env(x: f64, y: f64) -> f64 {
-    sky(x, y) + sun(x, y)
-}
-
 /// The lobe the environment is multiplied by: 1 − d²/R² clamped at 0, like a cosine.
 pub fn lobe(x: f64, y: f64) -> f64 {
     let (dx, dy) = (x - LOBE.0, y - LOBE.1);
     (1.0 - (dx * dx + dy * dy) / LOBE.2).max(0.0)
 }
 
-/// The integrand of the estimate: environment × lobe.
-pub fn integrand(x: f64, y: f64) -> f64 {
-    env(x, y) * lobe(x, y)
+/// The rasterised environment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnvMap {
+    /// Columns.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// Sky + sun at pixel centres, row-major.
+    pub pixels: Vec<f64>,
 }
 
-/// Midpoint rule of `f` over `[x0,x1]×[y0,y1]` with `n × n` points.
-fn midpoint(
-    f: impl Fn(f64, f64) -> f64,
-    (x0, x1): (f64, f64),
-    (y0, y1): (f64, f64),
-    n: usize,
-) -> f64 {
-    let (hx, hy) = ((x1 - x0) / n as f64, (y1 - y0) / n as f64);
-    let mut sum = 0.0;
-    for j in 0..n {
-        let y = y0 + (j as f64 + 0.5) * hy;
-        let row: f64 = (0..n).map(|i| f(x0 + (i as f64 + 0.5) * hx, y)).sum();
-        sum += row;
-    }
-    sum * hx * hy
-}
-
-/// ∫ integrand over `[0,1]²`: the smooth part on an `n × n` grid, the sun on an `n × n` grid
-/// of its bounding box (relative error well below 10⁻⁴ for `n ≥ 1024`).
-pub fn reference_integral(n: usize) -> f64 {
-    let smooth = midpoint(|x, y| sky(x, y) * lobe(x, y), (0.0, 1.0), (0.0, 1.0), n);
-    let r = SUN_RADIUS;
-    let bx = (SUN.0 - r, SUN.0 + r);
-    let by = (SUN.1 - r, SUN.1 + r);
-    smooth + midpoint(|x, y| sun(x, y) * lobe(x, y), bx, by, n)
-}
-
-/// The environment sampled at the centres of a `width × height` grid, row-major.
-pub fn image(width: usize, height: usize) -> Vec<f64> {
-    let mut img = Vec::with_capacity(width * height);
-    for y in 0..height {
-        let v = (y as f64 + 0.5) / height as f64;
-        img.extend((0..width).map(|x| env((x as f64 + 0.5) / width as f64, v)));
-    }
-    img
-}
-
-/// Box-filters a row-major image down by integer factors to `width × height` (cell means).
-pub fn downsample(img: &[f64], iw: usize, ih: usize, width: usize, height: usize) -> Vec<f32> {
-    let (fx, fy) = (iw / width, ih / height);
-    debug_assert!(fx * width == iw && fy * height == ih);
-    let mut out = vec![0.0f64; width * height];
-    for (y, row) in img.chunks_exact(iw).enumerate() {
-        let o = &mut out[(y / fy) * width..(y / fy + 1) * width];
-        for (x, v) in row.iter().enumerate() {
-            o[x / fx] += v;
+impl EnvMap {
+    /// Rasterises sky + sun at the pixel centres.
+    pub fn new(width: usize, height: usize) -> Self {
+        let mut pixels = Vec::with_capacity(width * height);
+        for y in 0..height {
+            let v = (y as f64 + 0.5) / height as f64;
+            pixels.extend((0..width).map(|x| {
+                let u = (x as f64 + 0.5) / width as f64;
+                sky(u, v) + sun(u, v)
+            }));
+        }
+        Self {
+            width,
+            height,
+            pixels,
         }
     }
-    let norm = 1.0 / (fx * fy) as f64;
-    out.iter().map(|v| (v * norm) as f32).collect()
+
+    /// The map at `(x, y) ∈ [0,1)²` (nearest pixel).
+    pub fn eval(&self, x: f64, y: f64) -> f64 {
+        let i = ((x * self.width as f64) as usize).min(self.width - 1);
+        let j = ((y * self.height as f64) as usize).min(self.height - 1);
+        self.pixels[j * self.width + i]
+    }
+
+    /// The integrand of the estimate: map × lobe.
+    pub fn integrand(&self, x: f64, y: f64) -> f64 {
+        self.eval(x, y) * lobe(x, y)
+    }
+
+    /// ∫ map × lobe over `[0,1]²`: per pixel, its value times the lobe integrated by a
+    /// `sub × sub` midpoint rule.
+    pub fn reference_integral(&self, sub: usize) -> f64 {
+        let (hx, hy) = (1.0 / self.width as f64, 1.0 / self.height as f64);
+        let (sx, sy) = (hx / sub as f64, hy / sub as f64);
+        let mut total = 0.0;
+        for (j, row) in self.pixels.chunks_exact(self.width).enumerate() {
+            for (i, v) in row.iter().enumerate() {
+                let mut l = 0.0;
+                for b in 0..sub {
+                    let y = j as f64 * hy + (b as f64 + 0.5) * sy;
+                    l += (0..sub)
+                        .map(|a| lobe(i as f64 * hx + (a as f64 + 0.5) * sx, y))
+                        .sum::<f64>();
+                }
+                total += v * l * sx * sy;
+            }
+        }
+        total
+    }
+
+    /// Box-filtered down by integer factors to `width × height` (cell means), as f32.
+    pub fn downsample(&self, width: usize, height: usize) -> Vec<f32> {
+        let (fx, fy) = (self.width / width, self.height / height);
+        debug_assert!(fx * width == self.width && fy * height == self.height);
+        let mut out = vec![0.0f64; width * height];
+        for (y, row) in self.pixels.chunks_exact(self.width).enumerate() {
+            let o = &mut out[(y / fy) * width..(y / fy + 1) * width];
+            for (x, v) in row.iter().enumerate() {
+                o[x / fx] += v;
+            }
+        }
+        let norm = 1.0 / (fx * fy) as f64;
+        out.iter().map(|v| (v * norm) as f32).collect()
+    }
 }
 
 #[cfg(test)]
@@ -100,24 +117,33 @@ mod tests {
 
     #[test]
     fn reference_integral_converges() {
-        let a = reference_integral(512);
-        let b = reference_integral(1024);
+        let map = EnvMap::new(256, 128);
+        let a = map.reference_integral(2);
+        let b = map.reference_integral(8);
         assert!(
             a.is_finite() && b.is_finite() && ((a - b) / b).abs() < 1e-4,
             "{a} {b}"
         );
-        let sun_only = midpoint(sun, (0.0, 1.0), (0.0, 1.0), 2000);
-        let expect = SUN_RADIANCE * std::f64::consts::PI * SUN_RADIUS * SUN_RADIUS;
-        assert!(((sun_only - expect) / expect).abs() < 1e-2);
+        let fine = EnvMap::new(2048, 1024);
+        let sun_area =
+            fine.pixels.iter().filter(|&&v| v > 100.0).count() as f64 / (2048.0 * 1024.0);
+        let disc = std::f64::consts::PI * SUN_RADIUS * SUN_RADIUS;
+        assert!(((sun_area - disc) / disc).abs() < 2e-2, "{sun_area} {disc}");
     }
 
     #[test]
-    fn downsample_keeps_the_mean() {
-        let img = image(64, 32);
-        let small = downsample(&img, 64, 32, 8, 4);
-        let mean_big: f64 = img.iter().sum::<f64>() / img.len() as f64;
+    fn downsample_keeps_the_mean_and_eval_finds_pixels() {
+        let map = EnvMap::new(64, 32);
+        let small = map.downsample(8, 4);
+        let mean_big: f64 = map.pixels.iter().sum::<f64>() / map.pixels.len() as f64;
         let mean_small: f64 = small.iter().map(|&v| f64::from(v)).sum::<f64>() / 32.0;
         assert!(((mean_big - mean_small) / mean_big).abs() < 1e-6);
-        assert_eq!(downsample(&[1.0, 3.0, 5.0, 7.0], 2, 2, 1, 1), vec![4.0]);
+        let tiny = EnvMap {
+            width: 2,
+            height: 2,
+            pixels: vec![1.0, 3.0, 5.0, 7.0],
+        };
+        assert_eq!(tiny.downsample(1, 1), vec![4.0]);
+        assert_eq!((tiny.eval(0.7, 0.2), tiny.eval(0.2, 0.99)), (3.0, 5.0));
     }
 }

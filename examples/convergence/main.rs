@@ -159,7 +159,7 @@ fn run(o: &Options) -> Result<(), String> {
         }
     } else {
         warps::Effort {
-            points: 1 << 16,
+            points: 1 << 20,
             runs: 101,
             reps: 1,
         }
@@ -176,15 +176,15 @@ fn run(o: &Options) -> Result<(), String> {
             base_width: 1024,
             max_width: 256,
             n: 64,
-            m: 300,
+            m: 500,
             runs: 5,
         }
     } else {
         DistEffort {
             base_width: 2048,
-            max_width: 1024,
+            max_width: 2048,
             n: 64,
-            m: 2000,
+            m: 10_000,
             runs: 25,
         }
     };
