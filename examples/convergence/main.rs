@@ -88,6 +88,7 @@ fn dist_plots(rows: &[distribution::DistRow], n: usize, dir: &Path) -> Result<()
         label: label.into(),
         points,
         guide: false,
+        look: plot::Look::default(),
     };
     let res = plot::Plot {
         title: format!("Importance sampling from a table: relRMSE at N = {n}"),
@@ -137,7 +138,7 @@ fn render_half(o: &Options, dir: &Path) -> Result<Vec<render_study::RenderPoint>
             return earlier().map_err(|e| format!("--no-render and no earlier results ({e})"))
         }
     };
-    let max_spp = o.max_spp.unwrap_or(if o.quick { 16 } else { 1024 });
+    let max_spp = o.max_spp.unwrap_or(if o.quick { 4 } else { 1024 });
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let (points, skipped) =
         render_study::run(backend.as_ref(), &render_study::scenes(root), max_spp);

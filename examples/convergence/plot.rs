@@ -18,7 +18,43 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// Drawn dashed and grey, without markers (reference slopes).
     pub guide: bool,
+    /// Colour and marker.
+    pub look: Look,
 }
+
+/// Point markers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Marker {
+    /// Filled circle.
+    #[default]
+    Circle,
+    /// Filled triangle.
+    Triangle,
+    /// Open square.
+    Square,
+}
+
+/// How a series is drawn: a palette index (else the next free colour) and a marker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Look {
+    /// Index into the palette.
+    pub colour: Option<usize>,
+    /// Marker at each point.
+    pub marker: Marker,
+}
+
+/// Eight colours that stay apart for readers with common colour-vision deficiencies
+/// reasonably well (the usual categorical set of plotting tools).
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(23, 190, 207),
+];
 
 /// A log–log plot.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,15 +141,20 @@ pub fn draw(plot: &Plot, path: &Path, size: (u32, u32)) -> Result<(), String> {
                 });
             continue;
         }
-        let c = Palette99::pick(colour).to_rgba();
+        let c = PALETTE[s.look.colour.unwrap_or(colour) % PALETTE.len()];
         colour += 1;
+        let marker = s.look.marker;
         chart
             .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
             .map_err(|e| err(&e))?
             .label(s.label.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+            .legend(move |(x, y)| {
+                EmptyElement::at((x + 10, y))
+                    + PathElement::new(vec![(-10, 0), (10, 0)], c.stroke_width(2))
+                    + mark(marker, c)
+            });
         chart
-            .draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
+            .draw_series(pts.iter().map(|&p| EmptyElement::at(p) + mark(marker, c)))
             .map_err(|e| err(&e))?;
     }
     chart
@@ -125,6 +166,15 @@ pub fn draw(plot: &Plot, path: &Path, size: (u32, u32)) -> Result<(), String> {
         .draw()
         .map_err(|e| err(&e))?;
     root.present().map_err(|e| err(&e))
+}
+
+/// A marker centred on the origin of its element.
+fn mark<DB: DrawingBackend>(m: Marker, c: RGBColor) -> DynElement<'static, DB, (i32, i32)> {
+    match m {
+        Marker::Circle => Circle::new((0, 0), 4, c.filled()).into_dyn(),
+        Marker::Triangle => TriangleMarker::new((0, 0), 5, c.filled()).into_dyn(),
+        Marker::Square => Rectangle::new([(-4, -4), (4, 4)], c.stroke_width(2)).into_dyn(),
+    }
 }
 
 /// A tick label: plain below 10⁵ and above 10⁻³, else `1e-5` style.
@@ -155,6 +205,7 @@ pub fn slope_guide(label: &str, (x0, y0): (f64, f64), x1: f64, slope: f64) -> Se
         label: label.to_string(),
         points,
         guide: true,
+        look: Look::default(),
     }
 }
 
@@ -183,6 +234,7 @@ mod tests {
             label: String::new(),
             points: vec![(0.0, 1.0), (2.0, f64::NAN), (3.0, 4.0), (6.0, 2.0)],
             guide: false,
+            look: Look::default(),
         };
         let (lo, hi) = log_range(&[s], |p| p.0).expect("two usable points");
         assert!((lo - 2.0).abs() < 1e-12 && (hi - 9.0).abs() < 1e-12);
@@ -203,6 +255,7 @@ mod tests {
                     label: "a".into(),
                     points: vec![(1.0, 1.0), (10.0, 0.1)],
                     guide: false,
+                    look: Look::default(),
                 },
                 slope_guide("1/N", (1.0, 2.0), 10.0, -1.0),
             ],

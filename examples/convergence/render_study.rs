@@ -3,7 +3,7 @@
 //! efficiency table. The renderer itself is reached only through [`Backend`].
 
 use crate::image::{read_exr, rel_mse, Rgb};
-use crate::plot::{slope_guide, Plot, Series};
+use crate::plot::{slope_guide, Look, Marker, Plot, Series};
 use crate::table::{markdown, num};
 use std::path::PathBuf;
 
@@ -153,6 +153,19 @@ fn lines(points: &[RenderPoint], scene: &str) -> Vec<(String, String, Vec<Render
     out
 }
 
+/// Colour by strategy, marker by sampler.
+fn look(strategy: &str, sampler: &str) -> Look {
+    let marker = match sampler {
+        "stratified" => Marker::Triangle,
+        "sobol" => Marker::Square,
+        _ => Marker::Circle,
+    };
+    Look {
+        colour: STRATEGIES.iter().position(|s| *s == strategy),
+        marker,
+    }
+}
+
 /// relMSE against time for one scene, with a relMSE ∝ 1/time guide (error ∝ 1/√N).
 pub fn plot(points: &[RenderPoint], scene: &str) -> Option<Plot> {
     let mut series: Vec<Series> = lines(points, scene)
@@ -161,6 +174,7 @@ pub fn plot(points: &[RenderPoint], scene: &str) -> Option<Plot> {
             label: format!("{st} / {sa}"),
             points: pts.iter().map(|p| (p.seconds, p.rel_mse)).collect(),
             guide: false,
+            look: look(&st, &sa),
         })
         .collect();
     let anchor = series

@@ -3,7 +3,7 @@
 
 use crate::measure::ulps;
 use crate::naive::{NaiveCone, NaivePowerCosine};
-use crate::plot::{Plot, Series};
+use crate::plot::{Look, Plot, Series};
 use crate::reference::{theta, RefCone, RefPowerCosine, Reference};
 use crate::warps::AsF64;
 use mcrt::glam::{DVec2, Vec2};
@@ -44,6 +44,7 @@ where
         label: label.into(),
         points,
         guide: false,
+        look: Look::default(),
     }
 }
 
