@@ -201,15 +201,22 @@ fn run(o: &Options) -> Result<(), String> {
             )?;
         }
     }
-    let ctx = report::Context {
-        command: std::iter::once("cargo run --release --example convergence --".to_string())
-            .chain(std::env::args().skip(1))
-            .collect::<Vec<_>>()
-            .join(" "),
-        machine: report::machine(),
-        note: o.note.clone(),
-        quick: o.quick,
-    };
+    let ctx =
+        report::Context {
+            command: std::iter::once("cargo run --release --example convergence --".to_string())
+                .chain(std::env::args().skip(1).map(|a| {
+                    if a.contains(' ') {
+                        format!("'{a}'")
+                    } else {
+                        a
+                    }
+                }))
+                .collect::<Vec<_>>()
+                .join(" "),
+            machine: report::machine(),
+            note: o.note.clone(),
+            quick: o.quick,
+        };
     let render_ref = render.as_deref().map_err(String::as_str);
     let doc = report::document(&ctx, &warp_rows, &dist_rows, de, truth, render_ref);
     let path = o.out.join("convergence.md");

@@ -52,10 +52,11 @@ pub const WARPS_FINDINGS: &str = "**What the warp figures show.**\n\n\
   ln u₁/(n + 1) and `exp_m1`, keeps θ within 3 ulps and the pdf within about 20 ulps. The \
   plot shows where the naive formulas fail: across the whole range of u₁, not just near an \
   edge.\n\
-- *Accuracy is free.* The stable f32 formulations cost about the same as the naive ones \
-  (cone 8 ns either way; power cosine a few ns more for `ln`/`exp_m1`/`exp` than one \
-  `powf`). Evaluating in f64 instead costs 1.1–2× the f32 time in this scalar code, for \
-  accuracy f32 output cannot carry anyway.\n\
+- *Accuracy is nearly free.* The stable f32 formulations cost about the same as the naive \
+  ones: the cone takes the same time either way, and the power cosine up to about a third \
+  more (`ln`, `exp_m1` and `exp` instead of one `powf`). Evaluating in f64 instead costs \
+  0.9–2× the f32 time in this scalar code, for accuracy that f32 output cannot carry \
+  anyway. (Beckmann's f32 version is no faster than its f64 reference.)\n\
 - *Two f32 weak spots remain in our warps, both at an edge of the square.* \
   `UniformTriangle` computes b₀ = 1 − √u₁, which cancels as u₁ → 1: at u₁ = 1 − 2⁻²⁴ all \
   digits of b₀ are lost (the absolute error stays below one ulp of 1). \
