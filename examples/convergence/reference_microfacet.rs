@@ -69,6 +69,59 @@ impl Reference for RefGgx {
     }
 }
 
+/// GGX visible normals by the spherical-cap method (Dupuy, Benyoub 2023, "Sampling Visible
+/// GGX Normals with Spherical Caps", Computer Graphics Forum): in the configuration stretched
+/// to α = 1, h = c + wᵢ′ with c uniform on the cap z ≥ −wᵢ′.z (height from u₁, azimuth 2πu₂);
+/// pdf G₁(wᵢ) max(0, wᵢ·m) D(m) / cos θᵢ per steradian.
+pub struct RefGgxVisible {
+    alpha: f64,
+    wi: DVec3,
+    /// wᵢ stretched to α = 1.
+    w: DVec3,
+    /// 1 / ((1 + Λ(wᵢ)) cos θᵢ).
+    scale: f64,
+}
+
+impl RefGgxVisible {
+    /// Roughness `alpha`, incident direction `wi` (normalised here; z > 0).
+    pub fn new(alpha: f64, wi: DVec3) -> Self {
+        let wi = wi.normalize();
+        let w = DVec3::new(alpha * wi.x, alpha * wi.y, wi.z).normalize();
+        let tan2_i = (wi.x * wi.x + wi.y * wi.y) / (wi.z * wi.z);
+        let lambda = ((1.0 + alpha * alpha * tan2_i).sqrt() - 1.0) / 2.0;
+        let scale = 1.0 / ((1.0 + lambda) * wi.z);
+        Self {
+            alpha,
+            wi,
+            w,
+            scale,
+        }
+    }
+}
+
+impl Reference for RefGgxVisible {
+    fn sample(&self, u: DVec2) -> (DVec3, f64) {
+        let (a, w) = (self.alpha, self.w);
+        let t = (1.0 - u.x) * (1.0 + w.z);
+        let one_plus_z = t + (w.x * w.x + w.y * w.y) / (1.0 + w.z);
+        let one_minus_z = (1.0 + w.z) - t;
+        let s = (one_plus_z * one_minus_z).max(0.0).sqrt();
+        let (sp, cp) = (TAU * u.y).sin_cos();
+        let h = DVec3::new(s * cp + w.x, s * sp + w.y, t);
+        let m = DVec3::new(a * h.x, a * h.y, h.z).normalize();
+        (m, self.pdf(m))
+    }
+    fn pdf(&self, m: DVec3) -> f64 {
+        let m = m.normalize();
+        let dot = self.wi.dot(m);
+        if m.z <= 0.0 || dot <= 0.0 {
+            return 0.0;
+        }
+        let (t, c) = ((m.x * m.x + m.y * m.y) / (m.z * m.z), m.z);
+        RefGgx { alpha: self.alpha }.density(t, c) / c * dot * self.scale
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -76,7 +129,10 @@ mod tests {
     /// pdf = 1 / |Jacobian| by central differences, as for the other references.
     #[test]
     fn pdf_is_the_inverse_jacobian() {
-        let refs: [Box<dyn Reference>; 4] = [
+        let wi = DVec3::new(0.6, 0.0, 0.8);
+        let refs: [Box<dyn Reference>; 6] = [
+            Box::new(RefGgxVisible::new(0.5, wi)),
+            Box::new(RefGgxVisible::new(0.05, wi)),
             Box::new(RefBeckmann { alpha: 0.5 }),
             Box::new(RefBeckmann { alpha: 0.05 }),
             Box::new(RefGgx { alpha: 0.5 }),

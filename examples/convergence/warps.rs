@@ -4,11 +4,12 @@
 use crate::measure::{ns_per_call, ulps, unit_square_points, ErrorStats};
 use crate::naive::{NaiveCone, NaivePowerCosine};
 use crate::reference::{self as r, Reference};
-use crate::reference_microfacet::{RefBeckmann, RefGgx};
+use crate::reference_microfacet::{RefBeckmann, RefGgx, RefGgxVisible};
 use mcrt::glam::{DVec2, DVec3, Vec2, Vec3};
 use mcrt::sampling::warp::{
-    Beckmann, CosineHemisphere, Ggx, PowerCosineHemisphere, ThetaOverSinHemisphere, UniformCone,
-    UniformDisk, UniformDiskConcentric, UniformHemisphere, UniformSphere, UniformTriangle, Warp,
+    Beckmann, CosineHemisphere, Ggx, GgxVisible, PowerCosineHemisphere, ThetaOverSinHemisphere,
+    UniformCone, UniformDisk, UniformDiskConcentric, UniformHemisphere, UniformSphere,
+    UniformTriangle, Warp,
 };
 
 /// A point of a warp's domain seen in f64 (planar points get `z = 0`).
@@ -269,6 +270,14 @@ pub fn run(effort: Effort) -> Vec<WarpRow> {
                 &RefGgx { alpha: a },
                 effort,
             ));
+        }
+    }
+    for (alpha, deg) in [(0.5f32, 60.0f32), (1e-3, 89.0)] {
+        let wi = Vec3::new(deg.to_radians().sin(), 0.0, deg.to_radians().cos());
+        let rf = RefGgxVisible::new(f64::from(alpha), wi.as_dvec3());
+        if let Ok(d) = GgxVisible::new(alpha, wi) {
+            let param = format!("α = {alpha:e}, θᵢ = {deg}°");
+            rows.push(measure("GgxVisible", &param, Theta, &d, &rf, effort));
         }
     }
     rows
