@@ -128,6 +128,11 @@ the largest spp to relMSE = 10⁻³. The references have noise of their own (16 
 which puts a floor under relMSE at about 1/16 of a 1024-spp render's. The raw numbers are \
 in `convergence/render.csv`.\n\n";
 
+/// Before the list of samplers without data.
+pub const SAMPLERS_MISSING: &str = "**Samplers not rendered yet.** The renderer does not take \
+a sampler choice yet (every pixel sample comes from its own PCG32 stream, i.e. the \
+`independent` sampler), so there is no data for: ";
+
 /// After the rendering figures.
 pub const RENDER_FINDINGS: &str = "";
 

@@ -3,7 +3,7 @@
 
 use crate::distribution::{DistEffort, DistRow};
 use crate::prose;
-use crate::render_study::{efficiency_table, RenderPoint};
+use crate::render_study::{efficiency_table, RenderPoint, SAMPLERS};
 use crate::table::{markdown, num, ulps};
 use crate::warps::WarpRow;
 
@@ -150,6 +150,14 @@ pub fn document(
     d += prose::RENDER_INTRO;
     match render {
         Ok(points) => {
+            let missing: Vec<&str> = SAMPLERS
+                .iter()
+                .copied()
+                .filter(|s| !points.iter().any(|p| p.sampler == *s))
+                .collect();
+            if !missing.is_empty() {
+                d += &format!("{}{}.\n\n", prose::SAMPLERS_MISSING, missing.join(", "));
+            }
             for scene in ["cornell-box", "veach-mis"] {
                 if points.iter().any(|p| p.scene == scene) {
                     d += &format!("### {scene}\n\n![{scene}: relMSE against time](convergence/render-{scene}.png)\n\n");
