@@ -171,3 +171,90 @@ pub fn document(
     }
     d
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::measure::ErrorStats;
+    use crate::warps::Key;
+
+    fn ctx() -> Context {
+        Context {
+            command: "cmd".into(),
+            machine: machine(),
+            note: "note".into(),
+            quick: true,
+        }
+    }
+
+    fn inputs() -> (Vec<WarpRow>, Vec<DistRow>, DistEffort) {
+        let e = ErrorStats { max: 2.0, p99: 1.0 };
+        let w = WarpRow {
+            warp: "UniformDisk".into(),
+            param: String::new(),
+            key: Key::Radius,
+            sample: e,
+            key_err: e,
+            pdf: e,
+            pdf_at: ErrorStats {
+                max: f64::INFINITY,
+                p99: 1.0,
+            },
+            ns_f32: 10.0,
+            ns_f64: 20.0,
+        };
+        let d = DistRow {
+            width: 16,
+            height: 8,
+            build_ms: 0.01,
+            ns_sample: 50.0,
+            rel_rmse: 0.5,
+            rel_var: 16.0,
+        };
+        let de = DistEffort {
+            base_width: 64,
+            max_width: 16,
+            n: 64,
+            m: 10,
+            runs: 1,
+        };
+        (vec![w], vec![d], de)
+    }
+
+    #[test]
+    fn document_with_pending_render() {
+        let (w, d, de) = inputs();
+        let doc = document(&ctx(), &w, &d, de, 2.5, Err("no renderer"));
+        for part in [
+            "## 1.",
+            "## 2.",
+            "## 3.",
+            "| UniformDisk |",
+            "| 16×8 |",
+            "no renderer",
+            "∞ / 1.0",
+            "N = 64 samples",
+            "M = 10 independent",
+        ] {
+            assert!(doc.contains(part), "{part} missing");
+        }
+        assert!(!doc.contains("{n}") && !doc.contains("{truth}"));
+    }
+
+    #[test]
+    fn document_with_render_points_names_missing_samplers() {
+        let (w, d, de) = inputs();
+        let p = RenderPoint {
+            scene: "veach-mis".into(),
+            strategy: "power".into(),
+            sampler: "independent".into(),
+            spp: 4,
+            seconds: 2.0,
+            rel_mse: 0.1,
+        };
+        let doc = document(&ctx(), &w, &d, de, 2.5, Ok(&[p]));
+        assert!(doc.contains("### veach-mis") && !doc.contains("### cornell-box"));
+        assert!(doc.contains("stratified, sobol"));
+        assert!(doc.contains("| power / independent | 0.100 | 2.00 | 5.00 |"));
+    }
+}
