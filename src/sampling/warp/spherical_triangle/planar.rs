@@ -6,10 +6,11 @@ use glam::{DVec2, DVec3, Vec3};
 
 use crate::sampling::SamplingError;
 
-/// Angular tolerance (radians) of the inside test, a few `f32` ulps of a unit direction:
+/// Angular tolerance (radians) of the inside test, about two `f32` ulps of a unit direction
+/// (rounding a unit direction to `f32` moves it by at most ~5·10⁻⁸ rad):
 /// a sampled direction rounded to `f32` must still count as hitting the shape. On the
 /// shape's plane the band is this angle times d/|cos θ'|.
-pub(crate) const ANGULAR_TOLERANCE: f64 = 1e-6;
+pub(crate) const ANGULAR_TOLERANCE: f64 = 1e-7;
 
 /// The shape p0 + s e1 + t e2 with s, t ≥ 0 and s + t ≤ 1 (triangle) or s, t ≤ 1
 /// (parallelogram), seen from `origin`.
