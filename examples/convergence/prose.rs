@@ -30,8 +30,10 @@ as *max / 99th percentile*:\n\n\
 `∞` means a non-finite value, or a non-zero density where the reference is zero (or the \
 reverse). Rows marked *naive* are the textbook f32 formulas kept in \
 `examples/convergence/naive.rs` for contrast: cos θ computed first and \
-sin θ = √(1 − cos²θ) recovered from it. Not covered yet: `BeckmannVisible`, \
-`SphericalTriangle` and `SphericalRectangle`, whose f64 references take more work.\n\n";
+sin θ = √(1 − cos²θ) recovered from it. Not covered: `BeckmannVisible`, \
+`SphericalTriangle` and `SphericalRectangle`. Like `GgxVisible`, they compute in f64 \
+internally and round once at the end, so against an f64 reference they would show only \
+that final rounding. Their f64 references also take more work.\n\n";
 
 /// After the warp table.
 pub const WARPS_FINDINGS: &str = "**What the warp figures show.**\n\n\
