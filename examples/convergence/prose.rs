@@ -131,9 +131,10 @@ which puts a floor under relMSE at about 1/16 of a 1024-spp render's. The raw nu
 in `convergence/render.csv`.\n\n";
 
 /// Before the list of samplers without data.
-pub const SAMPLERS_MISSING: &str = "**Samplers not rendered yet.** The renderer does not take \
-a sampler choice yet (every pixel sample comes from its own PCG32 stream, i.e. the \
-`independent` sampler), so there is no data for: ";
+pub const SAMPLERS_MISSING: &str = "**Samplers not rendered.** When this ran, the renderer \
+ignored the scene's sampler type: a 1-spp render with the sampler was identical to one \
+with `independent` (`examples/convergence/renderer.rs` checks this before each sampler). \
+So there is no data for: ";
 
 /// After the rendering figures.
 pub const RENDER_FINDINGS: &str = "**What the rendering figures show** (run to 256 spp, \
