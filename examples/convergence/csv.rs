@@ -44,6 +44,24 @@ pub fn read(text: &str) -> Result<Vec<RenderPoint>, String> {
         .collect()
 }
 
+/// `earlier` with every point that `new` measures again replaced, then the new points.
+pub fn merge(earlier: Vec<RenderPoint>, new: &[RenderPoint]) -> Vec<RenderPoint> {
+    let key = |p: &RenderPoint| {
+        (
+            p.scene.clone(),
+            p.strategy.clone(),
+            p.sampler.clone(),
+            p.spp,
+        )
+    };
+    let mut out: Vec<RenderPoint> = earlier
+        .into_iter()
+        .filter(|o| !new.iter().any(|n| key(n) == key(o)))
+        .collect();
+    out.extend_from_slice(new);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -59,8 +77,14 @@ mod tests {
             rel_mse: 3.5e-3,
         };
         let text = write(&[p.clone(), p.clone()]);
-        assert_eq!(read(&text), Ok(vec![p.clone(), p]));
+        assert_eq!(read(&text), Ok(vec![p.clone(), p.clone()]));
         assert!(read("nope\n").is_err());
+        let mut newer = p.clone();
+        newer.rel_mse = 1.0;
+        let mut other = p.clone();
+        other.spp = 256;
+        let merged = merge(vec![p.clone(), other.clone()], std::slice::from_ref(&newer));
+        assert_eq!(merged, vec![other, newer]);
         assert!(read(&format!("{HEADER}\na,b,c,x,1,2\n")).is_err());
     }
 }

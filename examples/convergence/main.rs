@@ -2,7 +2,8 @@
 //!
 //! ```text
 //! cargo run --release --example convergence -- [--quick] [--out docs/] [--max-spp N]
-//!     [--no-render] [--note TEXT]
+//!     [--no-render] [--strategies bsdf,light,balance,power]
+//!     [--samplers independent,stratified,sobol] [--note TEXT]
 //! ```
 //!
 //! Measures the f32 warps against f64 references, the resolution of a 2D distribution
@@ -10,7 +11,9 @@
 //! samplers against the reference images; writes `convergence.md` into the output directory
 //! and its PNG plots (and the render results as CSV) into `convergence/` beside it. With
 //! `--no-render`, or when the renderer is missing, the rendering section is rebuilt from the
-//! CSV of an earlier run if there is one.
+//! CSV of an earlier run if there is one. New renders are merged into that CSV (replacing
+//! the same scene, strategy, sampler and spp), so `--strategies`/`--samplers` can add lines
+//! to an earlier study.
 //!
 //! Run time on the project's busy 2-core machine: `--quick` (renders to 4 spp) about 15 s;
 //! the sampling half of a full run about 30 s; the rendering half to 256 spp
@@ -43,10 +46,25 @@ struct Options {
     max_spp: Option<u32>,
     render: bool,
     note: String,
+    strategies: Option<Vec<String>>,
+    samplers: Option<Vec<String>>,
 }
 
-const USAGE: &str =
-    "usage: convergence [--quick] [--out DIR] [--max-spp N] [--no-render] [--note TEXT]";
+/// A comma-separated list, each entry one of `allowed`.
+fn list(v: Option<String>, flag: &str, allowed: &[&str]) -> Result<Option<Vec<String>>, String> {
+    let v = v.ok_or(format!("{flag} needs a list"))?;
+    let items: Vec<String> = v.split(',').map(str::to_string).collect();
+    match items.iter().find(|i| !allowed.contains(&i.as_str())) {
+        Some(bad) => Err(format!(
+            "{flag}: unknown '{bad}' (one of {})",
+            allowed.join(", ")
+        )),
+        None => Ok(Some(items)),
+    }
+}
+
+const USAGE: &str = "usage: convergence [--quick] [--out DIR] [--max-spp N] [--no-render] \
+[--strategies bsdf,light,balance,power] [--samplers independent,stratified,sobol] [--note TEXT]";
 
 fn parse() -> Result<Options, String> {
     let mut o = Options {
@@ -55,6 +73,8 @@ fn parse() -> Result<Options, String> {
         max_spp: None,
         render: true,
         note: String::new(),
+        strategies: None,
+        samplers: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -70,6 +90,8 @@ fn parse() -> Result<Options, String> {
                         .map_err(|_| format!("--max-spp {v}: not a number"))?,
                 );
             }
+            "--strategies" => o.strategies = list(it.next(), &a, &render_study::STRATEGIES)?,
+            "--samplers" => o.samplers = list(it.next(), &a, &render_study::SAMPLERS)?,
             "-h" | "--help" => return Err(USAGE.into()),
             other => return Err(format!("unknown argument {other}\n{USAGE}")),
         }
@@ -144,13 +166,24 @@ fn render_half(o: &Options, dir: &Path) -> Result<Vec<render_study::RenderPoint>
     };
     let max_spp = o.max_spp.unwrap_or(if o.quick { 4 } else { 1024 });
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let (points, skipped) =
-        render_study::run(backend.as_ref(), &render_study::scenes(root), max_spp);
+    let wanted = |st: &str, sa: &str| {
+        let ok = |list: &Option<Vec<String>>, x: &str| {
+            list.as_ref().is_none_or(|l| l.iter().any(|y| y == x))
+        };
+        ok(&o.strategies, st) && ok(&o.samplers, sa)
+    };
+    let (points, skipped) = render_study::run(
+        backend.as_ref(),
+        &render_study::scenes(root),
+        max_spp,
+        &wanted,
+    );
     for s in &skipped {
         eprintln!("skipped: {s}");
     }
-    std::fs::write(&csv_path, csv::write(&points)).map_err(|e| e.to_string())?;
-    Ok(points)
+    let all = csv::merge(earlier().unwrap_or_default(), &points);
+    std::fs::write(&csv_path, csv::write(&all)).map_err(|e| e.to_string())?;
+    Ok(all)
 }
 
 fn run(o: &Options) -> Result<(), String> {

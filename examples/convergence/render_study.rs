@@ -84,11 +84,13 @@ pub fn spp_ladder(max_spp: u32) -> Vec<u32> {
         .collect()
 }
 
-/// Renders every combination; returns the points and the messages of skipped ones.
+/// Renders every combination that `wanted(strategy, sampler)` accepts; returns the points
+/// and the messages of skipped ones.
 pub fn run(
     backend: &dyn Backend,
     scenes: &[SceneSpec],
     max_spp: u32,
+    wanted: &dyn Fn(&str, &str) -> bool,
 ) -> (Vec<RenderPoint>, Vec<String>) {
     let (mut points, mut skipped) = (Vec::new(), Vec::new());
     for scene in scenes {
@@ -100,7 +102,7 @@ pub fn run(
             }
         };
         for strategy in STRATEGIES {
-            for sampler in SAMPLERS {
+            for sampler in SAMPLERS.into_iter().filter(|sa| wanted(strategy, sa)) {
                 for spp in spp_ladder(max_spp) {
                     let result =
                         backend
@@ -285,7 +287,9 @@ mod tests {
     #[test]
     fn study_with_a_fake_renderer() {
         let cornell = scenes(&root()).into_iter().take(1).collect::<Vec<_>>();
-        let (points, skipped) = run(&Fake, &cornell, 16);
+        let (points, skipped) = run(&Fake, &cornell, 16, &|_, _| true);
+        let (only, _) = run(&Fake, &cornell, 1, &|st, sa| st == "power" && sa != "sobol");
+        assert_eq!(only.len(), 2);
         assert_eq!(points.len(), 4 * 2 * 3);
         assert_eq!(skipped.len(), 4);
         for w in points
