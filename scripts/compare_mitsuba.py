@@ -11,9 +11,9 @@ For each scene, sample count and Mitsuba variant: load the scene (timed), render
 up (Mitsuba's JIT compiles its kernels there; timed and reported separately), then render again
 with another seed and time that render alone. Our renderer (with --ours) runs as
 `cargo run --release --example render -- SCENE --spp N -o OUT.exr [--sampler S]`; its time is
-the one it prints on a line `render time: X s` when it does, else the wall time of the
-process (which then includes loading). The example must already be built (the script builds it
-once, untimed, before the first run).
+the render time it prints (`time X s, ...`), and the rest of the process's wall time (loading,
+BVH build, image output) goes in the warm-up column; without such a line the wall time is used
+and the row says so. The script builds the example once, untimed, before the first run.
 
 relMSE = mean over pixels and RGB channels of (img − ref)² / (ref² + 0.01), against the
 reference EXR in tests/data/ (see tests/data/REFERENCES.md); efficiency = 1 / (relMSE × time).
@@ -136,13 +136,16 @@ def run_ours(scene, spp, defines, ref, sampler, threads):
         if proc.returncode != 0:
             raise RuntimeError(f"{' '.join(cmd)} failed:\n{proc.stderr[-2000:]}")
         text = proc.stdout + proc.stderr
-        m = re.search(r"render time:\s*([0-9.eE+-]+)\s*s", text)
+        # The example prints "time 1.234 s, ... M samples/s, ... (N samples, M rays)".
+        m = re.search(r"\btime:?\s*([0-9.eE+-]+)\s*s\b", text)
         render = float(m.group(1)) if m else wall
+        n = re.search(r"\((\d+) samples", text)
         img = read_exr(out)
     h, w = img.shape[:2]
-    return dict(who=f"mcrt {sampler or 'scene sampler'}", load=float("nan"),
-                warm=float("nan"), time=render, samples=w * h * spp,
-                rel_mse=rel_mse(img, ref), timed="render" if m else "wall")
+    samples = int(n.group(1)) if n else w * h * spp
+    return dict(who=f"mcrt {sampler or 'scene sampler'}" + ("" if m else " (wall time)"),
+                load=float("nan"), warm=wall - render if m else float("nan"), time=render,
+                samples=samples, rel_mse=rel_mse(img, ref))
 
 
 def print_row(scene, spp, r):
