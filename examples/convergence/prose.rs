@@ -41,9 +41,9 @@ pub const WARPS_FINDINGS: &str = "**What the warp figures show.**\n\n\
   every angle, θ/sin θ, Beckmann and GGX stay within about 7 ulps at the point's scale, and \
   their key coordinate within 2–3 ulps *relative*, at every tested u including the edges. \
   Most of the error comes from rounding 2πu₂ before the sine and cosine. Constant densities \
-  are exact to half an ulp. Densities computed through `exp` (power cosine, Beckmann, GGX) \
-  stay within a few tens of ulps: rounding ln cos θ or tan²θ/α² is amplified by the \
-  exponential.\n\
+  are exact to half an ulp. Densities with a large dynamic range (power cosine and Beckmann \
+  through `exp`, GGX through a squared rational term) stay within a few tens of ulps: the \
+  rounding of ln cos θ, tan²θ/α² or α² + tan²θ is amplified on the way to the density.\n\
 - *The stable formulations matter at the extremes.* For the 10⁻⁴ rad cone, the naive f32 \
   formula rounds cos θmax to 1: every sample collapses onto the pole and the pdf is infinite. \
   At 10⁻² rad, θ keeps almost no correct digits (99th percentile about 2.5·10⁵ ulps). Even \
@@ -137,37 +137,51 @@ with `independent` (`examples/convergence/renderer.rs` checks this before each s
 So there is no data for: ";
 
 /// After the rendering figures.
-pub const RENDER_FINDINGS: &str = "**What the rendering figures show** (run to 256 spp, \
-independent sampler only; the renders ran beside other jobs on the 2 cores, so the times, \
-and the efficiencies built on them, vary by ±20% or so from point to point).\n\n\
-- *Every strategy converges at the 1/N rate.* Each line runs parallel to the dashed \
-  relMSE ∝ 1/time guide, and each row's efficiency stays roughly constant from 1 to 256 spp. \
-  So the estimators behave as unbiased ones should, and the strategies differ only in the \
-  constant: the variance of one sample per pixel, times its cost.\n\
+pub const RENDER_FINDINGS: &str = "**What the rendering figures show** (run to 64 spp; the \
+renders ran beside other jobs on the 2 cores, so equal work took anywhere from 1× to 2× \
+the time from one render to the next. Compare relMSE at equal spp for accuracy, and \
+read the efficiencies as good to about a factor 2).\n\n\
+- *Every strategy converges, and the independent sampler converges at the 1/N rate.* \
+  Each independent-sampler line runs parallel to the dashed relMSE ∝ 1/time guide, and its \
+  efficiency stays roughly constant from 1 to 64 spp, as it should for an unbiased \
+  estimator. The strategies differ only in the constant: the variance of one sample per \
+  pixel, times its cost.\n\
 - *Cornell box: light sampling is what matters.* The light is a small patch on the \
   ceiling, which a diffuse BSDF sample rarely hits. BSDF sampling alone is about 70× worse \
-  in relMSE at equal spp (0.087 against 1.2·10⁻³ at 256 spp) and about 20× worse in \
-  efficiency, even though its paths are cheaper. Light sampling alone and MIS with the \
-  power heuristic give the same error: on diffuse surfaces the power heuristic gives \
-  nearly all the weight to the light sample. The balance heuristic is a few per cent \
-  worse. A relMSE of 10⁻³ costs about 310 spp with light sampling or MIS, against about \
-  22 000 with BSDF sampling alone.\n\
+  in relMSE at equal spp (0.34 against 4.6·10⁻³ at 64 spp) and 20–70× worse in \
+  efficiency. Light sampling alone and MIS with the power heuristic give the same image \
+  error: on diffuse surfaces the power heuristic gives nearly all the weight to the light \
+  sample. The balance heuristic is a few per cent worse. Their efficiencies differ by up \
+  to 2× only because the renders ran at different moments. A relMSE of 10⁻³ costs about \
+  300 spp with light sampling or MIS and the independent sampler, against about 22 000 \
+  with BSDF sampling alone.\n\
 - *Veach's plates: only MIS is good everywhere.* The scene has four glossy plates, from \
-  sharp to rough, and four sphere lights of equal power, from small to large. For a sharp plate and a large \
-  light, BSDF sampling finds the highlight and light sampling wastes its samples on a \
-  lobe that is nearly zero. For a rough plate and a small light, it is the other way \
-  round. The image-wide numbers show the sum of both failures: light sampling alone \
-  (relMSE 1.1·10⁻² at 256 spp) is 5× worse than MIS, and BSDF sampling alone (0.43) \
-  200× worse. MIS with the balance heuristic (2.0·10⁻³) and with the power heuristic \
-  (2.1·10⁻³) keep the better strategy's sample wherever one is good, and are 4–6× more \
-  efficient than light sampling and 80–110× more than BSDF sampling. Here balance and \
-  power are within the timing noise of each other. A relMSE of 10⁻³ costs about 520 spp \
-  with MIS, 2 700 with light sampling and 10⁵ with BSDF sampling.\n\
-- *What accuracy costs.* Along each line, relMSE ∝ 1/N: halving the RMS error costs 4× \
-  the samples and 4× the time, whatever the strategy. A better strategy moves the whole \
-  line down, and that factor (5–200× here) is worth as much as that many times more \
-  samples. The last two columns of each table turn this into samples and seconds for \
-  relMSE = 10⁻³.\n\n";
+  sharp to rough, and four sphere lights of equal power, from small to large. For a sharp \
+  plate and a large light, BSDF sampling finds the highlight and light sampling wastes its \
+  samples on a lobe that is nearly zero. For a rough plate and a small light, it is the \
+  other way round. The image-wide numbers show the sum of both failures: at 64 spp with \
+  the independent sampler, light sampling alone (relMSE 4.2·10⁻²) is 5× worse than MIS \
+  (8.0·10⁻³ balance, 8.2·10⁻³ power), and BSDF sampling alone (1.7) 200× worse. MIS keeps \
+  the better strategy's sample wherever one is good, and is 3–4× more efficient than \
+  light sampling and about 90× more than BSDF sampling. Balance and power are within the \
+  noise of each other here.\n\
+- *Samplers: stratified and Sobol pay off where the integrand is smooth in few \
+  dimensions.* With MIS or light sampling, they cut relMSE at 64 spp by about 1.7× on \
+  the Cornell box and 2.8× (stratified) to 3.9× (Sobol) on Veach's plates. Their lines are \
+  steeper than 1/N, and their efficiency grows with spp (MIS on the plates: from 7–9 \
+  at 1 spp to about 30 at 64 spp with Sobol). The gain comes from the first bounces' \
+  light and BSDF samples, which are low-dimensional and smooth. BSDF sampling alone gains \
+  nothing: its error comes from rarely hitting a light, which no sample placement fixes. \
+  A relMSE of 10⁻³ on the plates costs about 520 spp with MIS and the independent \
+  sampler, about 130 with Sobol, 1 800–2 700 with light sampling, and 10⁵ with BSDF \
+  sampling.\n\
+- *What accuracy costs.* With the independent sampler, relMSE ∝ 1/N: halving the RMS \
+  error costs 4× the samples and 4× the time, whatever the strategy. A better strategy \
+  moves the whole line down, by a factor (5–200× here) that would otherwise cost that \
+  many times more samples. A better sampler also makes the line steeper, so its advantage \
+  grows with the sample count. The last two columns of each table turn this into samples \
+  and seconds for relMSE = 10⁻³ (extrapolated at 1/N from 64 spp, so they understate the \
+  stratified and Sobol gains).\n\n";
 
 /// When the rendering figures are not in.
 pub const RENDER_PENDING: &str = "**Not in yet: the rendering figures will appear here.** \
