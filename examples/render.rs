@@ -130,23 +130,7 @@ fn builtin(defines: &[(String, String)]) -> Result<SceneDescription, String> {
 }
 
 fn load(path: &std::path::Path, defines: &[(String, String)]) -> Result<SceneDescription, String> {
-    let mut desc = mcrt::scene::loader::load_scene(path, defines).map_err(|e| e.to_string())?;
-    black_default_on_emitters(&mut desc);
-    Ok(desc)
-}
-
-/// Mitsuba 3 gives an emitting shape without a BSDF a *black* diffuse BSDF (reflectance 0),
-/// not the usual 0.5. TEMPORARY, until the loader applies that rule itself: an emitter whose
-/// BSDF equals the default is taken to have none.
-fn black_default_on_emitters(desc: &mut SceneDescription) {
-    use mcrt::scene::description::BsdfDesc;
-    for s in &mut desc.shapes {
-        if s.emitter.is_some() && s.bsdf == BsdfDesc::default() {
-            s.bsdf = BsdfDesc::Diffuse {
-                reflectance: mcrt::glam::Vec3::ZERO,
-            };
-        }
-    }
+    mcrt::scene::loader::load_scene(path, defines).map_err(|e| e.to_string())
 }
 
 fn run() -> Result<(), String> {

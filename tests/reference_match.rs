@@ -13,7 +13,7 @@
 //! --ignored`, several minutes) and are recorded in docs/renderer.md.
 
 use mcrt::glam::Vec3;
-use mcrt::scene::description::{BsdfDesc, SceneDescription};
+use mcrt::scene::description::SceneDescription;
 use mcrt::scene::film::{compare_blocks, read_exr};
 use mcrt::scene::render::{RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
@@ -31,16 +31,7 @@ fn load(name: &str, defines: &[(&str, &str)]) -> SceneDescription {
         .iter()
         .map(|(k, v)| (k.to_string(), v.to_string()))
         .collect();
-    let mut desc = mcrt::scene::loader::load_scene(&data(name), &d).expect("scene loads");
-    // Mitsuba 3 gives emitters without a BSDF a black one (see examples/render.rs).
-    for s in &mut desc.shapes {
-        if s.emitter.is_some() && s.bsdf == BsdfDesc::default() {
-            s.bsdf = BsdfDesc::Diffuse {
-                reflectance: Vec3::ZERO,
-            };
-        }
-    }
-    desc
+    mcrt::scene::loader::load_scene(&data(name), &d).expect("scene loads")
 }
 
 struct Outcome {

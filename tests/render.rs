@@ -118,3 +118,30 @@ fn specialised_and_general_loops_give_the_same_image() {
     };
     assert_eq!(render(true), render(false));
 }
+
+#[test]
+fn gaussian_filter_keeps_the_image_mean() {
+    use mcrt::scene::description::FilterDesc;
+    let render = |filter| {
+        let mut desc = small_box();
+        desc.sensor.film.filter = filter;
+        let opts = RenderOptions {
+            spp: Some(64),
+            seed: Some(9),
+            ..RenderOptions::default()
+        };
+        let out = Renderer::new(&desc, &opts)
+            .expect("scene builds")
+            .render(&|_, _| {}, &AtomicBool::new(false));
+        let img = out.image();
+        assert!(img.iter().all(|p| p.is_finite()));
+        img.iter().map(|p| f64::from(p.x + p.y + p.z)).sum::<f64>() / img.len() as f64
+    };
+    let b = render(FilterDesc::Box);
+    let g = render(FilterDesc::Gaussian { stddev: 0.5 });
+    // A filter redistributes radiance between neighbours; only the border differs (and noise).
+    assert!(
+        b.is_finite() && g.is_finite() && (g / b - 1.0).abs() < 0.02,
+        "{g} vs {b}"
+    );
+}

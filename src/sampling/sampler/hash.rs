@@ -1,8 +1,6 @@
 //! Hashing helpers shared by the samplers: a 64-bit mixer, keys for (seed, pixel, index),
 //! conversion of random bits to `[0, 1)`, and a stateless random permutation.
 
-use super::ONE_MINUS_EPSILON;
-
 /// The SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.
 /// Steele, Lea & Flood 2014, "Fast splittable pseudorandom number generators", OOPSLA.
 #[inline]
@@ -34,11 +32,17 @@ pub(crate) fn unit_f32(bits: u32) -> f32 {
     (bits >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
-/// `(stratum + offset) / count` in `[0, 1)`, rounded in f64 and clamped below 1.
+/// `(stratum + offset) / count` for `offset ∈ [0, 1)`: computed in f64 and rounded *down* to
+/// f32, so the value never rounds up onto the next stratum's lower edge (nor onto 1.0).
 #[inline]
 pub(crate) fn in_stratum(stratum: u32, offset: f32, count: u32) -> f32 {
     let v = (f64::from(stratum) + f64::from(offset)) / f64::from(count);
-    (v as f32).min(ONE_MINUS_EPSILON)
+    let f = v as f32;
+    if f64::from(f) > v {
+        f.next_down()
+    } else {
+        f
+    }
 }
 
 /// Element `i` of a random permutation of `0..n` chosen by `key`, without storing it.
@@ -57,12 +61,9 @@ pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
         return 0;
     }
     let bits = 32 - (n - 1).leading_zeros();
-    let mut round_keys = [0u64; ROUNDS];
-    let mut k = key;
-    for rk in &mut round_keys {
-        k = mix64(k.wrapping_add(GOLDEN));
-        *rk = k;
-    }
+    // `key` is already a full-avalanche hash: one multiply per derived key is enough.
+    let folded = key ^ (key >> 31);
+    let round_keys = ROUND_MULTIPLIERS.map(|m| folded.wrapping_mul(m));
     let mut x = i;
     loop {
         for &rk in &round_keys {
@@ -74,7 +75,8 @@ pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
     }
     // A keyed cyclic shift on top makes each element exactly uniform over keys, whatever the
     // bijection's quality: P(result = s) = Σₜ P(x = t) · P(shift = s − t) = 1/n.
-    let shift = ((u64::from(mix64(k) as u32) * u64::from(n)) >> 32) as u32;
+    let shift_bits = (key.rotate_left(17) ^ folded).wrapping_mul(SHIFT_MULTIPLIER) >> 32;
+    let shift = ((shift_bits * u64::from(n)) >> 32) as u32;
     let y = x + shift;
     if y >= n {
         y - n
@@ -86,6 +88,16 @@ pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
 /// Rounds of [`round`] per walk of [`permute`].
 const ROUNDS: usize = 3;
 
+/// Odd multipliers deriving the round keys of [`permute`] from its key.
+const ROUND_MULTIPLIERS: [u64; ROUNDS] = [
+    0xd1b5_4a32_d192_ed03,
+    0xaef1_7502_108e_f2d9,
+    0x8cb9_2ba7_2f3d_8dd7,
+];
+
+/// Odd multiplier deriving the cyclic shift of [`permute`] from its key.
+const SHIFT_MULTIPLIER: u64 = 0xf135_7aea_2e62_a9c5;
+
 /// One keyed bijection of the `bits`-bit integers (every step invertible modulo `2^bits`).
 #[inline]
 fn round(mut x: u32, bits: u32, key: u64) -> u32 {
@@ -95,7 +107,7 @@ fn round(mut x: u32, bits: u32, key: u64) -> u32 {
     x = x.wrapping_mul((key >> 32) as u32 | 1) & mask;
     x ^= x >> half;
     x ^= (x << half) & mask;
-    let r = (key >> 59) as u32 % bits;
+    let r = (((key >> 59) as u32) * bits) >> 5; // in 0..bits, without a division
     if r != 0 {
         x = ((x << r) | (x >> (bits - r))) & mask;
     }
@@ -105,11 +117,31 @@ fn round(mut x: u32, bits: u32, key: u64) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::sampler::ONE_MINUS_EPSILON;
 
     #[test]
     fn unit_f32_covers_zero_to_one_minus_epsilon() {
         assert_eq!(unit_f32(0), 0.0);
         assert_eq!(unit_f32(u32::MAX), ONE_MINUS_EPSILON);
+    }
+
+    #[test]
+    fn in_stratum_stays_below_the_next_stratum() {
+        // Rounded to nearest, (3 + 1 − 2⁻²⁴)/5 would give 0.8, the lower edge of stratum 4.
+        for count in [3u32, 5, 7, 9, 11, 13, 100, 1000, 12345] {
+            for stratum in [0, 1, count / 2, count - 2, count - 1] {
+                let v = in_stratum(stratum, ONE_MINUS_EPSILON, count);
+                let upper = f64::from(stratum + 1) / f64::from(count);
+                assert!(
+                    v.is_finite() && f64::from(v) < upper,
+                    "{stratum}/{count}: {v}"
+                );
+                let low = in_stratum(stratum, 0.0, count);
+                assert!(f64::from(low) <= f64::from(stratum) / f64::from(count));
+                let edge = f64::from(stratum) / f64::from(count);
+                assert!(f64::from(low) >= edge * (1.0 - f64::from(f32::EPSILON)));
+            }
+        }
     }
 
     #[test]
