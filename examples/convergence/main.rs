@@ -1,0 +1,274 @@
+//! The convergence study: what accuracy costs in time.
+//!
+//! ```text
+//! cargo run --release --example convergence -- [--quick] [--out docs/] [--max-spp N]
+//!     [--no-render] [--strategies bsdf,light,balance,power]
+//!     [--samplers independent,stratified,sobol] [--note TEXT]
+//! ```
+//!
+//! Measures the f32 warps against f64 references, the resolution of a 2D distribution
+//! against the error of an importance-sampled estimate, and the path tracer's strategies and
+//! samplers against the reference images; writes `convergence.md` into the output directory
+//! and its PNG plots (and the render results as CSV) into `convergence/` beside it. With
+//! `--no-render`, or when the renderer is missing, the rendering section is rebuilt from the
+//! CSV of an earlier run if there is one. New renders are merged into that CSV (replacing
+//! the same scene, strategy, sampler and spp), so `--strategies`/`--samplers` can add lines
+//! to an earlier study.
+//!
+//! Run time on the project's busy 2-core machine: `--quick` (renders to 4 spp) about 15 s;
+//! the sampling half of a full run about 30 s; the rendering half to 256 spp
+//! (`--max-spp 256`) about 20 minutes, and to the default 1024 spp several times longer.
+
+mod csv;
+mod distribution;
+mod environment;
+mod image;
+mod measure;
+mod naive;
+mod plot;
+mod prose;
+mod reference;
+mod reference_microfacet;
+mod render_study;
+mod renderer;
+mod report;
+mod table;
+mod warp_curves;
+mod warps;
+
+use distribution::DistEffort;
+use std::path::{Path, PathBuf};
+
+/// Command-line options.
+struct Options {
+    quick: bool,
+    out: PathBuf,
+    max_spp: Option<u32>,
+    render: bool,
+    note: String,
+    strategies: Option<Vec<String>>,
+    samplers: Option<Vec<String>>,
+}
+
+/// A comma-separated list, each entry one of `allowed`.
+fn list(v: Option<String>, flag: &str, allowed: &[&str]) -> Result<Option<Vec<String>>, String> {
+    let v = v.ok_or(format!("{flag} needs a list"))?;
+    let items: Vec<String> = v.split(',').map(str::to_string).collect();
+    match items.iter().find(|i| !allowed.contains(&i.as_str())) {
+        Some(bad) => Err(format!(
+            "{flag}: unknown '{bad}' (one of {})",
+            allowed.join(", ")
+        )),
+        None => Ok(Some(items)),
+    }
+}
+
+const USAGE: &str = "usage: convergence [--quick] [--out DIR] [--max-spp N] [--no-render] \
+[--strategies bsdf,light,balance,power] [--samplers independent,stratified,sobol] [--note TEXT]";
+
+fn parse() -> Result<Options, String> {
+    let mut o = Options {
+        quick: false,
+        out: PathBuf::from("docs"),
+        max_spp: None,
+        render: true,
+        note: String::new(),
+        strategies: None,
+        samplers: None,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--quick" => o.quick = true,
+            "--no-render" => o.render = false,
+            "--out" => o.out = it.next().ok_or("--out needs a directory")?.into(),
+            "--note" => o.note = it.next().ok_or("--note needs a text")?,
+            "--max-spp" => {
+                let v = it.next().ok_or("--max-spp needs a number")?;
+                o.max_spp = Some(
+                    v.parse()
+                        .map_err(|_| format!("--max-spp {v}: not a number"))?,
+                );
+            }
+            "--strategies" => o.strategies = list(it.next(), &a, &render_study::STRATEGIES)?,
+            "--samplers" => o.samplers = list(it.next(), &a, &render_study::SAMPLERS)?,
+            "-h" | "--help" => return Err(USAGE.into()),
+            other => return Err(format!("unknown argument {other}\n{USAGE}")),
+        }
+    }
+    Ok(o)
+}
+
+fn draw(p: Option<plot::Plot>, path: &Path) -> Result<(), String> {
+    match p {
+        Some(p) => plot::draw(&p, path, (960, 640)),
+        None => Ok(()),
+    }
+}
+
+/// Error against table size, and against time per sample.
+fn dist_plots(rows: &[distribution::DistRow], n: usize, dir: &Path) -> Result<(), String> {
+    let pts =
+        |f: &dyn Fn(&distribution::DistRow) -> (f64, f64)| rows.iter().map(f).collect::<Vec<_>>();
+    let series = |label: &str, points| plot::Series {
+        label: label.into(),
+        points,
+        guide: false,
+        look: plot::Look::default(),
+    };
+    let res = plot::Plot {
+        title: format!("Importance sampling from a table: relRMSE at N = {n}"),
+        x_label: "table cells".into(),
+        y_label: "relative RMSE".into(),
+        series: vec![
+            series(
+                "measured",
+                pts(&|r| ((r.width * r.height) as f64, r.rel_rmse)),
+            ),
+            series(
+                "predicted",
+                pts(&|r| ((r.width * r.height) as f64, (r.rel_var / n as f64).sqrt())),
+            ),
+        ],
+        headroom: 1.5,
+    };
+    plot::draw(&res, &dir.join("distribution-resolution.png"), (960, 640))?;
+    let time = plot::Plot {
+        title: format!("relRMSE at N = {n} against time per sample"),
+        x_label: "ns per sample (table lookup)".into(),
+        y_label: "relative RMSE".into(),
+        series: vec![series(
+            "tables 1×1 … (left to right: coarse to fine)",
+            pts(&|r| (r.ns_sample, r.rel_rmse)),
+        )],
+        headroom: 1.5,
+    };
+    plot::draw(&time, &dir.join("distribution-time.png"), (960, 640))
+}
+
+/// Runs the rendering study, or recovers an earlier one from its CSV.
+fn render_half(o: &Options, dir: &Path) -> Result<Vec<render_study::RenderPoint>, String> {
+    let csv_path = dir.join("render.csv");
+    let earlier = || -> Result<Vec<_>, String> {
+        let text = std::fs::read_to_string(&csv_path)
+            .map_err(|e| format!("{}: {e}", csv_path.display()))?;
+        csv::read(&text)
+    };
+    let backend = match (o.render, renderer::backend()) {
+        (true, Ok(b)) => b,
+        (true, Err(why)) => {
+            eprintln!("rendering study skipped: {why}");
+            return earlier().map_err(|_| why);
+        }
+        (false, _) => {
+            return earlier().map_err(|e| format!("--no-render and no earlier results ({e})"))
+        }
+    };
+    let max_spp = o.max_spp.unwrap_or(if o.quick { 4 } else { 1024 });
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let wanted = |st: &str, sa: &str| {
+        let ok = |list: &Option<Vec<String>>, x: &str| {
+            list.as_ref().is_none_or(|l| l.iter().any(|y| y == x))
+        };
+        ok(&o.strategies, st) && ok(&o.samplers, sa)
+    };
+    let (points, skipped) = render_study::run(
+        backend.as_ref(),
+        &render_study::scenes(root),
+        max_spp,
+        &wanted,
+    );
+    for s in &skipped {
+        eprintln!("skipped: {s}");
+    }
+    let all = csv::merge(earlier().unwrap_or_default(), &points);
+    std::fs::write(&csv_path, csv::write(&all)).map_err(|e| e.to_string())?;
+    Ok(all)
+}
+
+fn run(o: &Options) -> Result<(), String> {
+    let dir = o.out.join("convergence");
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let effort = if o.quick {
+        warps::Effort {
+            points: 1 << 12,
+            runs: 21,
+            reps: 1,
+        }
+    } else {
+        warps::Effort {
+            points: 1 << 20,
+            runs: 101,
+            reps: 1,
+        }
+    };
+    eprintln!("warps: f32 against f64 …");
+    let warp_rows = warps::run(effort);
+    draw(
+        warp_curves::plot(if o.quick { 48 } else { 192 }),
+        &dir.join("warp-theta-error.png"),
+    )?;
+    eprintln!("2D distribution: table resolution …");
+    let de = if o.quick {
+        DistEffort {
+            base_width: 1024,
+            max_width: 256,
+            n: 64,
+            m: 500,
+            runs: 5,
+        }
+    } else {
+        DistEffort {
+            base_width: 2048,
+            max_width: 2048,
+            n: 64,
+            m: 10_000,
+            runs: 25,
+        }
+    };
+    let (dist_rows, truth) = distribution::run(de)?;
+    dist_plots(&dist_rows, de.n, &dir)?;
+    eprintln!("rendering …");
+    let render = render_half(o, &dir);
+    if let Ok(points) = &render {
+        for scene in ["cornell-box", "veach-mis"] {
+            draw(
+                render_study::plot(points, scene),
+                &dir.join(format!("render-{scene}.png")),
+            )?;
+        }
+    }
+    let ctx =
+        report::Context {
+            command: std::iter::once("cargo run --release --example convergence --".to_string())
+                .chain(std::env::args().skip(1).map(|a| {
+                    if a.contains(' ') {
+                        format!("'{a}'")
+                    } else {
+                        a
+                    }
+                }))
+                .collect::<Vec<_>>()
+                .join(" "),
+            machine: report::machine(),
+            note: o.note.clone(),
+            quick: o.quick,
+        };
+    let render_ref = render.as_deref().map_err(String::as_str);
+    let doc = report::document(&ctx, &warp_rows, &dist_rows, de, truth, render_ref);
+    let path = o.out.join("convergence.md");
+    std::fs::write(&path, doc).map_err(|e| format!("{}: {e}", path.display()))?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+fn main() {
+    let code = match parse().and_then(|o| run(&o)) {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("{e}");
+            1
+        }
+    };
+    std::process::exit(code);
+}

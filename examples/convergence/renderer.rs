@@ -1,0 +1,110 @@
+//! The one file that calls the renderer: [`mcrt::scene::render::Renderer`] with the strategy
+//! as [`mcrt::integrator::Strategy`] and the sampler as the scene's
+//! [`mcrt::scene::description::SamplerKind`].
+//!
+//! Whether the renderer honours the scene's sampler kind is checked at run time: a 1-spp
+//! render with the sampler must differ from one with `independent` at the same seed. A
+//! sampler that makes no difference is reported as skipped instead of being plotted under a
+//! name it does not deserve.
+
+use crate::image::Rgb;
+use crate::render_study::{Backend, SceneSpec};
+use mcrt::integrator::Strategy;
+use mcrt::scene::description::{SamplerKind, SceneDescription};
+use mcrt::scene::render::{RenderOptions, Renderer};
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::sync::atomic::AtomicBool;
+
+/// Renders with the crate's renderer on all cores.
+#[derive(Default)]
+struct CrateRenderer {
+    /// Per sampler name: does the renderer use it?
+    honoured: RefCell<HashMap<String, bool>>,
+}
+
+/// The renderer behind the rendering study.
+pub fn backend() -> Result<Box<dyn Backend>, String> {
+    Ok(Box::<CrateRenderer>::default())
+}
+
+fn scene(spec: &SceneSpec) -> Result<SceneDescription, String> {
+    match &spec.file {
+        None => Ok(mcrt::scene::cornell_box::cornell_box()),
+        Some(path) => mcrt::scene::loader::load_scene(path, &[]).map_err(|e| e.to_string()),
+    }
+}
+
+fn sampler_kind(name: &str) -> Result<SamplerKind, String> {
+    match name {
+        "independent" => Ok(SamplerKind::Independent),
+        "stratified" => Ok(SamplerKind::Stratified),
+        "sobol" => Ok(SamplerKind::LowDiscrepancy),
+        other => Err(format!("unknown sampler {other}")),
+    }
+}
+
+/// One render: the image and the render time in seconds.
+fn render(
+    spec: &SceneSpec,
+    strategy: Strategy,
+    sampler: &str,
+    spp: u32,
+) -> Result<(Rgb, f64), String> {
+    let mut desc = scene(spec)?;
+    desc.sensor.sampler.kind = sampler_kind(sampler)?;
+    let opts = RenderOptions {
+        spp: Some(spp),
+        seed: Some(1),
+        strategy: Some(strategy),
+        ..RenderOptions::default()
+    };
+    let renderer = Renderer::new(&desc, &opts).map_err(|e| e.to_string())?;
+    let out = renderer.render(&|_, _| {}, &AtomicBool::new(false));
+    let (width, height) = renderer.size();
+    let pixels = out.image().iter().map(|p| [p.x, p.y, p.z]).collect();
+    let img = Rgb {
+        width: width as usize,
+        height: height as usize,
+        pixels,
+    };
+    Ok((img, out.seconds))
+}
+
+impl CrateRenderer {
+    /// Whether `sampler` changes the image (checked once, at 1 spp).
+    fn honours(&self, spec: &SceneSpec, sampler: &str) -> Result<bool, String> {
+        if sampler == "independent" {
+            return Ok(true);
+        }
+        if let Some(&known) = self.honoured.borrow().get(sampler) {
+            return Ok(known);
+        }
+        let (a, _) = render(spec, Strategy::MisPower, "independent", 1)?;
+        let (b, _) = render(spec, Strategy::MisPower, sampler, 1)?;
+        let differs = a.pixels != b.pixels;
+        self.honoured
+            .borrow_mut()
+            .insert(sampler.to_string(), differs);
+        Ok(differs)
+    }
+}
+
+impl Backend for CrateRenderer {
+    fn render(
+        &self,
+        spec: &SceneSpec,
+        strategy: &str,
+        sampler: &str,
+        spp: u32,
+    ) -> Result<(Rgb, f64), String> {
+        let strategy =
+            Strategy::parse(strategy).ok_or_else(|| format!("unknown strategy {strategy}"))?;
+        if !self.honours(spec, sampler)? {
+            return Err(format!(
+                "the renderer ignores the '{sampler}' sampler (same image as independent)"
+            ));
+        }
+        render(spec, strategy, sampler, spp)
+    }
+}
