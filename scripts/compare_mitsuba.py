@@ -1,0 +1,431 @@
+#!/usr/bin/env python3
+"""Render scenes with Mitsuba 3 and with mcrt side by side, and compare speed and error.
+
+For every scene, sample count and renderer (Mitsuba's `scalar_rgb` and `llvm_ad_rgb`
+variants, and mcrt's `render` example with each requested sampler) the script measures
+
+* the render time, without scene loading and without Mitsuba's JIT compilation: a warm-up
+  render comes first and its time is reported separately;
+* samples per second (spp x width x height / render time);
+* relMSE against the reference image,
+  mean((img - ref)^2 / (ref^2 + 0.01)) over all pixels and channels;
+* efficiency = 1 / (relMSE x render time), and its ratio to Mitsuba's `llvm_ad_rgb`.
+
+Each configuration is rendered `--repeats` times with different seeds; the table shows the
+mean render time, the mean relMSE and the efficiency computed from those two means.
+
+Requirements: see scripts/README.md (`pip install -r scripts/requirements.txt`).
+Example:
+
+    python3 scripts/compare_mitsuba.py --quick
+    python3 scripts/compare_mitsuba.py --json out/peer.json --markdown out/peer.md
+"""
+
+from __future__ import annotations
+
+import argparse
+import glob
+import json
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+DEFAULT_SCENES = ["tests/data/cornell-box.xml", "tests/data/veach-mis.xml"]
+DEFAULT_BINARY = "target/release/examples/render"
+MITSUBA_VARIANTS = ["scalar_rgb", "llvm_ad_rgb"]
+BASELINE = "mitsuba llvm_ad_rgb"
+WARMUP_SEED = 1_000_003
+
+
+@dataclass
+class Result:
+    """One configuration (scene, renderer, sampler, spp) measured over several seeds."""
+
+    scene: str
+    renderer: str
+    sampler: str
+    spp: int
+    pixels: int
+    setup_s: float = float("nan")
+    warmup_s: float = float("nan")
+    render_s: list[float] = field(default_factory=list)
+    wall_s: list[float] = field(default_factory=list)
+    relmse: list[float] = field(default_factory=list)
+    note: str = ""
+
+    def mean_time(self) -> float:
+        """Mean render time over the repeats, in seconds."""
+        return mean(self.render_s)
+
+    def samples_per_s(self) -> float:
+        """Samples (camera paths) per second at the mean render time."""
+        return self.spp * self.pixels / self.mean_time()
+
+    def mean_relmse(self) -> float:
+        """Mean relMSE over the repeats."""
+        return mean(self.relmse)
+
+    def efficiency(self) -> float:
+        """1 / (relMSE x time), from the means over the repeats."""
+        return 1.0 / (self.mean_relmse() * self.mean_time())
+
+
+def mean(xs: list[float]) -> float:
+    """Arithmetic mean; NaN for an empty list."""
+    return sum(xs) / len(xs) if xs else float("nan")
+
+
+def fail(msg: str) -> None:
+    """Print an error and exit with status 2."""
+    print(f"compare_mitsuba: error: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
+# ---------------------------------------------------------------- Mitsuba
+
+
+def find_libllvm() -> str | None:
+    """Locate a libLLVM (16 or newer) for Dr.Jit's LLVM backend, if one is installed."""
+    patterns = [
+        "/usr/lib/x86_64-linux-gnu/libLLVM.so.*",
+        "/usr/lib/x86_64-linux-gnu/libLLVM-*.so",
+        "/usr/lib/aarch64-linux-gnu/libLLVM.so.*",
+        "/usr/lib/llvm-*/lib/libLLVM*.so*",
+    ]
+    for pattern in patterns:
+        for path in sorted(glob.glob(pattern), reverse=True):
+            m = re.search(r"LLVM[.-](?:so\.)?(\d+)", os.path.basename(path))
+            if m and int(m.group(1)) >= 16:
+                return path
+    return None
+
+
+def import_mitsuba(variants: list[str]):
+    """Import mitsuba (and numpy), with a clear message if they are missing."""
+    if "llvm_ad_rgb" in variants and "DRJIT_LIBLLVM_PATH" not in os.environ:
+        lib = find_libllvm()
+        if lib:
+            os.environ["DRJIT_LIBLLVM_PATH"] = lib
+    try:
+        import drjit as dr
+        import mitsuba as mi
+        import numpy as np  # noqa: F401  (needed by mi.Bitmap -> array)
+    except ImportError as e:
+        fail(
+            f"cannot import {e.name}: install the requirements with "
+            "'pip install -r scripts/requirements.txt' (see scripts/README.md), "
+            "or run with --skip-mitsuba"
+        )
+    missing = [v for v in variants if v not in mi.variants()]
+    if missing:
+        fail(f"this mitsuba build lacks the variant(s) {missing}")
+    return mi, dr
+
+
+def check_variant(mi, variant: str) -> None:
+    """Select a Mitsuba variant; explain the libLLVM requirement if it fails."""
+    try:
+        mi.set_variant(variant)
+        if variant.startswith("llvm"):
+            mi.Float(1.0) + 1.0  # forces the LLVM backend to initialise
+    except Exception as e:  # noqa: BLE001 (drjit raises several types)
+        hint = ""
+        if variant.startswith("llvm"):
+            hint = (
+                " -- the LLVM variants need libLLVM 16+ (e.g. Debian's libllvm19); set "
+                "DRJIT_LIBLLVM_PATH to its libLLVM.so"
+            )
+        fail(f"mitsuba variant {variant} unavailable: {e}{hint}")
+
+
+def mitsuba_render(mi, dr, scene, spp: int, seed: int):
+    """Render once and wait for the result; return (image as float64 HxWx3, seconds)."""
+    import numpy as np
+
+    t0 = time.perf_counter()
+    img = mi.render(scene, spp=spp, seed=seed)
+    dr.eval(img)
+    dr.sync_thread()
+    dt = time.perf_counter() - t0
+    return np.asarray(img, dtype=np.float64)[..., :3], dt
+
+
+def run_mitsuba(mi, dr, variant, scene_path, ref, spps, seeds, log) -> list[Result]:
+    """Measure one Mitsuba variant on one scene at every sample count."""
+    check_variant(mi, variant)
+    mi.set_log_level(mi.LogLevel.Warn)
+    t0 = time.perf_counter()
+    scene = mi.load_file(str(scene_path))
+    load_s = time.perf_counter() - t0
+    h, w = ref.shape[:2]
+    results = []
+    for spp in spps:
+        r = Result(scene_path.stem, f"mitsuba {variant}", "independent", spp, w * h)
+        r.setup_s = load_s
+        # Scalar variants compile nothing: a few samples warm the caches. JIT variants may
+        # compile a kernel per sample count, so they warm up at the measured count.
+        warm_spp = spp if dr.is_jit_v(mi.Float) else min(spp, 4)
+        _, r.warmup_s = mitsuba_render(mi, dr, scene, warm_spp, WARMUP_SEED)
+        for seed in seeds:
+            img, dt = mitsuba_render(mi, dr, scene, spp, seed)
+            r.render_s.append(dt)
+            r.wall_s.append(dt)
+            r.relmse.append(relmse(img, ref))
+        log(r)
+        results.append(r)
+    return results
+
+
+# ---------------------------------------------------------------- mcrt
+
+
+def build_renderer(binary: Path) -> None:
+    """Build the render example in release mode (not timed)."""
+    cmd = ["cargo", "build", "--release", "--example", "render"]
+    print("building:", " ".join(cmd), file=sys.stderr)
+    if shutil.which("cargo") is None:
+        fail("cargo not found; build the renderer yourself or pass --renderer")
+    if subprocess.run(cmd, cwd=REPO).returncode != 0:
+        fail("cargo build failed")
+    if not binary.exists():
+        fail(f"the build did not produce {binary}")
+
+
+TIME_RE = re.compile(r"\btime\s*[:=]?\s*([0-9]+(?:\.[0-9]*)?(?:[eE][-+]?\d+)?)\s*(ms|s)\b")
+
+
+def parse_render_time(stdout: str) -> float | None:
+    """Find the renderer's own render time ('time 1.234 s', last match), in seconds."""
+    matches = TIME_RE.findall(stdout)
+    if not matches:
+        return None
+    value, unit = matches[-1]
+    return float(value) / (1000.0 if unit == "ms" else 1.0)
+
+
+def run_ours_once(binary, scene_path, spp, seed, sampler, threads, out):
+    """Run the renderer once; return (stdout, wall seconds) or raise RuntimeError."""
+    cmd = [str(binary), str(scene_path), "--spp", str(spp), "--seed", str(seed), "-o", str(out)]
+    if sampler != "independent":
+        cmd += ["--sampler", sampler]
+    if threads:
+        cmd += ["--threads", str(threads)]
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    if p.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed: {p.stderr.strip() or p.stdout.strip()}")
+    return p.stdout, wall
+
+
+def run_ours(binary, sampler, scene_path, ref, spps, seeds, threads, tmp, log) -> list[Result]:
+    """Measure our renderer with one sampler on one scene at every sample count."""
+    h, w = ref.shape[:2]
+    out = Path(tmp) / f"{scene_path.stem}-{sampler}.exr"
+    results = []
+    # Warm-up (page cache, CPU frequency); also finds out early whether the sampler exists.
+    try:
+        _, warm = run_ours_once(binary, scene_path, 1, WARMUP_SEED, sampler, threads, out)
+    except RuntimeError as e:
+        print(f"skipping mcrt --sampler {sampler} on {scene_path.name}: {e}", file=sys.stderr)
+        return []
+    for spp in spps:
+        r = Result(scene_path.stem, "mcrt", sampler, spp, w * h, warmup_s=warm)
+        for seed in seeds:
+            stdout, wall = run_ours_once(binary, scene_path, spp, seed, sampler, threads, out)
+            own = parse_render_time(stdout)
+            if own is None:
+                r.note = "render time not printed: wall time used"
+            r.render_s.append(own if own is not None else wall)
+            r.wall_s.append(wall)
+            r.relmse.append(relmse(read_exr(out), ref))
+        r.setup_s = mean(r.wall_s) - r.mean_time()
+        log(r)
+        results.append(r)
+    return results
+
+
+# ---------------------------------------------------------------- images
+
+
+def read_exr(path: Path):
+    """Read an RGB EXR as a float64 array HxWx3 (with Mitsuba's Bitmap class)."""
+    import mitsuba as mi
+    import numpy as np
+
+    if not mi.variant():
+        mi.set_variant("scalar_rgb")
+    bmp = mi.Bitmap(str(path)).convert(
+        mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False
+    )
+    return np.asarray(bmp, dtype=np.float64)
+
+
+def relmse(img, ref) -> float:
+    """mean((img - ref)^2 / (ref^2 + 0.01)) over pixels and channels; inf if any NaN."""
+    import numpy as np
+
+    if img.shape != ref.shape:
+        raise ValueError(f"image shape {img.shape} differs from the reference {ref.shape}")
+    if not np.all(np.isfinite(img)):
+        return float("inf")
+    return float(np.mean((img - ref) ** 2 / (ref**2 + 0.01)))
+
+
+def reference_for(scene: str) -> tuple[Path, Path]:
+    """Split 'scene.xml[:ref.exr]'; by default the reference is <stem>.exr beside the scene."""
+    path, _, ref = scene.partition(":")
+    scene_path = (REPO / path) if not os.path.isabs(path) else Path(path)
+    ref_path = Path(ref) if ref else scene_path.with_suffix(".exr")
+    for p in (scene_path, ref_path):
+        if not p.exists():
+            fail(f"{p} does not exist")
+    return scene_path, ref_path
+
+
+# ---------------------------------------------------------------- report
+
+
+def fmt(x: float, digits: int = 3) -> str:
+    """Format a float with a number of significant digits; '–' for NaN."""
+    return "–" if x != x else f"{x:.{digits}g}"
+
+
+def markdown_table(results: list[Result]) -> str:
+    """The comparison as a Markdown table, grouped by scene and spp."""
+    base = {(r.scene, r.spp): r.efficiency() for r in results if r.renderer == BASELINE}
+    lines = [
+        "| scene | spp | renderer | sampler | load / overhead (s) | warm-up (s) | "
+        "render (s) | M samples/s | relMSE | efficiency (1/s) | vs llvm_ad_rgb |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in sorted(results, key=lambda r: (r.scene, r.spp)):
+        ratio = r.efficiency() / base.get((r.scene, r.spp), float("nan"))
+        lines.append(
+            f"| {r.scene} | {r.spp} | {r.renderer} | {r.sampler} | {fmt(r.setup_s, 2)} | "
+            f"{fmt(r.warmup_s, 3)} | {fmt(r.mean_time(), 3)} | "
+            f"{fmt(r.samples_per_s() / 1e6, 3)} | {fmt(r.mean_relmse(), 3)} | "
+            f"{fmt(r.efficiency(), 3)} | {fmt(ratio, 3)}{' ' + r.note if r.note else ''} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def machine_info(mi_version: str | None) -> dict:
+    """Machine and tool versions, for the record."""
+    info = {"nproc": os.cpu_count(), "python": platform.python_version(), "mitsuba": mi_version}
+    try:
+        with open("/proc/cpuinfo") as f:
+            info["cpu"] = next(
+                (ln.split(":", 1)[1].strip() for ln in f if ln.startswith("model name")), None
+            )
+    except OSError:
+        info["cpu"] = platform.processor()
+    try:
+        info["rustc"] = subprocess.run(
+            ["rustc", "--version"], capture_output=True, text=True
+        ).stdout.strip()
+    except OSError:
+        info["rustc"] = None
+    info["loadavg"] = os.getloadavg() if hasattr(os, "getloadavg") else None
+    return info
+
+
+def log_result(r: Result) -> None:
+    """Print one finished configuration to stderr (progress)."""
+    print(
+        f"  {r.scene:12} {r.spp:5} spp  {r.renderer:22} {r.sampler:11} "
+        f"time {fmt(r.mean_time())} s  relMSE {fmt(r.mean_relmse())}  "
+        f"eff {fmt(r.efficiency())}",
+        file=sys.stderr,
+    )
+
+
+# ---------------------------------------------------------------- main
+
+
+def parse_args(argv=None) -> argparse.Namespace:
+    """Command-line options."""
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("scenes", nargs="*", default=DEFAULT_SCENES,
+                   help="scene files, optionally 'scene.xml:reference.exr' "
+                        "(default: the Cornell box and Veach's MIS scene in tests/data)")
+    p.add_argument("--spp", type=int, nargs="+", default=[64, 256], help="sample counts")
+    p.add_argument("--repeats", type=int, default=2, help="seeds per configuration")
+    p.add_argument("--variants", nargs="+", default=MITSUBA_VARIANTS, help="Mitsuba variants")
+    p.add_argument("--samplers", nargs="+", default=["independent", "sobol"],
+                   help="our samplers (one the renderer rejects is skipped with a message)")
+    p.add_argument("--renderer", type=Path, default=REPO / DEFAULT_BINARY,
+                   help="our render binary")
+    p.add_argument("--no-build", action="store_true", help="do not run cargo build first")
+    p.add_argument("--threads", type=int, default=0,
+                   help="threads for both renderers (default: all cores)")
+    p.add_argument("--skip-mitsuba", action="store_true", help="only our renderer")
+    p.add_argument("--skip-ours", action="store_true", help="only Mitsuba")
+    p.add_argument("--quick", action="store_true",
+                   help="smoke test: 16 spp, one seed, Cornell box only (unless scenes given)")
+    p.add_argument("--json", type=Path, help="also write the results as JSON here")
+    p.add_argument("--markdown", type=Path, help="also write the table here")
+    a = p.parse_args(argv)
+    if a.quick:
+        a.spp, a.repeats = [16], 1
+        if a.scenes == DEFAULT_SCENES:
+            a.scenes = DEFAULT_SCENES[:1]
+    if a.repeats < 1 or min(a.spp) < 1:
+        p.error("--repeats and --spp must be positive")
+    return a
+
+
+def main(argv=None) -> int:
+    """Run the comparison and print the Markdown table on stdout."""
+    a = parse_args(argv)
+    variants = [] if a.skip_mitsuba else a.variants
+    # mitsuba also reads the EXR files, so it is needed even for --skip-mitsuba.
+    mi, dr = import_mitsuba(variants)
+    mi.set_variant("scalar_rgb")
+    if a.threads:
+        dr.set_thread_count(a.threads)
+    if not a.skip_ours:
+        if not a.no_build:
+            build_renderer(a.renderer)
+        elif not a.renderer.exists():
+            fail(f"renderer binary {a.renderer} missing: run "
+                 "'cargo build --release --example render' or drop --no-build")
+    seeds = list(range(1, a.repeats + 1))
+    results: list[Result] = []
+    with tempfile.TemporaryDirectory(prefix="mcrt-peer-") as tmp:
+        for scene in a.scenes:
+            scene_path, ref_path = reference_for(scene)
+            mi.set_variant("scalar_rgb")
+            ref = read_exr(ref_path)
+            print(f"{scene_path.name} (reference {ref_path.name}):", file=sys.stderr)
+            for variant in variants:
+                results += run_mitsuba(mi, dr, variant, scene_path, ref, a.spp, seeds,
+                                       log_result)
+            if not a.skip_ours:
+                for sampler in a.samplers:
+                    results += run_ours(a.renderer, sampler, scene_path, ref, a.spp, seeds,
+                                        a.threads, tmp, log_result)
+    table = markdown_table(results)
+    print(table)
+    info = machine_info(mi.__version__)
+    if a.markdown:
+        a.markdown.write_text(table)
+    if a.json:
+        a.json.write_text(json.dumps(
+            {"machine": info, "command": sys.argv, "seeds": seeds,
+             "results": [dict(asdict(r), efficiency=r.efficiency()) for r in results]},
+            indent=2))
+    print(f"machine: {info}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
