@@ -29,6 +29,7 @@ import json
 import os
 import platform
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -58,6 +59,7 @@ class Result:
     warmup_s: float = float("nan")
     render_s: list[float] = field(default_factory=list)
     wall_s: list[float] = field(default_factory=list)
+    cpu_s: list[float] = field(default_factory=list)
     relmse: list[float] = field(default_factory=list)
     note: str = ""
 
@@ -146,57 +148,55 @@ def check_variant(mi, variant: str) -> None:
         fail(f"mitsuba variant {variant} unavailable: {e}{hint}")
 
 
-def mitsuba_render(mi, dr, scene, spp: int, seed: int):
-    """Render once and wait for the result; return (image as float64 HxWx3, seconds)."""
-    import numpy as np
-
-    t0 = time.perf_counter()
-    img = mi.render(scene, spp=spp, seed=seed)
-    dr.eval(img)
-    dr.sync_thread()
-    dt = time.perf_counter() - t0
-    return np.asarray(img, dtype=np.float64)[..., :3], dt
+class Skip(Exception):
+    """A contender that cannot run this configuration (e.g. a sampler the build lacks)."""
 
 
-def run_mitsuba(mi, dr, variant, scene_path, ref, spps, seeds, log) -> list[Result]:
-    """Measure one Mitsuba variant on one scene at every sample count."""
-    check_variant(mi, variant)
-    mi.set_log_level(mi.LogLevel.Warn)
-    t0 = time.perf_counter()
-    scene = mi.load_file(str(scene_path))
-    load_s = time.perf_counter() - t0
-    h, w = ref.shape[:2]
-    results = []
-    for spp in spps:
-        r = Result(scene_path.stem, f"mitsuba {variant}", "independent", spp, w * h)
-        r.setup_s = load_s
+@dataclass
+class Sample:
+    """One timed render: the image, render seconds, process wall and CPU seconds."""
+
+    img: object
+    render_s: float
+    wall_s: float
+    cpu_s: float
+
+
+class MitsubaContender:
+    """One Mitsuba variant, rendering in this process."""
+
+    def __init__(self, mi, dr, variant: str):
+        self.mi, self.dr, self.variant = mi, dr, variant
+        self.name, self.sampler = f"mitsuba {variant}", "independent"
+        self.scene = None
+
+    def setup(self, scene_path: Path) -> float:
+        """Load the scene; return the loading time in seconds."""
+        check_variant(self.mi, self.variant)
+        self.mi.set_log_level(self.mi.LogLevel.Warn)
+        t0 = time.perf_counter()
+        self.scene = self.mi.load_file(str(scene_path))
+        return time.perf_counter() - t0
+
+    def warmup(self, spp: int) -> float:
+        """Render once untimed (JIT variants compile here); return its seconds."""
+        self.mi.set_variant(self.variant)
         # Scalar variants compile nothing: a few samples warm the caches. JIT variants may
         # compile a kernel per sample count, so they warm up at the measured count.
-        warm_spp = spp if dr.is_jit_v(mi.Float) else min(spp, 4)
-        _, r.warmup_s = mitsuba_render(mi, dr, scene, warm_spp, WARMUP_SEED)
-        for seed in seeds:
-            img, dt = mitsuba_render(mi, dr, scene, spp, seed)
-            r.render_s.append(dt)
-            r.wall_s.append(dt)
-            r.relmse.append(relmse(img, ref))
-        log(r)
-        results.append(r)
-    return results
+        warm_spp = spp if self.dr.is_jit_v(self.mi.Float) else min(spp, 4)
+        return self.render(warm_spp, WARMUP_SEED).render_s
 
+    def render(self, spp: int, seed: int) -> Sample:
+        """Render once, timed from mi.render until the image is evaluated."""
+        import numpy as np
 
-# ---------------------------------------------------------------- mcrt
-
-
-def build_renderer(binary: Path) -> None:
-    """Build the render example in release mode (not timed)."""
-    cmd = ["cargo", "build", "--release", "--example", "render"]
-    print("building:", " ".join(cmd), file=sys.stderr)
-    if shutil.which("cargo") is None:
-        fail("cargo not found; build the renderer yourself or pass --renderer")
-    if subprocess.run(cmd, cwd=REPO).returncode != 0:
-        fail("cargo build failed")
-    if not binary.exists():
-        fail(f"the build did not produce {binary}")
+        self.mi.set_variant(self.variant)
+        c0, t0 = time.process_time(), time.perf_counter()
+        img = self.mi.render(self.scene, spp=spp, seed=seed)
+        self.dr.eval(img)
+        self.dr.sync_thread()
+        dt, cpu = time.perf_counter() - t0, time.process_time() - c0
+        return Sample(np.asarray(img, dtype=np.float64)[..., :3], dt, dt, cpu)
 
 
 TIME_RE = re.compile(r"\btime\s*[:=]?\s*([0-9]+(?:\.[0-9]*)?(?:[eE][-+]?\d+)?)\s*(ms|s)\b")
@@ -211,45 +211,105 @@ def parse_render_time(stdout: str) -> float | None:
     return float(value) / (1000.0 if unit == "ms" else 1.0)
 
 
-def run_ours_once(binary, scene_path, spp, seed, sampler, threads, out):
-    """Run the renderer once; return (stdout, wall seconds) or raise RuntimeError."""
-    cmd = [str(binary), str(scene_path), "--spp", str(spp), "--seed", str(seed), "-o", str(out)]
-    if sampler != "independent":
-        cmd += ["--sampler", sampler]
-    if threads:
-        cmd += ["--threads", str(threads)]
-    t0 = time.perf_counter()
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    wall = time.perf_counter() - t0
-    if p.returncode != 0:
-        raise RuntimeError(f"{' '.join(cmd)} failed: {p.stderr.strip() or p.stdout.strip()}")
-    return p.stdout, wall
+def children_cpu_s() -> float:
+    """CPU seconds (user + system) used so far by finished child processes."""
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
 
 
-def run_ours(binary, sampler, scene_path, ref, spps, seeds, threads, tmp, log) -> list[Result]:
-    """Measure our renderer with one sampler on one scene at every sample count."""
+class OursContender:
+    """mcrt's render example with one sampler, run as a child process."""
+
+    def __init__(self, binary: Path, sampler: str, threads: int, tmp: str):
+        self.binary, self.sampler, self.threads, self.tmp = binary, sampler, threads, tmp
+        self.name = "mcrt"
+        self.scene_path = None
+        self.note = ""
+
+    def setup(self, scene_path: Path) -> float:
+        """Run a 1-spp render (warms the page cache, checks the sampler); return its wall s."""
+        self.scene_path = scene_path
+        try:
+            _, self.warm_s, _ = self._run(1, WARMUP_SEED)
+        except RuntimeError as e:
+            raise Skip(f"mcrt --sampler {self.sampler} on {scene_path.name}: {e}") from e
+        return self.warm_s
+
+    def warmup(self, spp: int) -> float:
+        """Nothing to compile: the 1-spp run of setup() was the warm-up; return its wall s."""
+        return self.warm_s
+
+    def render(self, spp: int, seed: int) -> Sample:
+        """Render once; the render time is the one the binary prints."""
+        stdout, wall, cpu = self._run(spp, seed)
+        own = parse_render_time(stdout)
+        if own is None:
+            self.note = "(no render time printed: wall time used)"
+        return Sample(read_exr(self._out()), own if own is not None else wall, wall, cpu)
+
+    def _out(self) -> Path:
+        return Path(self.tmp) / f"{self.scene_path.stem}-{self.sampler}.exr"
+
+    def _run(self, spp: int, seed: int) -> tuple[str, float, float]:
+        """Run the binary; return (stdout, wall s, CPU s) or raise RuntimeError."""
+        cmd = [str(self.binary), str(self.scene_path), "--spp", str(spp),
+               "--seed", str(seed), "-o", str(self._out())]
+        if self.sampler != "independent":
+            cmd += ["--sampler", self.sampler]
+        if self.threads:
+            cmd += ["--threads", str(self.threads)]
+        c0, t0 = children_cpu_s(), time.perf_counter()
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        wall, cpu = time.perf_counter() - t0, children_cpu_s() - c0
+        if p.returncode != 0:
+            msg = (p.stderr.strip() or p.stdout.strip()).splitlines()
+            raise RuntimeError(f"'{' '.join(cmd)}' failed: {msg[-1] if msg else p.returncode}")
+        return p.stdout, wall, cpu
+
+
+def build_renderer(binary: Path) -> None:
+    """Build the render example in release mode (not timed)."""
+    cmd = ["cargo", "build", "--release", "--example", "render"]
+    print("building:", " ".join(cmd), file=sys.stderr)
+    if shutil.which("cargo") is None:
+        fail("cargo not found; build the renderer yourself and pass --no-build")
+    if subprocess.run(cmd, cwd=REPO).returncode != 0:
+        fail("cargo build failed (is examples/render.rs in this checkout?)")
+    if not binary.exists():
+        fail(f"the build did not produce {binary}")
+
+
+def measure_scene(contenders, scene_path, ref, spps, seeds) -> list[Result]:
+    """Measure every contender on one scene; renders of one seed run back to back."""
     h, w = ref.shape[:2]
-    out = Path(tmp) / f"{scene_path.stem}-{sampler}.exr"
+    active, setup = [], {}
+    for c in contenders:
+        try:
+            setup[c] = c.setup(scene_path)
+            active.append(c)
+        except Skip as e:
+            print(f"  skipping {e}", file=sys.stderr)
     results = []
-    # Warm-up (page cache, CPU frequency); also finds out early whether the sampler exists.
-    try:
-        _, warm = run_ours_once(binary, scene_path, 1, WARMUP_SEED, sampler, threads, out)
-    except RuntimeError as e:
-        print(f"skipping mcrt --sampler {sampler} on {scene_path.name}: {e}", file=sys.stderr)
-        return []
     for spp in spps:
-        r = Result(scene_path.stem, "mcrt", sampler, spp, w * h, warmup_s=warm)
+        rs = {c: Result(scene_path.stem, c.name, c.sampler, spp, w * h, setup[c]) for c in active}
+        for c in active:
+            rs[c].warmup_s = c.warmup(spp)
+        # Round robin over the contenders, so that a change of machine load hits all alike.
         for seed in seeds:
-            stdout, wall = run_ours_once(binary, scene_path, spp, seed, sampler, threads, out)
-            own = parse_render_time(stdout)
-            if own is None:
-                r.note = "render time not printed: wall time used"
-            r.render_s.append(own if own is not None else wall)
-            r.wall_s.append(wall)
-            r.relmse.append(relmse(read_exr(out), ref))
-        r.setup_s = mean(r.wall_s) - r.mean_time()
-        log(r)
-        results.append(r)
+            for c in active:
+                s = c.render(spp, seed)
+                r = rs[c]
+                r.render_s.append(s.render_s)
+                r.wall_s.append(s.wall_s)
+                r.cpu_s.append(s.cpu_s)
+                r.relmse.append(relmse(s.img, ref))
+        for c in active:
+            r = rs[c]
+            r.note = getattr(c, "note", "")
+            if r.wall_s != r.render_s:  # a child process: loading, writing the image
+                r.setup_s = mean(r.wall_s) - r.mean_time()
+            log_result(r)
+        results += rs.values()
     return results
 
 
@@ -304,14 +364,14 @@ def markdown_table(results: list[Result]) -> str:
     base = {(r.scene, r.spp): r.efficiency() for r in results if r.renderer == BASELINE}
     lines = [
         "| scene | spp | renderer | sampler | load / overhead (s) | warm-up (s) | "
-        "render (s) | M samples/s | relMSE | efficiency (1/s) | vs llvm_ad_rgb |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "render (s) | CPU (s) | M samples/s | relMSE | efficiency (1/s) | vs llvm_ad_rgb |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in sorted(results, key=lambda r: (r.scene, r.spp)):
         ratio = r.efficiency() / base.get((r.scene, r.spp), float("nan"))
         lines.append(
             f"| {r.scene} | {r.spp} | {r.renderer} | {r.sampler} | {fmt(r.setup_s, 2)} | "
-            f"{fmt(r.warmup_s, 3)} | {fmt(r.mean_time(), 3)} | "
+            f"{fmt(r.warmup_s, 3)} | {fmt(r.mean_time(), 3)} | {fmt(mean(r.cpu_s), 3)} | "
             f"{fmt(r.samples_per_s() / 1e6, 3)} | {fmt(r.mean_relmse(), 3)} | "
             f"{fmt(r.efficiency(), 3)} | {fmt(ratio, 3)}{' ' + r.note if r.note else ''} |"
         )
@@ -401,18 +461,14 @@ def main(argv=None) -> int:
     seeds = list(range(1, a.repeats + 1))
     results: list[Result] = []
     with tempfile.TemporaryDirectory(prefix="mcrt-peer-") as tmp:
+        contenders = [MitsubaContender(mi, dr, v) for v in variants]
+        if not a.skip_ours:
+            contenders += [OursContender(a.renderer, s, a.threads, tmp) for s in a.samplers]
         for scene in a.scenes:
             scene_path, ref_path = reference_for(scene)
-            mi.set_variant("scalar_rgb")
             ref = read_exr(ref_path)
             print(f"{scene_path.name} (reference {ref_path.name}):", file=sys.stderr)
-            for variant in variants:
-                results += run_mitsuba(mi, dr, variant, scene_path, ref, a.spp, seeds,
-                                       log_result)
-            if not a.skip_ours:
-                for sampler in a.samplers:
-                    results += run_ours(a.renderer, sampler, scene_path, ref, a.spp, seeds,
-                                        a.threads, tmp, log_result)
+            results += measure_scene(contenders, scene_path, ref, a.spp, seeds)
     table = markdown_table(results)
     print(table)
     info = machine_info(mi.__version__)
