@@ -79,6 +79,10 @@ class Result:
         """1 / (relMSE x time), from the means over the repeats."""
         return 1.0 / (self.mean_relmse() * self.mean_time())
 
+    def cpu_efficiency(self) -> float:
+        """1 / (relMSE x CPU time): less sensitive to other processes on the machine."""
+        return 1.0 / (self.mean_relmse() * mean(self.cpu_s))
+
 
 def mean(xs: list[float]) -> float:
     """Arithmetic mean; NaN for an empty list."""
@@ -361,19 +365,23 @@ def fmt(x: float, digits: int = 3) -> str:
 
 def markdown_table(results: list[Result]) -> str:
     """The comparison as a Markdown table, grouped by scene and spp."""
-    base = {(r.scene, r.spp): r.efficiency() for r in results if r.renderer == BASELINE}
+    base = {(r.scene, r.spp): r for r in results if r.renderer == BASELINE}
     lines = [
         "| scene | spp | renderer | sampler | load / overhead (s) | warm-up (s) | "
-        "render (s) | CPU (s) | M samples/s | relMSE | efficiency (1/s) | vs llvm_ad_rgb |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "render (s) | CPU (s) | M samples/s | relMSE | efficiency (1/s) | vs llvm_ad_rgb | "
+        "vs llvm_ad_rgb, CPU |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in sorted(results, key=lambda r: (r.scene, r.spp)):
-        ratio = r.efficiency() / base.get((r.scene, r.spp), float("nan"))
+        b = base.get((r.scene, r.spp))
+        ratio = r.efficiency() / b.efficiency() if b else float("nan")
+        cpu_ratio = r.cpu_efficiency() / b.cpu_efficiency() if b else float("nan")
         lines.append(
             f"| {r.scene} | {r.spp} | {r.renderer} | {r.sampler} | {fmt(r.setup_s, 2)} | "
             f"{fmt(r.warmup_s, 3)} | {fmt(r.mean_time(), 3)} | {fmt(mean(r.cpu_s), 3)} | "
             f"{fmt(r.samples_per_s() / 1e6, 3)} | {fmt(r.mean_relmse(), 3)} | "
-            f"{fmt(r.efficiency(), 3)} | {fmt(ratio, 3)}{' ' + r.note if r.note else ''} |"
+            f"{fmt(r.efficiency(), 3)} | {fmt(ratio, 3)} | "
+            f"{fmt(cpu_ratio, 3)}{' ' + r.note if r.note else ''} |"
         )
     return "\n".join(lines) + "\n"
 
@@ -477,7 +485,8 @@ def main(argv=None) -> int:
     if a.json:
         a.json.write_text(json.dumps(
             {"machine": info, "command": sys.argv, "seeds": seeds,
-             "results": [dict(asdict(r), efficiency=r.efficiency()) for r in results]},
+             "results": [dict(asdict(r), efficiency=r.efficiency(),
+                              cpu_efficiency=r.cpu_efficiency()) for r in results]},
             indent=2))
     print(f"machine: {info}", file=sys.stderr)
     return 0
