@@ -35,6 +35,10 @@
 
 pub use glam;
 
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
+
 pub mod integrator;
 pub mod sampling;
 #[cfg(feature = "render")]

@@ -108,12 +108,24 @@ fn veach_sphere_lights() {
         );
         assert_eq!(s.emitter.map(|e| e.radiance), Some(Vec3::splat(l)));
         assert_eq!(s.to_world, Mat4::IDENTITY);
-        // A shape without a BSDF gets Mitsuba's default: diffuse 0.5.
-        assert_eq!(s.bsdf, BsdfDesc::default());
+        // An emitting shape without a BSDF gets Mitsuba 3's black diffuse.
+        assert_eq!(
+            s.bsdf,
+            BsdfDesc::Diffuse {
+                reflectance: Vec3::ZERO
+            }
+        );
     }
     let fill = &d.shapes[10];
     assert_eq!(fill.id.as_deref(), Some("fill"));
     assert_eq!(fill.emitter.map(|e| e.radiance), Some(Vec3::splat(1.2)));
+    // A shape without a BSDF and without an emitter gets Mitsuba's default: diffuse 0.5.
+    let plain = parse(
+        r#"<scene version="3.0.0"><shape type="sphere"/></scene>"#,
+        &[],
+    )
+    .unwrap();
+    assert_eq!(plain.shapes[0].bsdf, BsdfDesc::default());
 }
 
 #[test]

@@ -215,7 +215,8 @@ pub struct ShapeDesc {
     pub to_world: Mat4,
     /// Flip the normals (Mitsuba's `flip_normals`).
     pub flip_normals: bool,
-    /// The material. Mitsuba's default when a shape has none is diffuse with reflectance 0.5.
+    /// The material. Mitsuba's default when a shape has none is diffuse with reflectance 0.5,
+    /// and black (reflectance 0) when the shape is an emitter.
     pub bsdf: BsdfDesc,
     /// The area emitter on the shape's front side, if any.
     pub emitter: Option<AreaEmitterDesc>,

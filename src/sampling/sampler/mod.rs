@@ -1,1 +1,127 @@
-//! Samplers: per-pixel sample values, independent, stratified and low-discrepancy. (to be written)
+//! Samplers: the sample values `u ∈ [0,1)^d` a renderer feeds its warps, one pixel sample at
+//! a time.
+//!
+//! A [`Sampler`] is positioned on a pixel sample with [`Sampler::start_pixel_sample`] and then
+//! hands out 1D and 2D values in order ([`Sampler::next_1d`], [`Sampler::next_2d`]); each call
+//! consumes one *dimension* (a 2D call consumes one 2D dimension). The values depend only on
+//! (seed, pixel, sample index, dimension), never on the order in which pixels or samples are
+//! visited, so a parallel renderer gets the same image whatever its thread count.
+//!
+//! | type | what it does | values per dimension over the pixel's samples |
+//! |---|---|---|
+//! | [`IndependentSampler`] | PCG32 seeded by a hash of (seed, pixel, sample index) | independent uniform |
+//! | [`StratifiedSampler`] | jittered strata, shuffled independently per dimension | one per stratum: `n × n` strata in 2D, `spp` in 1D |
+//! | `SobolSampler` (feature `sobol`) | Owen-scrambled Sobol, one scrambled (0,2)-sequence per dimension | every elementary interval of area `2^-k` holds one of the first `2^k` samples |
+//!
+//! Stratifying each dimension on its own and shuffling the strata independently per dimension
+//! is the "padding" of Kollig & Keller (2002, "Efficient multidimensional sampling", Computer
+//! Graphics Forum 21(3)): each 2D projection used by one warp is well stratified, while
+//! different dimensions are decorrelated from each other.
+//!
+//! # Mitsuba 3 scene files
+//!
+//! The `<sampler type="...">` tag of a Mitsuba 3 scene maps to ours as follows (the scene
+//! description's `SamplerKind` carries the choice; [`AnySampler`] holds whichever sampler a
+//! renderer builds from it):
+//!
+//! | Mitsuba 3 tag | `SamplerKind` | ours | sample count |
+//! |---|---|---|---|
+//! | `independent` | `Independent` | [`IndependentSampler`] | as given |
+//! | `stratified` | `Stratified` | [`StratifiedSampler`] (jittered unless `jitter` is false) | rounded up to a perfect square, as Mitsuba does |
+//! | `ldsampler` | `LowDiscrepancy` | `SobolSampler` | as given (a power of two gives full stratification) |
+//!
+//! Mitsuba's `stratified` plugin rounds its `sample_count` up to the next perfect square (5
+//! becomes 9) and warns; [`StratifiedSampler::new`] does the same, and
+//! [`Sampler::samples_per_pixel`] reports the rounded count, which is the one a renderer must
+//! loop over. Mitsuba's `ldsampler` is Kollig & Keller's padded (0,2)-sequence and wants a
+//! power-of-two count; ours is a padded Owen-scrambled Sobol sequence of the same family, which
+//! accepts any count (the first `2^k` samples of a pixel are a (0,k,2)-net in every 2D
+//! dimension; other counts are a prefix of the next net). The sample values themselves differ
+//! from Mitsuba's: the samplers are of the same kind, not bit-identical.
+//!
+//! ```
+//! use mcrt::sampling::sampler::{IndependentSampler, Sampler};
+//!
+//! let mut sampler = IndependentSampler::new(16, 7).unwrap();
+//! sampler.start_pixel_sample([10, 20], 3);
+//! let a = (sampler.next_2d(), sampler.next_1d());
+//! sampler.start_pixel_sample([10, 20], 3);
+//! let b = (sampler.next_2d(), sampler.next_1d());
+//! assert_eq!(a, b); // deterministic for (seed, pixel, sample index)
+//! assert!((0.0..1.0).contains(&a.1));
+//! ```
+
+use glam::Vec2;
+
+use super::SamplingError;
+
+mod any;
+mod hash;
+mod independent;
+#[cfg(feature = "sobol")]
+mod sobol;
+mod stratified;
+
+pub use any::AnySampler;
+pub use independent::IndependentSampler;
+#[cfg(feature = "sobol")]
+pub use sobol::SobolSampler;
+pub use stratified::StratifiedSampler;
+
+/// The largest `f32` below 1, `1 − 2⁻²⁴`: every sample value is at most this.
+pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// A source of sample values in `[0,1)^d` for the pixel samples of an image.
+///
+/// Call [`Sampler::start_pixel_sample`] before drawing the values of a pixel sample; it resets
+/// the dimension counter, so the `d`-th call after it returns the same value every time for the
+/// same (seed, pixel, sample index). Samplers are cheap to clone: a renderer gives each thread
+/// its own copy.
+pub trait Sampler: Clone + Send + Sync {
+    /// Positions the sampler on sample `sample_index` of pixel `pixel` (x, y) and resets the
+    /// dimension counter.
+    fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32);
+
+    /// The next 1D value, in `[0, 1)` (never 1.0); consumes one dimension.
+    fn next_1d(&mut self) -> f32;
+
+    /// The next 2D value, in `[0, 1)²` (never 1.0 in either coordinate); consumes one
+    /// dimension.
+    fn next_2d(&mut self) -> Vec2;
+
+    /// The number of samples per pixel the sampler was built for (after any rounding, e.g. to a
+    /// perfect square for [`StratifiedSampler`]). Sample indices at or beyond it are still
+    /// valid, with weaker stratification (each type documents what it does).
+    fn samples_per_pixel(&self) -> u32;
+}
+
+/// Checks a sample count: at least 1.
+fn check_spp(spp: u32) -> Result<u32, SamplingError> {
+    if spp >= 1 {
+        Ok(spp)
+    } else {
+        Err(SamplingError::InvalidParameter {
+            name: "spp",
+            value: f64::from(spp),
+            expected: "at least 1",
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_minus_epsilon_is_the_largest_f32_below_one() {
+        let below_one = ONE_MINUS_EPSILON;
+        assert!(below_one < 1.0);
+        assert_eq!(f32::from_bits(ONE_MINUS_EPSILON.to_bits() + 1), 1.0);
+    }
+
+    #[test]
+    fn zero_spp_is_rejected() {
+        assert!(check_spp(0).is_err());
+        assert_eq!(check_spp(1), Ok(1));
+    }
+}

@@ -8,7 +8,7 @@ use super::error::SceneErrorKind;
 use super::props::Props;
 use super::tree::Elem;
 use super::{plugin_type, unknown_plugin};
-use crate::scene::description::{ShapeDesc, ShapeKind};
+use crate::scene::description::{BsdfDesc, ShapeDesc, ShapeKind};
 use glam::Vec3;
 
 /// Reads a `<shape>` element.
@@ -68,7 +68,13 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
             ));
         }
     }
-    shape.bsdf = bsdf.unwrap_or_default();
+    // As in Mitsuba 3: a shape without a BSDF is diffuse 0.5, but an emitting one is black.
+    shape.bsdf = bsdf.unwrap_or_else(|| match emitter {
+        Some(_) => BsdfDesc::Diffuse {
+            reflectance: Vec3::ZERO,
+        },
+        None => BsdfDesc::default(),
+    });
     shape.emitter = emitter;
     p.finish()?;
     Ok(shape)

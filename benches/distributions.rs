@@ -1,0 +1,139 @@
+//! Build time and ns per sample of the distributions in `mcrt::sampling::distribution`.
+//!
+//! Run: `cargo bench --bench distributions`. Sample benchmarks time `BATCH` calls per
+//! iteration on pre-generated sample values (time per iteration / `BATCH` = ns per call); build
+//! benchmarks time one construction per iteration. The alias table is timed at 10³ and 10⁶
+//! entries to show that its cost per sample does not grow with the table (O(1)), while the
+//! binary search of the 1D table grows as log n (plus cache misses on large tables).
+
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use mcrt::sampling::distribution::{AliasTable, PiecewiseConstant1D, PiecewiseConstant2D};
+
+mod common;
+use common::{config, uniforms_1d, uniforms_2d, BATCH};
+
+/// Positive weights with a wide dynamic range (like light powers or texel luminances).
+fn weights(n: usize, seed: u64) -> Vec<f32> {
+    uniforms_1d(n, seed)
+        .into_iter()
+        .map(|u| 0.01 + 10.0 * u * u * u)
+        .collect()
+}
+
+fn piecewise_1d(c: &mut Criterion) {
+    let us = uniforms_1d(BATCH, 1);
+    let mut group = c.benchmark_group("distribution/piecewise_1d");
+    for n in [1_000usize, 1_000_000] {
+        let w = weights(n, 2);
+        group.throughput(Throughput::Elements(1));
+        group.bench_with_input(BenchmarkId::new("build", n), &w, |b, w| {
+            b.iter(|| PiecewiseConstant1D::new(black_box(w)).unwrap())
+        });
+        let d = PiecewiseConstant1D::new(&w).unwrap();
+        let xs: Vec<f32> = us.iter().map(|&u| d.sample(u).0).collect();
+        group.throughput(Throughput::Elements(BATCH as u64));
+        group.bench_with_input(BenchmarkId::new("sample", n), &us, |b, us| {
+            b.iter(|| {
+                us.iter()
+                    .map(|&u| black_box(d.sample(black_box(u))).1)
+                    .sum::<f32>()
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("pdf", n), &xs, |b, xs| {
+            b.iter(|| {
+                xs.iter()
+                    .map(|&x| black_box(d.pdf(black_box(x))))
+                    .sum::<f32>()
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("invert", n), &xs, |b, xs| {
+            b.iter(|| {
+                xs.iter()
+                    .map(|&x| black_box(d.invert(black_box(x))))
+                    .sum::<f32>()
+            })
+        });
+    }
+    group.finish();
+}
+
+fn alias(c: &mut Criterion) {
+    let us = uniforms_1d(BATCH, 3);
+    let mut group = c.benchmark_group("distribution/alias");
+    for n in [1_000usize, 1_000_000] {
+        let w = weights(n, 4);
+        group.throughput(Throughput::Elements(1));
+        group.bench_with_input(BenchmarkId::new("build", n), &w, |b, w| {
+            b.iter(|| AliasTable::new(black_box(w)).unwrap())
+        });
+        let t = AliasTable::new(&w).unwrap();
+        group.throughput(Throughput::Elements(BATCH as u64));
+        group.bench_with_input(BenchmarkId::new("sample", n), &us, |b, us| {
+            b.iter(|| {
+                us.iter()
+                    .map(|&u| black_box(t.sample(black_box(u))))
+                    .sum::<usize>()
+            })
+        });
+        let idx: Vec<usize> = us.iter().map(|&u| t.sample(u)).collect();
+        group.bench_with_input(BenchmarkId::new("pmf", n), &idx, |b, idx| {
+            b.iter(|| {
+                idx.iter()
+                    .map(|&i| black_box(t.pmf(black_box(i))))
+                    .sum::<f32>()
+            })
+        });
+    }
+    group.finish();
+}
+
+fn piecewise_2d(c: &mut Criterion) {
+    let (width, height) = (1024usize, 512usize);
+    // An environment-map-like table: a smooth sky plus a small bright sun.
+    let mut values = weights(width * height, 5);
+    for y in 40..44 {
+        for x in 700..704 {
+            values[y * width + x] = 1.0e5;
+        }
+    }
+    let us = uniforms_2d(BATCH, 6);
+    let mut group = c.benchmark_group("distribution/piecewise_2d");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function(BenchmarkId::new("build", "1024x512"), |b| {
+        b.iter(|| PiecewiseConstant2D::new(black_box(&values), width, height).unwrap())
+    });
+    let d = PiecewiseConstant2D::new(&values, width, height).unwrap();
+    let ps: Vec<_> = us.iter().map(|&u| d.sample(u).0).collect();
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function(BenchmarkId::new("sample", "1024x512"), |b| {
+        b.iter(|| {
+            us.iter()
+                .map(|&u| black_box(d.sample(black_box(u))).1)
+                .sum::<f32>()
+        })
+    });
+    group.bench_function(BenchmarkId::new("pdf", "1024x512"), |b| {
+        b.iter(|| {
+            ps.iter()
+                .map(|&p| black_box(d.pdf(black_box(p))))
+                .sum::<f32>()
+        })
+    });
+    group.bench_function(BenchmarkId::new("invert", "1024x512"), |b| {
+        b.iter(|| {
+            ps.iter()
+                .map(|&p| black_box(d.invert(black_box(p))).x)
+                .sum::<f32>()
+        })
+    });
+    group.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = piecewise_1d, alias, piecewise_2d
+}
+criterion_main!(benches);

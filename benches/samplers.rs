@@ -1,0 +1,91 @@
+//! ns per 2D sample value for each sampler of `mcrt::sampling::sampler`.
+//!
+//! Run: `cargo bench --bench samplers`. Each timed iteration starts `BATCH / 8` pixel samples
+//! and draws 8 2D values from each, so time per iteration / `BATCH` is the cost of one 2D
+//! value including its share of `start_pixel_sample`; `start_pixel_sample` is also timed alone.
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use mcrt::glam::Vec2;
+#[cfg(feature = "sobol")]
+use mcrt::sampling::sampler::SobolSampler;
+use mcrt::sampling::sampler::{IndependentSampler, Sampler, StratifiedSampler};
+use std::hint::black_box;
+
+mod common;
+use common::{config, BATCH};
+
+/// 2D values drawn per pixel sample in the timed loop (a short path's worth).
+const DIMS: usize = 8;
+
+/// Pixel `i` of a 64-pixel-wide tile, so nothing per pixel can be hoisted out of the loop.
+fn pixel(i: u32) -> [u32; 2] {
+    [i & 63, i >> 6]
+}
+
+fn draw_2d<S: Sampler>(s: &mut S, index: u32) -> Vec2 {
+    let mut acc = Vec2::ZERO;
+    for i in 0..(BATCH / DIMS) as u32 {
+        s.start_pixel_sample(pixel(i), index);
+        for _ in 0..DIMS {
+            acc += black_box(s.next_2d());
+        }
+    }
+    acc
+}
+
+fn starts_only<S: Sampler>(s: &mut S, index: u32) {
+    for i in 0..BATCH as u32 {
+        s.start_pixel_sample(pixel(i), index);
+        black_box(&mut *s);
+    }
+}
+
+fn bench_one<S: Sampler>(c: &mut Criterion, name: &str, mut s: S) {
+    let mut group = c.benchmark_group(format!("sampler/{name}"));
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function("next_2d", |b| b.iter(|| draw_2d(&mut s, black_box(5))));
+    group.bench_function("start_pixel_sample", |b| {
+        b.iter(|| starts_only(&mut s, black_box(5)))
+    });
+    group.finish();
+}
+
+fn samplers(c: &mut Criterion) {
+    bench_one(c, "independent", IndependentSampler::new(128, 1).unwrap());
+    bench_one(
+        c,
+        "stratified",
+        StratifiedSampler::new(128, 1, true).unwrap(),
+    );
+    #[cfg(feature = "sobol")]
+    bench_one(c, "sobol", SobolSampler::new(128, 1).unwrap());
+    #[cfg(feature = "sobol")]
+    raw_sobol(c);
+}
+
+/// The `sobol_burley` call alone (two dimensions via `sample_4d`, a new seed per call as our
+/// padding uses), to show how much of the Sobol sampler's cost is the scrambled sequence.
+#[cfg(feature = "sobol")]
+fn raw_sobol(c: &mut Criterion) {
+    let mut group = c.benchmark_group("sampler/sobol_burley_raw");
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function("sample_4d", |b| {
+        b.iter(|| {
+            for i in 0..BATCH as u32 {
+                black_box(sobol_burley::sample_4d(
+                    black_box(i & 127),
+                    0,
+                    i.wrapping_mul(0x9e37_79b9),
+                ));
+            }
+        })
+    });
+    group.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = samplers
+}
+criterion_main!(benches);

@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Markdown tables of ns per call from criterion's output (target/criterion).
+
+Usage: scripts/bench_table.py [PREFIX ...]   e.g.  scripts/bench_table.py warp distribution sampler
+
+For every benchmark whose group id starts with a PREFIX, prints the median time per call and the
+fastest sample's time per call (time per iteration / elements per iteration). On a loaded
+machine the fastest sample is the better estimate of the cost; the median shows the noise.
+"""
+
+import json
+import os
+import sys
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "target", "criterion")
+
+
+def load(directory):
+    """(group, function, elements, median ns/iter, fastest ns/iter) of one benchmark."""
+    new = os.path.join(directory, "new")
+    with open(os.path.join(new, "benchmark.json")) as f:
+        meta = json.load(f)
+    with open(os.path.join(new, "estimates.json")) as f:
+        median = json.load(f)["median"]["point_estimate"]
+    with open(os.path.join(new, "sample.json")) as f:
+        sample = json.load(f)
+    fastest = min(t / n for t, n in zip(sample["times"], sample["iters"]))
+    elements = (meta.get("throughput") or {}).get("Elements", 1)
+    function = meta["function_id"]
+    if meta.get("value_str"):
+        function = f"{function} ({meta['value_str']})"
+    return meta["group_id"], function, elements, median, fastest
+
+
+def fmt(ns):
+    if ns >= 1e6:
+        return f"{ns / 1e6:.2f} ms"
+    if ns >= 1e3:
+        return f"{ns / 1e3:.2f} µs"
+    return f"{ns:.1f} ns"
+
+
+def main():
+    prefixes = sys.argv[1:] or [""]
+    rows = []
+    for group_dir in sorted(os.listdir(ROOT)):
+        path = os.path.join(ROOT, group_dir)
+        for root, dirs, files in os.walk(path):
+            if os.path.basename(root) == "new" and "benchmark.json" in files:
+                rows.append(load(os.path.dirname(root)))
+    rows = [r for r in rows if any(r[0].startswith(p) for p in prefixes)]
+    rows.sort(key=lambda r: (r[0], r[1]))
+    print("| benchmark | operation | median per call | fastest sample per call |")
+    print("|---|---|---|---|")
+    for group, function, elements, median, fastest in rows:
+        print(f"| {group} | {function} | {fmt(median / elements)} | {fmt(fastest / elements)} |")
+
+
+if __name__ == "__main__":
+    main()

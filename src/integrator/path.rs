@@ -1,0 +1,197 @@
+//! Unidirectional path tracing with next-event estimation, multiple importance sampling and
+//! Russian roulette.
+
+use super::{is_positive, Bsdf, SampleSource, Scene, Strategy, SurfacePoint};
+use glam::Vec3;
+
+/// A path tracer with Mitsuba 3's `path` semantics.
+///
+/// At every vertex: next-event estimation (a light chosen by the scene, usually by power,
+/// then a direction toward it) and BSDF sampling, combined by [`Strategy`]; emitters found by
+/// BSDF sampling are weighted against light sampling; delta BSDFs and delta lights get no
+/// MIS. Russian roulette from `rr_depth` on continues with probability
+/// `q = min(max(throughput) · η², 0.95)`.
+///
+/// Veach 1997, "Robust Monte Carlo Methods for Light Transport Simulation", PhD thesis,
+/// Stanford (chapter 9, multiple importance sampling).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathTracer {
+    /// Longest path in segments: −1 unlimited, 0 nothing, 1 emitters seen directly, 2 direct
+    /// lighting, and so on (Mitsuba's meaning).
+    pub max_depth: i32,
+    /// Depth (number of bounces sampled) from which Russian roulette applies.
+    pub rr_depth: u32,
+    /// Sampling strategy at every vertex.
+    pub strategy: Strategy,
+}
+
+impl Default for PathTracer {
+    fn default() -> Self {
+        Self {
+            max_depth: -1,
+            rr_depth: 5,
+            strategy: Strategy::MisPower,
+        }
+    }
+}
+
+/// Radiance along one camera ray, with the number of rays cast to find it.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PathResult {
+    /// The radiance estimate, linear RGB.
+    pub radiance: Vec3,
+    /// Rays cast (intersection and shadow rays).
+    pub rays: u32,
+}
+
+/// How the previous vertex sampled the current ray: what an emitter hit needs for its MIS
+/// weight.
+#[derive(Clone, Copy)]
+struct PrevVertex {
+    sp: SurfacePoint,
+    pdf: f32,
+    delta: bool,
+}
+
+impl PathTracer {
+    /// `max_depth` as an unsigned bound (−1 and other negatives become unlimited).
+    #[inline]
+    fn depth_limit(&self) -> u32 {
+        u32::try_from(self.max_depth).unwrap_or(u32::MAX)
+    }
+
+    /// Weight of an emitter reached by the ray sampled at `prev` (`None`: the camera).
+    #[inline]
+    fn hit_weight(
+        &self,
+        prev: &Option<PrevVertex>,
+        light_pdf: impl FnOnce(&SurfacePoint) -> f32,
+    ) -> f32 {
+        match prev {
+            None => 1.0,
+            Some(v) if v.delta => 1.0,
+            Some(v) => match self.strategy {
+                Strategy::BsdfOnly => 1.0,
+                Strategy::LightOnly => 0.0,
+                s => s.bsdf_weight(1.0, v.pdf, 1.0, light_pdf(&v.sp)),
+            },
+        }
+    }
+
+    /// Estimates the radiance arriving at the camera along the unit direction `dir` from
+    /// `origin` (hits beyond `t_max` are ignored).
+    pub fn li<S: Scene, R: SampleSource>(
+        &self,
+        scene: &S,
+        origin: Vec3,
+        dir: Vec3,
+        t_max: f32,
+        rng: &mut R,
+    ) -> PathResult {
+        let max_depth = self.depth_limit();
+        let mut out = PathResult::default();
+        if max_depth == 0 {
+            return out;
+        }
+        let mut throughput = Vec3::ONE;
+        let mut eta = 1.0f32;
+        let mut ray_dir = dir;
+        let mut prev: Option<PrevVertex> = None;
+        let mut hit = scene.intersect(origin, dir, t_max);
+        out.rays += 1;
+        let mut depth = 0u32;
+        loop {
+            let Some(sp) = hit else {
+                if scene.has_environment() {
+                    let le = scene.environment(ray_dir);
+                    let w = self.hit_weight(&prev, |from| scene.environment_pdf(from, ray_dir));
+                    out.radiance += throughput * le * w;
+                }
+                break;
+            };
+            let wo_world = -ray_dir;
+            if scene.is_emitter(&sp) {
+                let le = scene.emitted(&sp, wo_world);
+                if le != Vec3::ZERO {
+                    let w = self.hit_weight(&prev, |from| scene.light_pdf(from, &sp));
+                    out.radiance += throughput * le * w;
+                }
+            }
+            if depth + 1 >= max_depth {
+                break;
+            }
+            let bsdf = scene.bsdf(&sp);
+            let wo = sp.frame.to_local(wo_world);
+            let flags = bsdf.flags();
+            let u_pick = rng.next_2d();
+            let u_light = rng.next_2d();
+            if flags.smooth && (self.strategy.samples_lights() || scene.has_delta_lights()) {
+                if let Some(ls) = scene.sample_light(&sp, u_pick, u_light) {
+                    out.radiance += throughput * self.nee(scene, bsdf, &sp, wo, &ls, &mut out.rays);
+                }
+            }
+            let u1 = rng.next_1d();
+            let u2 = rng.next_2d();
+            let Some(bs) = bsdf.sample(wo, u1, u2) else {
+                break;
+            };
+            throughput *= bs.weight;
+            eta *= bs.eta;
+            depth += 1;
+            let t_max_c = throughput.max_element();
+            if !is_positive(t_max_c) {
+                break;
+            }
+            if depth >= self.rr_depth {
+                let q = (t_max_c * eta * eta).min(0.95);
+                if rng.next_1d() >= q {
+                    break;
+                }
+                throughput /= q;
+            }
+            ray_dir = sp.frame.to_world(bs.wi);
+            hit = scene.trace(&sp, ray_dir);
+            out.rays += 1;
+            prev = Some(PrevVertex {
+                sp,
+                pdf: bs.pdf,
+                delta: bs.delta,
+            });
+        }
+        out
+    }
+
+    /// The contribution of one light sample at a vertex (before the path throughput).
+    #[inline]
+    fn nee<S: Scene>(
+        &self,
+        scene: &S,
+        bsdf: &S::Bsdf,
+        sp: &SurfacePoint,
+        wo: Vec3,
+        ls: &super::LightSample,
+        rays: &mut u32,
+    ) -> Vec3 {
+        if !ls.delta && !self.strategy.samples_lights() {
+            return Vec3::ZERO;
+        }
+        if !is_positive(ls.pdf) {
+            return Vec3::ZERO;
+        }
+        let wi = sp.frame.to_local(ls.wi);
+        let (f, pdf_b) = bsdf.eval_pdf(wo, wi);
+        if f == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        *rays += 1;
+        if scene.occluded(sp, ls.wi, ls.dist) {
+            return Vec3::ZERO;
+        }
+        let w = if ls.delta {
+            1.0
+        } else {
+            self.strategy.light_weight(1.0, ls.pdf, 1.0, pdf_b)
+        };
+        f * ls.radiance * (w / ls.pdf)
+    }
+}

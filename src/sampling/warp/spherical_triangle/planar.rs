@@ -1,0 +1,138 @@
+//! A planar triangle or parallelogram seen from a point, in `f64`: ray hits with a tolerant
+//! inside test, uniform area sampling, and the area → solid angle conversion. Shared by the
+//! spherical triangle and rectangle warps.
+
+use glam::{DVec2, DVec3, Vec3};
+
+use crate::sampling::SamplingError;
+
+/// Angular tolerance (radians) of the inside test, a few `f32` ulps of a unit direction:
+/// a sampled direction rounded to `f32` must still count as hitting the shape. On the
+/// shape's plane the band is this angle times d/|cos θ'|.
+pub(crate) const ANGULAR_TOLERANCE: f64 = 1e-6;
+
+/// The shape p0 + s e1 + t e2 with s, t ≥ 0 and s + t ≤ 1 (triangle) or s, t ≤ 1
+/// (parallelogram), seen from `origin`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Planar {
+    pub(crate) origin: DVec3,
+    pub(crate) p0: DVec3,
+    pub(crate) e1: DVec3,
+    pub(crate) e2: DVec3,
+    /// e1 × e2.
+    cross: DVec3,
+    /// Unit normal.
+    pub(crate) normal: DVec3,
+    /// The shape's area.
+    pub(crate) area: f64,
+    triangle: bool,
+}
+
+/// Widens a `Vec3` to `f64`, rejecting non-finite input.
+pub(crate) fn widen(name: &'static str, v: Vec3) -> Result<DVec3, SamplingError> {
+    if v.is_finite() {
+        Ok(v.as_dvec3())
+    } else {
+        Err(SamplingError::InvalidDirection {
+            name,
+            expected: "finite coordinates",
+        })
+    }
+}
+
+impl Planar {
+    /// Validates the shape: nonzero area, origin off its plane (relative distance > 1e-9).
+    pub(crate) fn new(
+        origin: DVec3,
+        p0: DVec3,
+        e1: DVec3,
+        e2: DVec3,
+        triangle: bool,
+    ) -> Result<Self, SamplingError> {
+        let cross = e1.cross(e2);
+        let len = cross.length();
+        if !len.is_finite() || len <= 1e-12 * e1.length() * e2.length() {
+            return Err(SamplingError::Degenerate {
+                what: "the shape has zero area (collinear or zero-length edges)",
+            });
+        }
+        let normal = cross / len;
+        let to = p0 - origin;
+        let scale = to.length().max(e1.length()).max(e2.length());
+        let off_plane = normal.dot(to).abs();
+        if off_plane.is_nan() || off_plane <= 1e-9 * scale {
+            return Err(SamplingError::Degenerate {
+                what: "the origin lies in the plane of the shape (zero solid angle)",
+            });
+        }
+        let area = if triangle { 0.5 * len } else { len };
+        Ok(Self {
+            origin,
+            p0,
+            e1,
+            e2,
+            cross,
+            normal,
+            area,
+            triangle,
+        })
+    }
+
+    /// Where the ray from the origin along unit `dir` meets the shape (with the angular
+    /// tolerance): (distance, |cos θ'| at the shape).
+    pub(crate) fn hit(&self, dir: DVec3) -> Option<(f64, f64)> {
+        let denom = self.normal.dot(dir);
+        let dist = self.normal.dot(self.p0 - self.origin) / denom;
+        if !dist.is_finite() || dist <= 0.0 {
+            return None;
+        }
+        let p = self.origin + dist * dir - self.p0;
+        let inv = 1.0 / self.cross.dot(self.normal);
+        let s = p.cross(self.e2).dot(self.normal) * inv;
+        let t = self.e1.cross(p).dot(self.normal) * inv;
+        // Coordinate tolerances: the angular band, stretched by 1/|cos θ'| at grazing views
+        // (where an angular error moves the hit point furthest), in units of each
+        // coordinate's height.
+        let band = ANGULAR_TOLERANCE * dist / denom.abs() * inv;
+        let (ts, tt) = (band * self.e2.length(), band * self.e1.length());
+        let inside = if self.triangle {
+            let tu = band * (self.e2 - self.e1).length();
+            s >= -ts && t >= -tt && s + t <= 1.0 + tu
+        } else {
+            s >= -ts && t >= -tt && s <= 1.0 + ts && t <= 1.0 + tt
+        };
+        inside.then_some((dist, denom.abs()))
+    }
+
+    /// The solid-angle pdf of area sampling at unit `dir`: d² / (A |cos θ'|), 0 on a miss.
+    pub(crate) fn area_pdf(&self, dir: DVec3) -> f64 {
+        match self.hit(dir) {
+            Some((d, cos)) if cos > 0.0 => d * d / (self.area * cos),
+            _ => 0.0,
+        }
+    }
+
+    /// A point uniform in area: triangle b₁ = 1 − √u₁, b₂ = u₂ √u₁; parallelogram (u₁, u₂).
+    pub(crate) fn sample_area(&self, u: DVec2) -> DVec3 {
+        let (s, t) = if self.triangle {
+            let r = u.x.sqrt();
+            (1.0 - r, u.y * r)
+        } else {
+            (u.x, u.y)
+        };
+        self.p0 + s * self.e1 + t * self.e2
+    }
+
+    /// The unit direction from the origin to `p`, in `f32`.
+    pub(crate) fn direction_to(&self, p: DVec3) -> Vec3 {
+        (p - self.origin).normalize().as_vec3()
+    }
+}
+
+/// The solid angle of the triangle with unit vertex directions a, b, c: Van Oosterom &
+/// Strackee 1983, "The Solid Angle of a Plane Triangle", IEEE Trans. Biomed. Eng.
+pub(crate) fn triangle_solid_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let num = a.dot(b.cross(c)).abs();
+    let den = 1.0 + a.dot(b) + b.dot(c) + c.dot(a);
+    2.0 * num.atan2(den)
+}

@@ -1,0 +1,189 @@
+//! Materials: Mitsuba 3's `diffuse`, `conductor`, `roughconductor`, `dielectric` and
+//! `twosided`, as [`Bsdf`] implementations in the local z-up frame.
+//!
+//! One-sided BSDFs are black from the back (`wo.z ≤ 0`), as in Mitsuba; [`Sided`] adds the
+//! `twosided` flip. [`AnyBsdf`] dispatches over all of them; a scene made of diffuse surfaces
+//! only is rendered with `Sided<Diffuse>` instead, so no glossy or refraction code is
+//! compiled into its render loop.
+
+mod conductor;
+mod dielectric;
+mod diffuse;
+mod fresnel;
+mod rough_conductor;
+
+pub use conductor::{Conductor, Fresnel};
+pub use dielectric::Dielectric;
+pub use diffuse::Diffuse;
+pub use fresnel::{fresnel_conductor, fresnel_dielectric};
+pub use rough_conductor::{Ndf, RoughConductor};
+
+use super::description::{BsdfDesc, ConductorFresnel, MicrofacetKind};
+use crate::integrator::{Bsdf, BsdfFlags, BsdfSample};
+use crate::sampling::SamplingError;
+use glam::{Vec2, Vec3};
+
+/// Any of the supported materials.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AnyBsdf {
+    /// Lambertian.
+    Diffuse(Diffuse),
+    /// Smooth mirror.
+    Conductor(Conductor),
+    /// Microfacet conductor.
+    RoughConductor(RoughConductor),
+    /// Smooth glass.
+    Dielectric(Dielectric),
+}
+
+macro_rules! dispatch {
+    ($self:ident, $b:ident => $e:expr) => {
+        match $self {
+            AnyBsdf::Diffuse($b) => $e,
+            AnyBsdf::Conductor($b) => $e,
+            AnyBsdf::RoughConductor($b) => $e,
+            AnyBsdf::Dielectric($b) => $e,
+        }
+    };
+}
+
+impl Bsdf for AnyBsdf {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        dispatch!(self, b => b.flags())
+    }
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        dispatch!(self, b => b.eval(wo, wi))
+    }
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        dispatch!(self, b => b.pdf(wo, wi))
+    }
+    #[inline]
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        dispatch!(self, b => b.eval_pdf(wo, wi))
+    }
+    #[inline]
+    fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
+        dispatch!(self, b => b.sample(wo, u1, u2))
+    }
+}
+
+/// A BSDF with Mitsuba's `twosided` option: when `two_sided`, a direction below the surface
+/// sees the BSDF mirrored to the other side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sided<B> {
+    /// The material.
+    pub bsdf: B,
+    /// Whether the back side shows the same material.
+    pub two_sided: bool,
+}
+
+#[inline]
+fn flip(w: Vec3) -> Vec3 {
+    Vec3::new(w.x, w.y, -w.z)
+}
+
+impl<B: Bsdf> Bsdf for Sided<B> {
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        self.bsdf.flags()
+    }
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        self.eval_pdf(wo, wi).0
+    }
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_pdf(wo, wi).1
+    }
+    #[inline]
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        if self.two_sided && wo.z < 0.0 {
+            self.bsdf.eval_pdf(flip(wo), flip(wi))
+        } else {
+            self.bsdf.eval_pdf(wo, wi)
+        }
+    }
+    #[inline]
+    fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
+        if self.two_sided && wo.z < 0.0 {
+            let mut s = self.bsdf.sample(flip(wo), u1, u2)?;
+            s.wi = flip(s.wi);
+            Some(s)
+        } else {
+            self.bsdf.sample(wo, u1, u2)
+        }
+    }
+}
+
+fn fresnel_of(f: &ConductorFresnel) -> Fresnel {
+    match *f {
+        ConductorFresnel::Perfect => Fresnel::Perfect,
+        ConductorFresnel::Complex { eta, k } => Fresnel::Complex { eta, k },
+    }
+}
+
+impl AnyBsdf {
+    /// The material a description asks for, and whether it is two-sided (`twosided`
+    /// wrappers nest; any depth means two-sided).
+    ///
+    /// # Errors
+    /// A roughness outside the microfacet warps' range.
+    pub fn from_desc(desc: &BsdfDesc) -> Result<Sided<AnyBsdf>, SamplingError> {
+        let bsdf = match desc {
+            BsdfDesc::TwoSided(inner) => {
+                let mut s = Self::from_desc(inner)?;
+                s.two_sided = true;
+                return Ok(s);
+            }
+            BsdfDesc::Diffuse { reflectance } => AnyBsdf::Diffuse(Diffuse {
+                reflectance: *reflectance,
+            }),
+            BsdfDesc::Conductor {
+                fresnel,
+                specular_reflectance,
+            } => AnyBsdf::Conductor(Conductor {
+                fresnel: fresnel_of(fresnel),
+                specular_reflectance: *specular_reflectance,
+            }),
+            BsdfDesc::RoughConductor {
+                distribution,
+                alpha,
+                fresnel,
+                specular_reflectance,
+            } => AnyBsdf::RoughConductor(RoughConductor::new(
+                *distribution == MicrofacetKind::Ggx,
+                *alpha,
+                fresnel_of(fresnel),
+                *specular_reflectance,
+            )?),
+            BsdfDesc::Dielectric {
+                int_ior,
+                ext_ior,
+                specular_reflectance,
+                specular_transmittance,
+            } => AnyBsdf::Dielectric(Dielectric {
+                eta: int_ior / ext_ior,
+                specular_reflectance: *specular_reflectance,
+                specular_transmittance: *specular_transmittance,
+            }),
+        };
+        Ok(Sided {
+            bsdf,
+            two_sided: false,
+        })
+    }
+
+    /// The Lambertian albedo if this is a diffuse material.
+    pub fn as_diffuse(&self) -> Option<Diffuse> {
+        match self {
+            AnyBsdf::Diffuse(d) => Some(*d),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

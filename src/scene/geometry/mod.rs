@@ -1,0 +1,305 @@
+//! Scene geometry in world space: ray casting, occlusion, and sampling points on shapes.
+//!
+//! [`Geometry::new`] turns the scene's [`ShapeDesc`]s into primitives: meshes, rectangles and
+//! cubes become triangles (two per rectangle or cube face, as in Mitsuba 3), spheres and
+//! disks stay analytic. An acceleration structure ([`AccelKind`]) sits on top.
+//!
+//! # Conventions
+//! - [`Ray::dir`] need not be unit length; every `t` is in units of its length. The renderer
+//!   passes unit directions for camera and BSDF rays; [`spawn_ray_to`] returns a non-unit one.
+//! - A hit needs `0 < t < t_max`. No epsilon is applied: rays leaving a surface must start at
+//!   [`offset_origin`] (or use [`spawn_ray`] / [`spawn_ray_to`]).
+//! - [`Hit::ng`] is the unit normal of the shape's *front* side, never flipped towards the
+//!   ray: rectangles and disks `+z` of object space (transformed as a normal), cubes and
+//!   spheres outwards, meshes by their winding (counter-clockwise seen from the front);
+//!   `flip_normals` negates it. [`Hit::ns`] interpolates the mesh's vertex normals where it
+//!   has them, else equals `ng`; it is negated by `flip_normals` too.
+//! - [`Hit::uv`]: barycentric weights (b₁, b₂) of vertices 1 and 2 for triangles; for spheres
+//!   (φ/2π, θ/π) in object space; for disks (r, φ/2π).
+//!
+//! # Shape sampling
+//! See [`Geometry::sample_shape`]: densities are per unit solid angle at the reference point.
+//! Spheres are sampled by the cone they subtend
+//! ([`UniformCone`](crate::sampling::warp::UniformCone)), mesh triangles (chosen by area)
+//! by [`SphericalTriangle`](crate::sampling::warp::SphericalTriangle), rectangles by
+//! [`SphericalRectangle`](crate::sampling::warp::SphericalRectangle), disks uniformly by
+//! area; uniform area sampling converted to solid angle is the fallback for tiny or sliver
+//! solid angles, references inside spheres and sheared rectangles (`docs/geometry.md`).
+//!
+//! ```
+//! use mcrt::glam::{Mat4, Vec3};
+//! use mcrt::scene::description::{ShapeDesc, ShapeKind};
+//! use mcrt::scene::geometry::{AccelKind, Geometry, Ray};
+//!
+//! // Mitsuba's rectangle [-1,1]² at z = 0, facing +z, moved to z = -2.
+//! let mut rect = ShapeDesc::new(ShapeKind::Rectangle);
+//! rect.to_world = Mat4::from_translation(Vec3::new(0.0, 0.0, -2.0));
+//! let geo = Geometry::new(&[rect], None, AccelKind::Bvh).unwrap();
+//! let ray = Ray { origin: Vec3::ZERO, dir: -Vec3::Z };
+//! let hit = geo.intersect(&ray, f32::INFINITY).unwrap();
+//! assert!((hit.t - 2.0).abs() < 1e-6);
+//! assert_eq!(hit.ng, Vec3::Z);
+//! assert!(geo.occluded(&ray, 3.0) && !geo.occluded(&ray, 1.5));
+//! ```
+
+mod build;
+mod error;
+mod intersect;
+mod offset;
+mod sample;
+
+pub use crate::scene::accel::AccelKind;
+pub use error::GeometryError;
+pub use offset::{offset_origin, spawn_ray, spawn_ray_to};
+pub use sample::ShapeSampling;
+
+use crate::scene::accel::{Aabb, Accel};
+use crate::scene::description::ShapeDesc;
+use build::{Prim, PrimId, ShapeData};
+use glam::{Vec2, Vec3};
+use intersect::{hit_disk, hit_sphere, TriRay};
+use std::f32::consts::PI;
+use std::path::Path;
+
+/// A ray `origin + t · dir`. `dir` need not be unit length; distances are in its units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ray {
+    /// Where the ray starts.
+    pub origin: Vec3,
+    /// Its direction (nonzero; unit for camera and BSDF rays).
+    pub dir: Vec3,
+}
+
+impl Ray {
+    /// The point at parameter `t`.
+    #[inline]
+    pub fn at(&self, t: f32) -> Vec3 {
+        self.origin + t * self.dir
+    }
+}
+
+/// The nearest intersection of a ray with the scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// Ray parameter of the hit (in units of the ray's direction length).
+    pub t: f32,
+    /// The hit point, on the surface (computed from the primitive, not from `t`).
+    pub p: Vec3,
+    /// Unit geometric normal of the shape's front side (not flipped towards the ray).
+    pub ng: Vec3,
+    /// Unit shading normal: interpolated vertex normals where the mesh has them, else `ng`.
+    pub ns: Vec3,
+    /// Surface coordinates (see the module docs).
+    pub uv: Vec2,
+    /// Index of the shape in the list given to [`Geometry::new`].
+    pub shape: u32,
+    /// Index of the primitive within the shape (triangle index; 0 for spheres and disks).
+    pub prim: u32,
+}
+
+/// A point sampled on a shape, seen from a reference point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeSample {
+    /// The point.
+    pub p: Vec3,
+    /// Unit normal of the shape's front side at `p`.
+    pub n: Vec3,
+    /// Density per unit solid angle at the reference point.
+    pub pdf: f32,
+}
+
+/// The scene's shapes in world space with an acceleration structure.
+#[derive(Debug, Clone)]
+pub struct Geometry {
+    /// Primitives in the acceleration structure's order.
+    prims: Vec<Prim>,
+    ids: Vec<PrimId>,
+    accel: Accel,
+    shapes: Vec<ShapeData>,
+    bounds: Aabb,
+    shape_sampling: ShapeSampling,
+}
+
+/// Where a closest-hit search found its hit: stored primitive and barycentrics.
+#[derive(Clone, Copy)]
+struct HitRecord {
+    index: u32,
+    b1: f32,
+    b2: f32,
+}
+
+impl Geometry {
+    /// Builds world-space geometry for `shapes` (OBJ file names resolve against
+    /// `base_dir`) with the chosen acceleration structure.
+    ///
+    /// # Errors
+    /// A transform that is not finite, affine and invertible; a sphere under a non-uniform
+    /// scale; an invalid mesh; an unreadable OBJ file.
+    pub fn new(
+        shapes: &[ShapeDesc],
+        base_dir: Option<&Path>,
+        accel: AccelKind,
+    ) -> Result<Self, GeometryError> {
+        let built = build::build(shapes, base_dir)?;
+        let bounds: Vec<Aabb> = built
+            .prims
+            .iter()
+            .map(|p| prim_bounds(p, &built.shapes))
+            .collect();
+        let scene = bounds.iter().fold(Aabb::EMPTY, |b, p| b.union(*p));
+        let accel = Accel::build(accel, &bounds);
+        let order = accel.order();
+        Ok(Self {
+            prims: order.iter().map(|&i| built.prims[i as usize]).collect(),
+            ids: order.iter().map(|&i| built.ids[i as usize]).collect(),
+            accel,
+            shapes: built.shapes,
+            bounds: scene,
+            shape_sampling: ShapeSampling::default(),
+        })
+    }
+
+    /// Number of shapes.
+    pub fn shape_count(&self) -> usize {
+        self.shapes.len()
+    }
+
+    /// Number of primitives (triangles, spheres, disks).
+    pub fn primitive_count(&self) -> usize {
+        self.prims.len()
+    }
+
+    /// The acceleration structure in use.
+    pub fn accel_kind(&self) -> AccelKind {
+        self.accel.kind()
+    }
+
+    /// The world-space bounding box of all shapes (empty when there are none).
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// A sphere holding every shape: (centre, radius); (origin, 0) for an empty scene.
+    pub fn bounding_sphere(&self) -> (Vec3, f32) {
+        if self.bounds.is_empty() {
+            return (Vec3::ZERO, 0.0);
+        }
+        let c = self.bounds.center();
+        (c, (self.bounds.max - c).length())
+    }
+
+    /// The nearest hit with `0 < t < t_max`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let tri = TriRay::new(ray.origin, ray.dir);
+        let mut rec = HitRecord {
+            index: 0,
+            b1: 0.0,
+            b2: 0.0,
+        };
+        let t = self.accel.closest(ray.origin, ray.dir, t_max, |i, bound| {
+            let (t, b1, b2) = self.hit_prim(&tri, ray, i, bound)?;
+            rec = HitRecord { index: i, b1, b2 };
+            Some(t)
+        })?;
+        Some(self.make_hit(ray, t, rec))
+    }
+
+    /// True when anything is hit with `0 < t < t_max`.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        let tri = TriRay::new(ray.origin, ray.dir);
+        self.accel.any(ray.origin, ray.dir, t_max, |i, bound| {
+            self.hit_prim(&tri, ray, i, bound).is_some()
+        })
+    }
+
+    /// Intersects stored primitive `i`: (t, b1, b2), barycentrics only for triangles.
+    #[inline(always)]
+    fn hit_prim(&self, tri: &TriRay, ray: &Ray, i: u32, t_max: f32) -> Option<(f32, f32, f32)> {
+        match &self.prims[i as usize] {
+            Prim::Tri(v) => tri.hit(v, t_max),
+            &Prim::Sphere { center, radius } => {
+                hit_sphere(ray.origin, ray.dir, center, radius, t_max).map(|t| (t, 0.0, 0.0))
+            }
+            &Prim::Disk(s) => match &self.shapes[s as usize] {
+                ShapeData::Disk(d) => {
+                    hit_disk(ray.origin, ray.dir, &d.to_object, t_max).map(|(t, _)| (t, 0.0, 0.0))
+                }
+                _ => None,
+            },
+        }
+    }
+
+    /// Fills in the surface data of a hit found by the search.
+    fn make_hit(&self, ray: &Ray, t: f32, rec: HitRecord) -> Hit {
+        let id = self.ids[rec.index as usize];
+        let mut hit = Hit {
+            t,
+            p: ray.at(t),
+            ng: Vec3::Z,
+            ns: Vec3::Z,
+            uv: Vec2::new(rec.b1, rec.b2),
+            shape: id.shape,
+            prim: id.prim,
+        };
+        match &self.shapes[id.shape as usize] {
+            ShapeData::Mesh(m) => {
+                let idx = m.indices[id.prim as usize];
+                let [a, b, c] = idx.map(|v| m.positions[v as usize]);
+                let b0 = 1.0 - rec.b1 - rec.b2;
+                hit.p = a * b0 + b * rec.b1 + c * rec.b2;
+                let sign = if m.flip { -1.0 } else { 1.0 };
+                hit.ng = sign * (b - a).cross(c - a).normalize_or(Vec3::Z);
+                hit.ns = if m.normals.is_empty() {
+                    hit.ng
+                } else {
+                    let [na, nb, nc] = idx.map(|v| m.normals[v as usize]);
+                    sign * (na * b0 + nb * rec.b1 + nc * rec.b2).normalize_or(hit.ng * sign)
+                };
+            }
+            &ShapeData::Sphere {
+                center,
+                radius,
+                flip,
+            } => {
+                let n = (hit.p - center).normalize_or(Vec3::Z);
+                hit.p = center + radius * n;
+                hit.ng = if flip { -n } else { n };
+                hit.ns = hit.ng;
+                let phi = n.y.atan2(n.x);
+                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+                hit.uv = Vec2::new(phi / (2.0 * PI), n.z.clamp(-1.0, 1.0).acos() / PI);
+            }
+            ShapeData::Disk(d) => {
+                let local = d.to_object.transform_point3(hit.p);
+                let local = Vec3::new(local.x, local.y, 0.0);
+                hit.p = d.to_world.transform_point3(local);
+                hit.ng = d.normal;
+                hit.ns = d.normal;
+                let phi = local.y.atan2(local.x);
+                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+                hit.uv = Vec2::new(local.truncate().length(), phi / (2.0 * PI));
+            }
+        }
+        hit
+    }
+}
+
+fn prim_bounds(p: &Prim, shapes: &[ShapeData]) -> Aabb {
+    match p {
+        Prim::Tri(v) => Aabb::from_points(&v.vertices()),
+        &Prim::Sphere { center, radius } => Aabb {
+            min: center - Vec3::splat(radius),
+            max: center + Vec3::splat(radius),
+        },
+        &Prim::Disk(s) => match &shapes[s as usize] {
+            ShapeData::Disk(d) => {
+                let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                    .map(|(x, y)| d.to_world.transform_point3(Vec3::new(x, y, 0.0)));
+                Aabb::from_points(&corners)
+            }
+            _ => Aabb::EMPTY,
+        },
+    }
+}

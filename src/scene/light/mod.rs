@@ -1,0 +1,278 @@
+//! Lights: area emitters on shapes (front side only), point lights, a constant environment
+//! and an environment map, chosen for next-event estimation by power.
+
+mod envmap;
+
+pub use envmap::EnvMap;
+
+use crate::integrator::{is_positive, LightSample, SurfacePoint};
+use crate::sampling::distribution::AliasTable;
+use crate::scene::description::{EmitterDesc, SceneDescription};
+use crate::scene::render::geo::{Geometry, Hit};
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// One light.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Light {
+    /// Constant radiance leaving the front side of a shape.
+    Area {
+        /// The shape's index in the geometry.
+        shape: u32,
+        /// Emitted radiance.
+        radiance: Vec3,
+    },
+    /// An isotropic point light.
+    Point {
+        /// Position.
+        position: Vec3,
+        /// Radiant intensity (W/sr).
+        intensity: Vec3,
+    },
+    /// Radiance arriving equally from every direction, sampled uniformly over the sphere
+    /// (pdf 1/(4π) per steradian).
+    Constant {
+        /// Radiance.
+        radiance: Vec3,
+    },
+    /// An environment map.
+    EnvMap(Box<EnvMap>),
+}
+
+/// Why the lights of a scene could not be set up.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LightError(pub String);
+
+impl std::fmt::Display for LightError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "light setup: {}", self.0)
+    }
+}
+
+impl std::error::Error for LightError {}
+
+/// All lights of a scene with the distribution that chooses among them.
+#[derive(Debug, Clone)]
+pub struct Lights {
+    lights: Vec<Light>,
+    /// Chooses a light by power; `None` when no light emits.
+    picker: Option<AliasTable>,
+    shape_light: Vec<Option<u32>>,
+    env: Option<u32>,
+    has_delta: bool,
+}
+
+fn mean(v: Vec3) -> f32 {
+    (v.x + v.y + v.z) / 3.0
+}
+
+impl Lights {
+    /// The lights of a scene; `radius` bounds the scene (for the power of environment
+    /// lights).
+    pub fn new(desc: &SceneDescription, geo: &Geometry, radius: f32) -> Result<Self, LightError> {
+        let mut lights = Vec::new();
+        let mut power = Vec::new();
+        let mut shape_light = vec![None; desc.shapes.len()];
+        for (i, s) in desc.shapes.iter().enumerate() {
+            if let Some(e) = &s.emitter {
+                shape_light[i] = Some(lights.len() as u32);
+                power.push(PI * geo.shape_area(i as u32) * mean(e.radiance).max(0.0));
+                lights.push(Light::Area {
+                    shape: i as u32,
+                    radiance: e.radiance,
+                });
+            }
+        }
+        let mut env = None;
+        let mut has_delta = false;
+        for e in &desc.emitters {
+            match e {
+                EmitterDesc::Point {
+                    position,
+                    intensity,
+                } => {
+                    has_delta = true;
+                    power.push(4.0 * PI * mean(*intensity).max(0.0));
+                    lights.push(Light::Point {
+                        position: *position,
+                        intensity: *intensity,
+                    });
+                }
+                EmitterDesc::Constant { radiance } => {
+                    if env.is_some() {
+                        return Err(LightError("more than one environment emitter".into()));
+                    }
+                    env = Some(lights.len() as u32);
+                    power.push(4.0 * PI * PI * radius * radius * mean(*radiance).max(0.0));
+                    lights.push(Light::Constant {
+                        radiance: *radiance,
+                    });
+                }
+                EmitterDesc::EnvMap {
+                    filename,
+                    scale,
+                    to_world,
+                } => {
+                    if env.is_some() {
+                        return Err(LightError("more than one environment emitter".into()));
+                    }
+                    let map = EnvMap::load(filename, *scale, *to_world)
+                        .map_err(|e| LightError(format!("{}: {e}", filename.display())))?;
+                    env = Some(lights.len() as u32);
+                    power.push(PI * radius * radius * map.integral());
+                    lights.push(Light::EnvMap(Box::new(map)));
+                }
+            }
+        }
+        Ok(Self {
+            picker: AliasTable::new(&power).ok(),
+            lights,
+            shape_light,
+            env,
+            has_delta,
+        })
+    }
+
+    /// The lights.
+    pub fn lights(&self) -> &[Light] {
+        &self.lights
+    }
+
+    /// Probability of choosing light `i`.
+    #[inline]
+    fn pmf(&self, i: u32) -> f32 {
+        self.picker.as_ref().map_or(0.0, |t| t.pmf(i as usize))
+    }
+
+    /// Whether any light is a point light.
+    pub fn has_delta(&self) -> bool {
+        self.has_delta
+    }
+
+    /// Whether there is an environment light.
+    pub fn has_environment(&self) -> bool {
+        self.env.is_some()
+    }
+
+    /// Emitted radiance of shape `shape` if it is an area light.
+    #[inline]
+    pub fn area_radiance(&self, shape: u32) -> Option<Vec3> {
+        let i = (*self.shape_light.get(shape as usize)?)?;
+        match self.lights[i as usize] {
+            Light::Area { radiance, .. } => Some(radiance),
+            _ => None,
+        }
+    }
+
+    /// Radiance arriving from the environment against the ray direction `dir`.
+    #[inline]
+    pub fn environment(&self, dir: Vec3) -> Vec3 {
+        match self.env.map(|i| &self.lights[i as usize]) {
+            Some(Light::Constant { radiance }) => *radiance,
+            Some(Light::EnvMap(m)) => m.eval(dir),
+            _ => Vec3::ZERO,
+        }
+    }
+
+    /// Chooses a light by power and samples a direction toward it from `from`.
+    pub fn sample(
+        &self,
+        geo: &Geometry,
+        from: &SurfacePoint,
+        u_pick: Vec2,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        let (i, pick) = self.picker.as_ref()?.sample_with_pmf(u_pick.x);
+        let u_rest = u_pick.y;
+        match self.lights[i] {
+            Light::Area { shape, radiance } => {
+                let s = geo.sample_shape(shape, from.p, u_rest, u)?;
+                let d = s.p - from.p;
+                let dist = d.length();
+                if !is_positive(dist) {
+                    return None;
+                }
+                let wi = d / dist;
+                if s.n.dot(wi) >= 0.0 || !is_positive(s.pdf) || !s.pdf.is_finite() {
+                    return None;
+                }
+                Some(LightSample {
+                    wi,
+                    dist,
+                    radiance,
+                    pdf: s.pdf * pick,
+                    delta: false,
+                })
+            }
+            Light::Point {
+                position,
+                intensity,
+            } => {
+                let d = position - from.p;
+                let d2 = d.length_squared();
+                if !is_positive(d2) {
+                    return None;
+                }
+                let dist = d2.sqrt();
+                Some(LightSample {
+                    wi: d / dist,
+                    dist,
+                    radiance: intensity / d2,
+                    pdf: pick,
+                    delta: true,
+                })
+            }
+            Light::EnvMap(ref m) => {
+                let (wi, radiance, pdf) = m.sample(u)?;
+                Some(LightSample {
+                    wi,
+                    dist: f32::INFINITY,
+                    radiance,
+                    pdf: pdf * pick,
+                    delta: false,
+                })
+            }
+            Light::Constant { radiance } => {
+                let z = 1.0 - 2.0 * u.x;
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let (s, c) = (2.0 * PI * u.y).sin_cos();
+                Some(LightSample {
+                    wi: Vec3::new(r * c, r * s, z),
+                    dist: f32::INFINITY,
+                    radiance,
+                    pdf: pick / (4.0 * PI),
+                    delta: false,
+                })
+            }
+        }
+    }
+
+    /// Density (per steradian, with the choice) with which [`Lights::sample`] at `from`
+    /// returns the direction toward `hit` on an area light.
+    pub fn pdf_hit(&self, geo: &Geometry, from: &SurfacePoint, hit: &SurfacePoint) -> f32 {
+        let Some(Some(i)) = self.shape_light.get(hit.shape as usize) else {
+            return 0.0;
+        };
+        let h = Hit {
+            t: hit.t,
+            p: hit.p,
+            ng: hit.ng,
+            ns: hit.frame.n,
+            uv: hit.uv,
+            shape: hit.shape,
+            prim: hit.prim,
+        };
+        geo.shape_pdf(hit.shape, from.p, &h) * self.pmf(*i)
+    }
+
+    /// The same for the environment along `dir`.
+    pub fn pdf_environment(&self, _from: &SurfacePoint, dir: Vec3) -> f32 {
+        match self.env {
+            Some(i) => match &self.lights[i as usize] {
+                Light::EnvMap(m) => self.pmf(i) * m.pdf(dir),
+                _ => self.pmf(i) / (4.0 * PI),
+            },
+            None => 0.0,
+        }
+    }
+}

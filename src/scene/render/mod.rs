@@ -1,0 +1,351 @@
+//! The renderer: builds the estimators' view of a [`SceneDescription`] and renders it in
+//! parallel into a [`Film`].
+//!
+//! **Simulating only what a scene calls for.** [`Effects::of`] inspects materials, lights and
+//! `max_depth`; [`Renderer::render`] then picks one of eight monomorphised render loops: the
+//! material type is `Sided<Diffuse>` when every material is Lambertian (no glossy, mirror or
+//! refraction code is compiled into that loop) and `Sided<AnyBsdf>` otherwise, and the
+//! presence of point lights and of an environment are const generic flags, so a scene
+//! without them never tests for them. `max_depth = 2` ends the path loop after the emitter
+//! found by the first bounce's BSDF sample, so no indirect bounce is ever traced.
+//!
+//! ```no_run
+//! use mcrt::scene::render::{RenderOptions, Renderer};
+//! use std::sync::atomic::AtomicBool;
+//!
+//! let desc = mcrt::scene::cornell_box::cornell_box();
+//! let r = Renderer::new(&desc, &RenderOptions { spp: Some(16), ..Default::default() })?;
+//! let out = r.render(&|_, _| {}, &AtomicBool::new(false));
+//! out.write_exr(std::path::Path::new("cornell-box.exr"))?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod effects;
+mod rng;
+mod tiles;
+mod view;
+
+pub use effects::Effects;
+pub use rng::PixelRng;
+pub use view::SceneView;
+
+/// The geometry and camera the renderer uses (one place to switch implementations).
+pub(crate) mod geo {
+    pub use crate::scene::camera::Camera;
+    pub use crate::scene::geometry::*;
+}
+
+pub use geo::AccelKind;
+
+use crate::integrator::{DirectIntegrator, Integrator, PathTracer, Strategy};
+use crate::scene::bsdf::{AnyBsdf, Sided};
+use crate::scene::description::{IntegratorDesc, SceneDescription, ShapeKind};
+use crate::scene::film::{write_exr, write_png, Film, ImageError, PixelFilter};
+use crate::scene::light::Lights;
+use geo::{Camera, Geometry};
+use glam::{Vec3, Vec4Swizzles};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+/// A scene could not be prepared for rendering.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RenderError(pub String);
+
+impl std::fmt::Display for RenderError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for RenderError {}
+
+/// Overrides of what the scene file says.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderOptions {
+    /// Samples per pixel (else the file's `sample_count`).
+    pub spp: Option<u32>,
+    /// Seed (else the file's sampler seed).
+    pub seed: Option<u64>,
+    /// Worker threads; 0 uses all cores.
+    pub threads: usize,
+    /// Sampling strategy at every vertex (else MIS with the power heuristic).
+    pub strategy: Option<Strategy>,
+    /// Acceleration structure.
+    pub accel: AccelKind,
+    /// Pick the render loop specialised to the scene's effects (default). `false` always
+    /// runs the general loop (every material type, point lights and environment checked at
+    /// run time); for benchmarks and tests of the specialisation.
+    pub specialize: bool,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        Self {
+            spp: None,
+            seed: None,
+            threads: 0,
+            strategy: None,
+            accel: AccelKind::Bvh,
+            specialize: true,
+        }
+    }
+}
+
+/// A scene ready to render.
+pub struct Renderer {
+    geo: Geometry,
+    lights: Lights,
+    bsdfs: Vec<Sided<AnyBsdf>>,
+    camera: Camera,
+    integrator: Integrator,
+    filter: PixelFilter,
+    width: u32,
+    height: u32,
+    spp: u32,
+    seed: u64,
+    threads: usize,
+    effects: Effects,
+    specialize: bool,
+}
+
+/// A finished (or cancelled) render.
+pub struct RenderOutput {
+    /// The accumulated samples.
+    pub film: Film,
+    /// Samples rendered.
+    pub samples: u64,
+    /// Rays cast.
+    pub rays: u64,
+    /// Wall-clock render time in seconds.
+    pub seconds: f64,
+}
+
+/// Radius of a sphere about the origin that holds every shape (approximate for meshes read
+/// from files, which count as a unit cube).
+fn scene_radius(desc: &SceneDescription) -> f32 {
+    let mut r = 1.0f32;
+    for s in &desc.shapes {
+        let pts: Vec<Vec3> = match &s.kind {
+            ShapeKind::Mesh { positions, .. } => positions.clone(),
+            ShapeKind::Sphere { center, radius } => (0..8)
+                .map(|i| *center + Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)) * *radius)
+                .collect(),
+            _ => (0..8)
+                .map(|i| Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)))
+                .collect(),
+        };
+        for p in pts {
+            r = r.max((s.to_world * p.extend(1.0)).xyz().length());
+        }
+    }
+    r
+}
+
+fn bit(i: u32, b: u32) -> f32 {
+    if (i >> b) & 1 == 1 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+impl Renderer {
+    /// Prepares a scene: geometry, lights, materials, camera and integrator.
+    pub fn new(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {
+        let base: Option<PathBuf> = desc
+            .source
+            .as_ref()
+            .and_then(|p| p.parent().map(Path::to_path_buf));
+        let geo = Geometry::new(&desc.shapes, base.as_deref(), opts.accel)
+            .map_err(|e| RenderError(format!("geometry: {e}")))?;
+        let lights =
+            Lights::new(desc, &geo, scene_radius(desc)).map_err(|e| RenderError(e.to_string()))?;
+        let camera = Camera::new(&desc.sensor).map_err(|e| RenderError(format!("camera: {e}")))?;
+        let bsdfs = desc
+            .shapes
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                AnyBsdf::from_desc(&s.bsdf)
+                    .map_err(|e| RenderError(format!("material of shape {i} ({:?}): {e}", s.id)))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let strategy = opts.strategy.unwrap_or_default();
+        let integrator = match desc.integrator {
+            IntegratorDesc::Path {
+                max_depth,
+                rr_depth,
+            } => Integrator::Path(PathTracer {
+                max_depth,
+                rr_depth,
+                strategy,
+            }),
+            IntegratorDesc::Direct {
+                emitter_samples,
+                bsdf_samples,
+            } => Integrator::Direct(DirectIntegrator {
+                emitter_samples,
+                bsdf_samples,
+                strategy,
+            }),
+        };
+        let film = &desc.sensor.film;
+        if film.width == 0 || film.height == 0 {
+            return Err(RenderError(format!(
+                "film size {}×{} is empty",
+                film.width, film.height
+            )));
+        }
+        let effects = Effects::of(&bsdfs, &lights, &integrator);
+        Ok(Self {
+            geo,
+            lights,
+            bsdfs,
+            camera,
+            integrator,
+            filter: PixelFilter::from_desc(&film.filter),
+            width: film.width,
+            height: film.height,
+            spp: opts.spp.unwrap_or(desc.sensor.sampler.sample_count),
+            seed: opts.seed.unwrap_or(desc.sensor.sampler.seed),
+            threads: opts.threads,
+            effects,
+            specialize: opts.specialize,
+        })
+    }
+
+    /// The effects this scene needs.
+    pub fn effects(&self) -> Effects {
+        self.effects
+    }
+
+    /// Samples per pixel that [`Renderer::render`] will take.
+    pub fn spp(&self) -> u32 {
+        self.spp
+    }
+
+    /// Image size.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// The integrator (with the strategy in use).
+    pub fn integrator(&self) -> &Integrator {
+        &self.integrator
+    }
+
+    /// Renders; `progress(done, total)` is called with sample counts from worker threads,
+    /// and setting `cancel` stops early, keeping every sample taken (pixels then report
+    /// their own counts).
+    pub fn render(
+        &self,
+        progress: &(dyn Fn(u64, u64) + Sync),
+        cancel: &AtomicBool,
+    ) -> RenderOutput {
+        let start = Instant::now();
+        let params = tiles::LoopParams {
+            camera: &self.camera,
+            integrator: &self.integrator,
+            filter: &self.filter,
+            width: self.width,
+            height: self.height,
+            spp: self.spp,
+            seed: self.seed,
+            t_max: f32::INFINITY,
+            progress,
+            cancel,
+        };
+        let run = || self.dispatch(&params);
+        let (film, stats) = if self.threads > 0 {
+            match rayon::ThreadPoolBuilder::new()
+                .num_threads(self.threads)
+                .build()
+            {
+                Ok(pool) => pool.install(run),
+                Err(_) => run(),
+            }
+        } else {
+            run()
+        };
+        RenderOutput {
+            film,
+            samples: stats.samples,
+            rays: stats.rays,
+            seconds: start.elapsed().as_secs_f64(),
+        }
+    }
+
+    fn dispatch(&self, p: &tiles::LoopParams<'_>) -> (Film, tiles::LoopStats) {
+        let e = self.effects;
+        if !self.specialize {
+            let (geo, lights) = (&self.geo, &self.lights);
+            let bsdfs = self.bsdfs.clone();
+            return tiles::render_loop(&SceneView::<_, true, true> { geo, bsdfs, lights }, p);
+        }
+        if e.diffuse_only {
+            let bsdfs: Vec<_> = self
+                .bsdfs
+                .iter()
+                .map(|b| Sided {
+                    bsdf: b.bsdf.as_diffuse().unwrap_or(crate::scene::bsdf::Diffuse {
+                        reflectance: Vec3::ZERO,
+                    }),
+                    two_sided: b.two_sided,
+                })
+                .collect();
+            self.run_flags(bsdfs, p)
+        } else {
+            self.run_flags(self.bsdfs.clone(), p)
+        }
+    }
+
+    fn run_flags<B: crate::integrator::Bsdf + Sync>(
+        &self,
+        bsdfs: Vec<B>,
+        p: &tiles::LoopParams<'_>,
+    ) -> (Film, tiles::LoopStats) {
+        let (geo, lights) = (&self.geo, &self.lights);
+        match (self.effects.delta_lights, self.effects.environment) {
+            (false, false) => {
+                tiles::render_loop(&SceneView::<B, false, false> { geo, bsdfs, lights }, p)
+            }
+            (true, false) => {
+                tiles::render_loop(&SceneView::<B, true, false> { geo, bsdfs, lights }, p)
+            }
+            (false, true) => {
+                tiles::render_loop(&SceneView::<B, false, true> { geo, bsdfs, lights }, p)
+            }
+            (true, true) => {
+                tiles::render_loop(&SceneView::<B, true, true> { geo, bsdfs, lights }, p)
+            }
+        }
+    }
+}
+
+impl RenderOutput {
+    /// The image (per-pixel means), row-major from the top-left.
+    pub fn image(&self) -> Vec<Vec3> {
+        self.film.mean()
+    }
+
+    /// Writes the image as linear float RGB EXR.
+    pub fn write_exr(&self, path: &Path) -> Result<(), ImageError> {
+        write_exr(path, self.film.width(), self.film.height(), &self.image())
+    }
+
+    /// Writes the image as sRGB PNG.
+    pub fn write_png(&self, path: &Path) -> Result<(), ImageError> {
+        write_png(path, self.film.width(), self.film.height(), &self.image())
+    }
+
+    /// Writes the per-pixel variance of the estimate as EXR.
+    pub fn write_variance_exr(&self, path: &Path) -> Result<(), ImageError> {
+        write_exr(
+            path,
+            self.film.width(),
+            self.film.height(),
+            &self.film.variance(),
+        )
+    }
+}

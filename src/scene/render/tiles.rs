@@ -1,0 +1,122 @@
+//! The parallel render loop: passes over the image, tiles in parallel (rayon), per-pixel
+//! accumulation merged in a fixed order so the result does not depend on the thread count.
+
+use super::geo::Camera;
+use super::rng::PixelRng;
+use crate::integrator::{Integrator, Scene};
+use crate::scene::film::{Film, PixelAccum, PixelFilter};
+use glam::Vec2;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
+/// Tile edge in pixels.
+const TILE: u32 = 16;
+
+/// What the loop needs besides the scene.
+pub(crate) struct LoopParams<'a> {
+    pub camera: &'a Camera,
+    pub integrator: &'a Integrator,
+    pub filter: &'a PixelFilter,
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    pub seed: u64,
+    pub t_max: f32,
+    pub progress: &'a (dyn Fn(u64, u64) + Sync),
+    pub cancel: &'a AtomicBool,
+}
+
+/// One tile's per-pixel accumulators and its ray count.
+type TileResult = (Vec<(usize, PixelAccum)>, u64);
+
+/// Counters of the work done.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct LoopStats {
+    pub samples: u64,
+    pub rays: u64,
+}
+
+fn tiles(w: u32, h: u32) -> Vec<(u32, u32, u32, u32)> {
+    let mut v = Vec::new();
+    for y0 in (0..h).step_by(TILE as usize) {
+        for x0 in (0..w).step_by(TILE as usize) {
+            v.push((x0, y0, (x0 + TILE).min(w), (y0 + TILE).min(h)));
+        }
+    }
+    v
+}
+
+/// Samples per pass: about 16 passes, at most 64 spp each, so progress and cancellation are
+/// responsive.
+fn pass_size(spp: u32) -> u32 {
+    spp.div_ceil(16).clamp(1, 64)
+}
+
+/// Renders one tile for sample indices `s0..s1`.
+fn render_tile<S: Scene>(
+    scene: &S,
+    p: &LoopParams<'_>,
+    (x0, y0, x1, y1): (u32, u32, u32, u32),
+    (s0, s1): (u32, u32),
+) -> TileResult {
+    let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+    let mut rays = 0u64;
+    for y in y0..y1 {
+        for x in x0..x1 {
+            let index = (y * p.width + x) as usize;
+            let mut acc = PixelAccum::default();
+            for s in s0..s1 {
+                let mut rng = PixelRng::new(p.seed, index as u64, s as u64);
+                let off = p
+                    .filter
+                    .sample(crate::integrator::SampleSource::next_2d(&mut rng));
+                let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
+                let (ray, t_max) = p.camera.generate_ray_with_tmax(film);
+                let r = p
+                    .integrator
+                    .li(scene, ray.origin, ray.dir, t_max.min(p.t_max), &mut rng);
+                rays += r.rays as u64;
+                let v = r.radiance;
+                acc.add(if v.is_finite() { v } else { glam::Vec3::ZERO });
+            }
+            out.push((index, acc));
+        }
+    }
+    (out, rays)
+}
+
+/// Renders `spp` samples per pixel (fewer if cancelled) into a film.
+pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Film, LoopStats) {
+    let mut film = Film::new(p.width, p.height);
+    let mut stats = LoopStats::default();
+    let tiles = tiles(p.width, p.height);
+    let total = p.spp as u64 * p.width as u64 * p.height as u64;
+    let done = AtomicU64::new(0);
+    let step = pass_size(p.spp);
+    let mut s0 = 0;
+    while s0 < p.spp && !p.cancel.load(Ordering::Relaxed) {
+        let s1 = (s0 + step).min(p.spp);
+        let results: Vec<Option<TileResult>> = tiles
+            .par_iter()
+            .map(|&t| {
+                if p.cancel.load(Ordering::Relaxed) {
+                    return None;
+                }
+                let r = render_tile(scene, p, t, (s0, s1));
+                let n = ((t.2 - t.0) * (t.3 - t.1) * (s1 - s0)) as u64;
+                let d = done.fetch_add(n, Ordering::Relaxed) + n;
+                (p.progress)(d, total);
+                Some(r)
+            })
+            .collect();
+        for (px, rays) in results.into_iter().flatten() {
+            stats.rays += rays;
+            for (i, a) in &px {
+                stats.samples += a.count as u64;
+                film.merge(*i, a);
+            }
+        }
+        s0 = s1;
+    }
+    (film, stats)
+}

@@ -1,0 +1,117 @@
+//! The scene as the estimators see it: geometry, materials and lights behind
+//! [`crate::integrator::Scene`], specialised at compile time on the material type and on
+//! whether the scene has delta lights and an environment.
+
+use super::geo::{offset_origin, Geometry, Hit, Ray};
+use crate::integrator::{Bsdf, Frame, LightSample, Scene, SurfacePoint};
+use crate::scene::light::Lights;
+use glam::{Vec2, Vec3};
+
+/// Relative shortening of shadow rays, so the light's own surface does not occlude itself.
+const SHADOW_EPSILON: f32 = 1e-3;
+
+/// A scene specialised on its material type `B` and on whether delta lights (`DELTA`) and
+/// an environment (`ENV`) may be present: when a flag is `false` the code paths for it are
+/// constant false and compiled out; when `true` the lights are asked at run time.
+pub struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
+    pub(crate) geo: &'a Geometry,
+    pub(crate) bsdfs: Vec<B>,
+    pub(crate) lights: &'a Lights,
+}
+
+#[inline]
+fn surface(h: Hit) -> SurfacePoint {
+    SurfacePoint {
+        p: h.p,
+        ng: h.ng,
+        frame: Frame::from_normal(h.ns),
+        t: h.t,
+        shape: h.shape,
+        prim: h.prim,
+        uv: h.uv,
+    }
+}
+
+impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DELTA, ENV> {
+    type Bsdf = B;
+
+    #[inline]
+    fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfacePoint> {
+        self.geo.intersect(&Ray { origin, dir }, t_max).map(surface)
+    }
+
+    #[inline]
+    fn trace(&self, from: &SurfacePoint, dir: Vec3) -> Option<SurfacePoint> {
+        let origin = offset_origin(from.p, from.ng, dir);
+        self.geo
+            .intersect(&Ray { origin, dir }, f32::INFINITY)
+            .map(surface)
+    }
+
+    #[inline]
+    fn occluded(&self, from: &SurfacePoint, dir: Vec3, dist: f32) -> bool {
+        let origin = offset_origin(from.p, from.ng, dir);
+        let t_max = if dist.is_finite() {
+            dist * (1.0 - SHADOW_EPSILON)
+        } else {
+            f32::INFINITY
+        };
+        self.geo.occluded(&Ray { origin, dir }, t_max)
+    }
+
+    #[inline]
+    fn bsdf(&self, sp: &SurfacePoint) -> &B {
+        &self.bsdfs[sp.shape as usize]
+    }
+
+    #[inline]
+    fn is_emitter(&self, sp: &SurfacePoint) -> bool {
+        self.lights.area_radiance(sp.shape).is_some()
+    }
+
+    #[inline]
+    fn emitted(&self, sp: &SurfacePoint, wo: Vec3) -> Vec3 {
+        match self.lights.area_radiance(sp.shape) {
+            Some(l) if sp.ng.dot(wo) > 0.0 => l,
+            _ => Vec3::ZERO,
+        }
+    }
+
+    #[inline]
+    fn has_environment(&self) -> bool {
+        ENV && self.lights.has_environment()
+    }
+
+    #[inline]
+    fn environment(&self, dir: Vec3) -> Vec3 {
+        if ENV {
+            self.lights.environment(dir)
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    #[inline]
+    fn has_delta_lights(&self) -> bool {
+        DELTA && self.lights.has_delta()
+    }
+
+    #[inline]
+    fn sample_light(&self, from: &SurfacePoint, u_pick: Vec2, u: Vec2) -> Option<LightSample> {
+        self.lights.sample(self.geo, from, u_pick, u)
+    }
+
+    #[inline]
+    fn light_pdf(&self, from: &SurfacePoint, hit: &SurfacePoint) -> f32 {
+        self.lights.pdf_hit(self.geo, from, hit)
+    }
+
+    #[inline]
+    fn environment_pdf(&self, from: &SurfacePoint, dir: Vec3) -> f32 {
+        if ENV {
+            self.lights.pdf_environment(from, dir)
+        } else {
+            0.0
+        }
+    }
+}
