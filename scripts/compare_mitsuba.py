@@ -30,6 +30,7 @@ import os
 import platform
 import re
 import resource
+import shlex
 import shutil
 import subprocess
 import sys
@@ -224,9 +225,10 @@ def children_cpu_s() -> float:
 class OursContender:
     """mcrt's render example with one sampler, run as a child process."""
 
-    def __init__(self, binary: Path, sampler: str, threads: int, tmp: str):
+    def __init__(self, binary: Path, sampler: str, extra: str, threads: int, tmp: str):
         self.binary, self.sampler, self.threads, self.tmp = binary, sampler, threads, tmp
-        self.name = "mcrt"
+        self.extra = shlex.split(extra)
+        self.name = f"mcrt {extra}".strip()
         self.scene_path = None
         self.note = ""
 
@@ -252,7 +254,8 @@ class OursContender:
         return Sample(read_exr(self._out()), own if own is not None else wall, wall, cpu)
 
     def _out(self) -> Path:
-        return Path(self.tmp) / f"{self.scene_path.stem}-{self.sampler}.exr"
+        tag = re.sub(r"[^A-Za-z0-9]+", "_", " ".join(self.extra))
+        return Path(self.tmp) / f"{self.scene_path.stem}-{self.sampler}{tag}.exr"
 
     def _run(self, spp: int, seed: int) -> tuple[str, float, float]:
         """Run the binary; return (stdout, wall s, CPU s) or raise RuntimeError."""
@@ -262,6 +265,7 @@ class OursContender:
             cmd += ["--sampler", self.sampler]
         if self.threads:
             cmd += ["--threads", str(self.threads)]
+        cmd += self.extra
         c0, t0 = children_cpu_s(), time.perf_counter()
         p = subprocess.run(cmd, capture_output=True, text=True)
         wall, cpu = time.perf_counter() - t0, children_cpu_s() - c0
@@ -430,6 +434,9 @@ def parse_args(argv=None) -> argparse.Namespace:
     p.add_argument("--variants", nargs="+", default=MITSUBA_VARIANTS, help="Mitsuba variants")
     p.add_argument("--samplers", nargs="+", default=["independent", "sobol"],
                    help="our samplers (one the renderer rejects is skipped with a message)")
+    p.add_argument("--ours-args", nargs="+", default=[""], metavar="ARGS",
+                   help="extra arguments for our renderer, one configuration each "
+                        "(e.g. '' '--light-sampling area'); crossed with --samplers")
     p.add_argument("--renderer", type=Path, default=REPO / DEFAULT_BINARY,
                    help="our render binary")
     p.add_argument("--no-build", action="store_true", help="do not run cargo build first")
@@ -471,7 +478,8 @@ def main(argv=None) -> int:
     with tempfile.TemporaryDirectory(prefix="mcrt-peer-") as tmp:
         contenders = [MitsubaContender(mi, dr, v) for v in variants]
         if not a.skip_ours:
-            contenders += [OursContender(a.renderer, s, a.threads, tmp) for s in a.samplers]
+            contenders += [OursContender(a.renderer, s, x, a.threads, tmp)
+                           for x in a.ours_args for s in a.samplers]
         for scene in a.scenes:
             scene_path, ref_path = reference_for(scene)
             ref = read_exr(ref_path)
