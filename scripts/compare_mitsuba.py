@@ -128,8 +128,8 @@ def import_mitsuba(variants: list[str]):
     except ImportError as e:
         fail(
             f"cannot import {e.name}: install the requirements with "
-            "'pip install -r scripts/requirements.txt' (see scripts/README.md), "
-            "or run with --skip-mitsuba"
+            "'pip install -r scripts/requirements.txt' (see scripts/README.md); "
+            "mitsuba is needed even with --skip-mitsuba, to read the EXR images"
         )
     missing = [v for v in variants if v not in mi.variants()]
     if missing:
