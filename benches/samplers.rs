@@ -8,7 +8,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use mcrt::glam::Vec2;
 #[cfg(feature = "sobol")]
 use mcrt::sampling::sampler::SobolSampler;
-use mcrt::sampling::sampler::{IndependentSampler, Sampler, StratifiedSampler};
+use mcrt::sampling::sampler::{AnySampler, IndependentSampler, Sampler, StratifiedSampler};
 use std::hint::black_box;
 
 mod common;
@@ -61,6 +61,9 @@ fn samplers(c: &mut Criterion) {
     bench_one(c, "sobol", SobolSampler::new(128, 1).unwrap());
     #[cfg(feature = "sobol")]
     raw_sobol(c);
+    // The cost of choosing at run time: the same independent sampler behind `AnySampler`.
+    let any: AnySampler = IndependentSampler::new(128, 1).unwrap().into();
+    bench_one(c, "any(independent)", any);
 }
 
 /// The `sobol_burley` call alone (two dimensions via `sample_4d`, a new seed per call as our
@@ -77,6 +80,16 @@ fn raw_sobol(c: &mut Criterion) {
                     0,
                     i.wrapping_mul(0x9e37_79b9),
                 ));
+            }
+        })
+    });
+    group.bench_function("sample x2", |b| {
+        b.iter(|| {
+            for i in 0..BATCH as u32 {
+                let seed = i.wrapping_mul(0x9e37_79b9);
+                let index = black_box(i & 127);
+                black_box(sobol_burley::sample(index, 0, seed));
+                black_box(sobol_burley::sample(index, 1, seed));
             }
         })
     });

@@ -3,7 +3,8 @@
 //! ```text
 //! cargo run --release --example render -- [scene.xml] [--spp N] [-D name=value]...
 //!     [-o out.exr] [--threads N] [--seed S] [--variance]
-//!     [--strategy bsdf|light|balance|power] [--sampler independent] [--accel bvh|grid]
+//!     [--strategy bsdf|light|balance|power] [--sampler independent|stratified|sobol]
+//!     [--accel bvh|grid] [--light-sampling solid-angle|area]
 //! ```
 //!
 //! Writes a linear float EXR and an sRGB PNG beside it (and `<name>-variance.exr` with
@@ -11,8 +12,8 @@
 
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrt::integrator::Strategy;
-use mcrt::scene::description::SceneDescription;
-use mcrt::scene::render::{AccelKind, RenderOptions, Renderer};
+use mcrt::scene::description::{SamplerKind, SceneDescription};
+use mcrt::scene::render::{AccelKind, RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -29,7 +30,8 @@ struct Args {
 
 const USAGE: &str = "usage: render [scene.xml] [--spp N] [-D name=value]... [-o out.exr] \
 [--threads N] [--seed S] [--variance] [--strategy bsdf|light|balance|power] \
-[--sampler independent] [--accel bvh|grid]";
+[--sampler independent|stratified|sobol] [--accel bvh|grid] \
+[--light-sampling solid-angle|area]";
 
 fn parse_num<T: std::str::FromStr>(flag: &str, v: Option<String>) -> Result<T, String> {
     let v = v.ok_or_else(|| format!("{flag} needs a value"))?;
@@ -63,11 +65,28 @@ fn parse_args() -> Result<Args, String> {
             }
             "--sampler" => {
                 let s = it.next().ok_or("--sampler needs a value")?;
-                if s != "independent" {
-                    return Err(format!(
-                        "--sampler {s}: only 'independent' is available in this build"
-                    ));
-                }
+                a.opts.sampler = Some(match s.as_str() {
+                    "independent" => SamplerKind::Independent,
+                    "stratified" => SamplerKind::Stratified,
+                    "sobol" | "ldsampler" => SamplerKind::LowDiscrepancy,
+                    _ => {
+                        return Err(format!(
+                            "--sampler {s}: expected independent, stratified or sobol"
+                        ))
+                    }
+                });
+            }
+            "--light-sampling" => {
+                let s = it.next().ok_or("--light-sampling needs a value")?;
+                a.opts.light_sampling = match s.as_str() {
+                    "solid-angle" => ShapeSampling::SolidAngle,
+                    "area" => ShapeSampling::Area,
+                    _ => {
+                        return Err(format!(
+                            "--light-sampling {s}: expected solid-angle or area"
+                        ))
+                    }
+                };
             }
             "--accel" => {
                 let s = it.next().ok_or("--accel needs a value")?;
@@ -111,23 +130,7 @@ fn builtin(defines: &[(String, String)]) -> Result<SceneDescription, String> {
 }
 
 fn load(path: &std::path::Path, defines: &[(String, String)]) -> Result<SceneDescription, String> {
-    let mut desc = mcrt::scene::loader::load_scene(path, defines).map_err(|e| e.to_string())?;
-    black_default_on_emitters(&mut desc);
-    Ok(desc)
-}
-
-/// Mitsuba 3 gives an emitting shape without a BSDF a *black* diffuse BSDF (reflectance 0),
-/// not the usual 0.5. TEMPORARY, until the loader applies that rule itself: an emitter whose
-/// BSDF equals the default is taken to have none.
-fn black_default_on_emitters(desc: &mut SceneDescription) {
-    use mcrt::scene::description::BsdfDesc;
-    for s in &mut desc.shapes {
-        if s.emitter.is_some() && s.bsdf == BsdfDesc::default() {
-            s.bsdf = BsdfDesc::Diffuse {
-                reflectance: mcrt::glam::Vec3::ZERO,
-            };
-        }
-    }
+    mcrt::scene::loader::load_scene(path, defines).map_err(|e| e.to_string())
 }
 
 fn run() -> Result<(), String> {
@@ -148,8 +151,13 @@ fn run() -> Result<(), String> {
     let renderer = Renderer::new(&desc, &args.opts).map_err(|e| e.to_string())?;
     let (w, h) = renderer.size();
     println!(
-        "{name}: {w}×{h}, {} spp, strategy {}, effects: {}",
+        "{name}: {w}×{h}, {} spp ({}), strategy {}, effects: {}",
         renderer.spp(),
+        match renderer.sampler() {
+            mcrt::sampling::sampler::AnySampler::Independent(_) => "independent",
+            mcrt::sampling::sampler::AnySampler::Stratified(_) => "stratified",
+            _ => "sobol",
+        },
         renderer.integrator().strategy().name(),
         renderer.effects().describe()
     );

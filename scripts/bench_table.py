@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
 """Markdown tables of ns per call from criterion's output (target/criterion).
 
-Usage: scripts/bench_table.py [PREFIX ...]   e.g.  scripts/bench_table.py warp distribution sampler
+Usage: scripts/bench_table.py [--pivot] [PREFIX ...] [!EXCLUDED_PREFIX ...]
+       e.g.  scripts/bench_table.py --pivot warp distribution sampler
 
 For every benchmark whose group id starts with a PREFIX, prints the median time per call and the
 fastest sample's time per call (time per iteration / elements per iteration). On a loaded
 machine the fastest sample is the better estimate of the cost; the median shows the noise.
+With --pivot, one row per group and one column per operation, each cell
+"fastest (median)".
 """
 
 import json
@@ -40,20 +43,59 @@ def fmt(ns):
     return f"{ns:.1f} ns"
 
 
+ORDER = ["new", "build", "sample", "sample_with_pdf", "next_2d", "start_pixel_sample", "pdf",
+         "pmf", "invert"]
+
+
+def op_rank(op):
+    for i, name in enumerate(ORDER):
+        if op == name or op.startswith(name + " "):
+            return i
+    return len(ORDER)
+
+
+def pivot(rows):
+    ops = []
+    for r in rows:
+        if r[1] not in ops:
+            ops.append(r[1])
+    ops.sort(key=op_rank)
+    groups = []
+    for r in rows:
+        if r[0] not in groups:
+            groups.append(r[0])
+    cells = {(r[0], r[1]): r for r in rows}
+    print("| benchmark | " + " | ".join(ops) + " |")
+    print("|---|" + "---|" * len(ops))
+    for g in groups:
+        out = []
+        for op in ops:
+            r = cells.get((g, op))
+            out.append(f"{fmt(r[4] / r[2])} ({fmt(r[3] / r[2])})" if r else "")
+        print(f"| {g} | " + " | ".join(out) + " |")
+
+
 def main():
-    prefixes = sys.argv[1:] or [""]
+    args = sys.argv[1:]
+    pivoted = "--pivot" in args
+    excluded = [a[1:] for a in args if a.startswith("!")]
+    prefixes = [a for a in args if a != "--pivot" and not a.startswith("!")] or [""]
     rows = []
     for group_dir in sorted(os.listdir(ROOT)):
         path = os.path.join(ROOT, group_dir)
         for root, dirs, files in os.walk(path):
             if os.path.basename(root) == "new" and "benchmark.json" in files:
                 rows.append(load(os.path.dirname(root)))
-    rows = [r for r in rows if any(r[0].startswith(p) for p in prefixes)]
+    rows = [r for r in rows if any(r[0].startswith(p) for p in prefixes)
+            and not any(r[0].startswith(p) for p in excluded)]
     rows.sort(key=lambda r: (r[0], r[1]))
-    print("| benchmark | operation | median per call | fastest sample per call |")
+    if pivoted:
+        pivot(rows)
+        return
+    print("| benchmark | operation | fastest sample per call | median per call |")
     print("|---|---|---|---|")
     for group, function, elements, median, fastest in rows:
-        print(f"| {group} | {function} | {fmt(median / elements)} | {fmt(fastest / elements)} |")
+        print(f"| {group} | {function} | {fmt(fastest / elements)} | {fmt(median / elements)} |")
 
 
 if __name__ == "__main__":

@@ -230,3 +230,42 @@ fn alias_table_million_entries_one_nonzero() {
         assert_eq!(o.dof, 0);
     }
 }
+
+/// The general inversion method on two densities: a smooth bump `p(x) = (π/4) sin(πx/2)` on
+/// `[0, 2]`, and a density with a flat zero stretch (bisection territory) and a steep peak.
+#[test]
+fn inversion_method() {
+    use mcrt::sampling::distribution::Inversion1D;
+    use std::f64::consts::PI;
+    let inv = Inversion1D::new(0.0, 2.0).expect("valid interval");
+    let cdf = |x: f64| (1.0 - (PI * x / 2.0).cos()) / 2.0;
+    let pdf = |x: f64| PI / 4.0 * (PI * x / 2.0).sin();
+    chi2(Interval::new(0.0, 2.0, 200), "Inversion1D-sine")
+        .run(
+            |u| inv.sample(cdf, pdf, f64::from(u.x)) as f32,
+            |x| pdf(f64::from(x)) as f32,
+        )
+        .assert_passed();
+    // p(x) = 0 on [0, 0.5), 2·16·(x − 0.5)^15 on [0.5, 1): CDF (2(x − 0.5))^16.
+    let inv = Inversion1D::new(0.0, 1.0).expect("valid interval");
+    let cdf = |x: f64| {
+        if x < 0.5 {
+            0.0
+        } else {
+            (2.0 * (x - 0.5)).powi(16)
+        }
+    };
+    let pdf = |x: f64| {
+        if x < 0.5 {
+            0.0
+        } else {
+            32.0 * (2.0 * (x - 0.5)).powi(15)
+        }
+    };
+    chi2(Interval::new(0.0, 1.0, 400), "Inversion1D-steep")
+        .run(
+            |u| inv.sample(cdf, pdf, f64::from(u.x)) as f32,
+            |x| pdf(f64::from(x)) as f32,
+        )
+        .assert_passed();
+}

@@ -135,9 +135,9 @@ fn correlation(a: &[f64], b: &[f64]) -> f64 {
     cov / (va * vb).sqrt()
 }
 
-/// Neighbouring pixels: the same (index, dimension) gives uncorrelated values. With 4096
-/// pairs the correlation of independent values has a standard deviation of about 0.016.
-fn check_pixels_decorrelated<S: Sampler>(mut s: S, name: &str) {
+/// Correlation between neighbouring pixels' values at the same (index, dimension). With 8192
+/// pairs the correlation of independent values has a standard deviation of about 0.011.
+fn pixel_correlation<S: Sampler>(mut s: S) -> f64 {
     let (mut a, mut b) = (Vec::new(), Vec::new());
     for p in 0..256u32 {
         for i in 0..16 {
@@ -149,13 +149,42 @@ fn check_pixels_decorrelated<S: Sampler>(mut s: S, name: &str) {
             b.extend([f64::from(v.x), f64::from(v.y)]);
         }
     }
-    let r = correlation(&a, &b);
-    assert!(r.is_finite() && r.abs() < 0.06, "{name}: correlation {r}");
+    correlation(&a, &b)
+}
+
+fn check_pixels_decorrelated<S: Sampler>(s: S, name: &str) {
+    let r = pixel_correlation(s);
+    assert!(r.is_finite() && r.abs() < 0.05, "{name}: correlation {r}");
 }
 
 #[test]
 fn neighbouring_pixels_are_decorrelated() {
     for_each_sampler!(16, 11, check_pixels_decorrelated);
+}
+
+/// A broken sampler that gives every pixel the values of pixel (0, 0).
+#[derive(Clone)]
+struct SamePixel<S>(S);
+
+impl<S: Sampler> Sampler for SamePixel<S> {
+    fn start_pixel_sample(&mut self, _pixel: [u32; 2], sample_index: u32) {
+        self.0.start_pixel_sample([0, 0], sample_index);
+    }
+    fn next_1d(&mut self) -> f32 {
+        self.0.next_1d()
+    }
+    fn next_2d(&mut self) -> Vec2 {
+        self.0.next_2d()
+    }
+    fn samples_per_pixel(&self) -> u32 {
+        self.0.samples_per_pixel()
+    }
+}
+
+#[test]
+fn decorrelation_check_rejects_a_sampler_that_ignores_the_pixel() {
+    let r = pixel_correlation(SamePixel(IndependentSampler::new(16, 11).unwrap()));
+    assert!(r.is_finite() && r > 0.99, "correlation {r}");
 }
 
 /// Within a pixel, successive dimensions are uncorrelated (the padding works).
@@ -179,10 +208,12 @@ fn dimensions_are_decorrelated() {
     for_each_sampler!(16, 12, check_dimensions_decorrelated);
 }
 
-/// Counts, for every pixel and dimension, how many of `count` samples starting at `first` fall
-/// in each cell of an `nx × ny` grid (2D) or `nx` intervals (1D) and asserts exactly `per_cell`.
-fn assert_cells<S: Sampler>(s: &mut S, first: u32, count: u32, grid: (u32, u32), name: &str) {
+/// Counts, for several pixels and the first 6 2D dimensions, how many of `count` samples
+/// starting at `first` fall in each cell of an `nx × ny` grid; returns every (pixel, dimension)
+/// whose cells do not all hold `count / (nx · ny)`.
+fn cell_violations<S: Sampler>(s: &mut S, first: u32, count: u32, grid: (u32, u32)) -> Vec<String> {
     let (nx, ny) = grid;
+    let mut bad = Vec::new();
     for pixel in [[0, 0], [1, 0], [13, 99], [4000, 3]] {
         for dim in 0..6usize {
             let mut cells = vec![0u32; (nx * ny) as usize];
@@ -192,21 +223,31 @@ fn assert_cells<S: Sampler>(s: &mut S, first: u32, count: u32, grid: (u32, u32),
                     s.next_2d();
                 }
                 let u = s.next_2d();
-                assert!(in_unit(u.x) && in_unit(u.y), "{name}: {u:?}");
+                assert!(in_unit(u.x) && in_unit(u.y), "{u:?}");
                 let (cx, cy) = ((u.x * nx as f32) as u32, (u.y * ny as f32) as u32);
                 cells[(cy.min(ny - 1) * nx + cx.min(nx - 1)) as usize] += 1;
             }
             let per_cell = count / (nx * ny);
-            assert!(
-                cells.iter().all(|&c| c == per_cell),
-                "{name}: pixel {pixel:?} dim {dim} grid {nx}x{ny}: {cells:?}"
-            );
+            if !cells.iter().all(|&c| c == per_cell) {
+                bad.push(format!(
+                    "pixel {pixel:?} dim {dim} grid {nx}x{ny}: {cells:?}"
+                ));
+            }
         }
     }
+    bad
 }
 
-/// Same as [`assert_cells`] for 1D values drawn after `dim` other 1D values.
-fn assert_intervals<S: Sampler>(s: &mut S, first: u32, count: u32, n: u32, name: &str) {
+/// Asserts that [`cell_violations`] finds none.
+fn assert_cells<S: Sampler>(s: &mut S, first: u32, count: u32, grid: (u32, u32), name: &str) {
+    let bad = cell_violations(s, first, count, grid);
+    assert!(bad.is_empty(), "{name}: {bad:?}");
+}
+
+/// Same as [`cell_violations`] for 1D values in `n` intervals (drawn after `dim` other 1D
+/// values).
+fn interval_violations<S: Sampler>(s: &mut S, first: u32, count: u32, n: u32) -> Vec<String> {
+    let mut bad = Vec::new();
     for pixel in [[0, 0], [2, 5], [640, 480]] {
         for dim in 0..6usize {
             let mut cells = vec![0u32; n as usize];
@@ -216,15 +257,32 @@ fn assert_intervals<S: Sampler>(s: &mut S, first: u32, count: u32, n: u32, name:
                     s.next_1d();
                 }
                 let x = s.next_1d();
-                assert!(in_unit(x), "{name}: {x}");
+                assert!(in_unit(x), "{x}");
                 cells[((x * n as f32) as u32).min(n - 1) as usize] += 1;
             }
-            assert!(
-                cells.iter().all(|&c| c == count / n),
-                "{name}: pixel {pixel:?} dim {dim} {n} intervals: {cells:?}"
-            );
+            if !cells.iter().all(|&c| c == count / n) {
+                bad.push(format!(
+                    "pixel {pixel:?} dim {dim} {n} intervals: {cells:?}"
+                ));
+            }
         }
     }
+    bad
+}
+
+/// Asserts that [`interval_violations`] finds none.
+fn assert_intervals<S: Sampler>(s: &mut S, first: u32, count: u32, n: u32, name: &str) {
+    let bad = interval_violations(s, first, count, n);
+    assert!(bad.is_empty(), "{name}: {bad:?}");
+}
+
+/// The stratification checks have power: independent values are not stratified (a 4 × 4 grid
+/// filled one per cell by chance has probability 16!/16¹⁶ ≈ 10⁻⁶ per pixel and dimension).
+#[test]
+fn stratification_checks_reject_independent_values() {
+    let mut s = IndependentSampler::new(16, 5).unwrap();
+    assert_eq!(cell_violations(&mut s, 0, 16, (4, 4)).len(), 24);
+    assert_eq!(interval_violations(&mut s, 0, 16, 16).len(), 18);
 }
 
 #[test]

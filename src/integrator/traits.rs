@@ -91,8 +91,8 @@ pub struct LightSample {
     pub delta: bool,
 }
 
-/// A source of uniform sample values in `[0,1)` for one pixel sample. Implemented by the
-/// renderer's samplers.
+/// A source of uniform sample values in `[0,1)` for one pixel sample. Every
+/// [`crate::sampling::sampler::Sampler`] is one (positioned on its pixel sample first).
 pub trait SampleSource {
     /// One value in `[0,1)`.
     fn next_1d(&mut self) -> f32;
@@ -150,4 +150,15 @@ pub trait Scene {
 
     /// The same for the environment, seen from `from` along `dir`.
     fn environment_pdf(&self, from: &SurfacePoint, dir: Vec3) -> f32;
+}
+
+impl<S: crate::sampling::sampler::Sampler> SampleSource for S {
+    #[inline]
+    fn next_1d(&mut self) -> f32 {
+        crate::sampling::sampler::Sampler::next_1d(self)
+    }
+    #[inline]
+    fn next_2d(&mut self) -> Vec2 {
+        crate::sampling::sampler::Sampler::next_2d(self)
+    }
 }

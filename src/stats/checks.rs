@@ -53,6 +53,13 @@ impl CheckOutcome {
     }
 }
 
+impl std::fmt::Display for CheckOutcome {
+    /// Writes [`CheckOutcome::report`].
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.report())
+    }
+}
+
 /// Checks `|∫_domain pdf − 1| ≤ tolerance` (same quadrature as the chi-square test).
 ///
 /// ```
@@ -97,11 +104,13 @@ pub struct JacobianCheck {
 }
 
 impl Default for JacobianCheck {
-    /// 64 × 64 points, step 2⁻¹⁰, tolerance 10⁻², at most 10 % skipped.
+    /// 64 × 64 points, step 2⁻⁹
+    /// ([`DEFAULT_JACOBIAN_STEP`](crate::sampling::jacobian::DEFAULT_JACOBIAN_STEP), which
+    /// balances truncation against `f32` rounding), tolerance 10⁻², at most 10 % skipped.
     fn default() -> Self {
         Self {
             grid: 64,
-            step: 1.0 / 1024.0,
+            step: crate::sampling::jacobian::DEFAULT_JACOBIAN_STEP,
             tolerance: 1e-2,
             max_skipped: 0.1,
         }
@@ -109,7 +118,9 @@ impl Default for JacobianCheck {
 }
 
 /// Checks `pdf(sample(u)) · J(u) = 1`, with `J = √det(DᵀD)` of the map `u ↦ sample(u)` by
-/// central differences in `f64` (`|dx/du₁|` for `f32` points, `|det D|` for `Vec2`,
+/// central differences in `f64` (the same formula as
+/// [`numerical_jacobian`](crate::sampling::jacobian::numerical_jacobian), here for closures
+/// and one-dimensional points too) (`|dx/du₁|` for `f32` points, `|det D|` for `Vec2`,
 /// `‖∂p/∂u₁ × ∂p/∂u₂‖` for `Vec3`).
 ///
 /// Points where `J` with step `h` and with step `2h` disagree by more than the tolerance

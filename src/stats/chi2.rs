@@ -132,6 +132,17 @@ mod tests {
     }
 
     #[test]
+    fn everything_sparse_is_one_term_with_no_degree_of_freedom() {
+        let p = pool(&[1, 2, 0], &[1.0, 2.0, 1.5]);
+        assert_eq!(p.terms.len(), 1);
+        assert_eq!(p.pooled_cells, 3);
+        let (stat, dof) = statistic(&p.terms);
+        assert!(stat.is_finite());
+        assert_eq!(dof, 0);
+        assert_eq!(p_value(stat, dof), 1.0);
+    }
+
+    #[test]
     fn p_values_match_known_quantiles() {
         // The 0.95 quantile of χ²(10) is 18.307.
         let p = p_value(18.307, 10);

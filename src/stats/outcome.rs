@@ -124,6 +124,13 @@ impl Chi2Outcome {
     }
 }
 
+impl std::fmt::Display for Chi2Outcome {
+    /// Writes [`Chi2Outcome::report`].
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.report())
+    }
+}
+
 fn describe(f: &Chi2Failure) -> String {
     match f {
         Chi2Failure::Rejected => {

@@ -75,7 +75,7 @@ fn rule_1d(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> Est {
 
 /// Subdivision levels forced when a cell holds samples but its integral came out 0 (a
 /// support narrower than the quadrature nodes' spacing).
-pub(crate) const REFINED_MIN_DEPTH: u32 = 5;
+pub(crate) const REFINED_MIN_DEPTH: u32 = 6;
 
 /// ∫ₐᵇ f, adaptively, to about `abs_tol` absolute error, subdividing at least `min_depth`
 /// levels.

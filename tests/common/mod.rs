@@ -7,6 +7,8 @@
 //! runs than exist only makes each run slightly stricter.
 #![allow(dead_code)] // each test file uses a different subset
 
+pub mod samplers;
+
 use mcrt::stats::{ChiSquareTest, Directions, Domain, JacobianCheck};
 
 /// Family-wise significance level of the whole suite.

@@ -5,6 +5,7 @@ use glam::Vec2;
 #[cfg(feature = "sobol")]
 use super::SobolSampler;
 use super::{IndependentSampler, Sampler, StratifiedSampler};
+use crate::sampling::SamplingError;
 
 /// One of the crate's samplers, chosen at run time (for example from a scene file's
 /// `<sampler type="...">` or a `--sampler` option), itself a [`Sampler`].
@@ -29,6 +30,54 @@ pub enum AnySampler {
     /// `SobolSampler` (feature `sobol`).
     #[cfg(feature = "sobol")]
     Sobol(SobolSampler),
+}
+
+impl AnySampler {
+    /// The names [`AnySampler::by_name`] accepts.
+    pub const NAMES: [&'static str; 4] = ["independent", "stratified", "ldsampler", "sobol"];
+
+    /// The sampler a name selects, for `spp` samples per pixel and a `seed`, with Mitsuba 3's
+    /// sample-count rounding for its plugin names (case-insensitive):
+    ///
+    /// - `independent`: [`IndependentSampler`], `spp` as given;
+    /// - `stratified`: jittered [`StratifiedSampler`], `spp` rounded up to a perfect square;
+    /// - `ldsampler`: `SobolSampler`, `spp` rounded up to a power of 4 (as Mitsuba's
+    ///   `ldsampler`: 5 → 16, 17 → 64);
+    /// - `sobol`: `SobolSampler`, `spp` as given.
+    ///
+    /// `None` for any other name (and for `ldsampler`/`sobol` when the `sobol` feature is off);
+    /// `Some(Err(_))` when the sample count is invalid.
+    pub fn by_name(name: &str, spp: u32, seed: u64) -> Option<Result<Self, SamplingError>> {
+        let name = name.to_ascii_lowercase();
+        match name.as_str() {
+            "independent" => Some(IndependentSampler::new(spp, seed).map(Self::from)),
+            "stratified" => Some(StratifiedSampler::new(spp, seed, true).map(Self::from)),
+            #[cfg(feature = "sobol")]
+            "ldsampler" => Some(
+                next_power_of_four(spp)
+                    .ok_or(SamplingError::InvalidParameter {
+                        name: "spp",
+                        value: f64::from(spp),
+                        expected: "at most 4^15",
+                    })
+                    .and_then(|n| SobolSampler::new(n, seed))
+                    .map(Self::from),
+            ),
+            #[cfg(feature = "sobol")]
+            "sobol" => Some(SobolSampler::new(spp, seed).map(Self::from)),
+            _ => None,
+        }
+    }
+}
+
+/// The smallest power of 4 at least `n` (1 for 0), if it fits in `u32`.
+#[cfg(feature = "sobol")]
+fn next_power_of_four(n: u32) -> Option<u32> {
+    let mut p = 1u32;
+    while p < n {
+        p = p.checked_mul(4)?;
+    }
+    Some(p)
 }
 
 /// Forwards a call to the wrapped sampler.
@@ -91,6 +140,33 @@ mod tests {
         s.start_pixel_sample([3, 4], 2);
         let u = s.next_2d();
         vec![u.x, u.y, s.next_1d(), s.samples_per_pixel() as f32]
+    }
+
+    #[test]
+    fn names_select_samplers() {
+        let s = AnySampler::by_name("Stratified", 5, 0).unwrap().unwrap();
+        assert!(matches!(s, AnySampler::Stratified(_)));
+        assert_eq!(s.samples_per_pixel(), 9);
+        let s = AnySampler::by_name("independent", 5, 0).unwrap().unwrap();
+        assert!(matches!(s, AnySampler::Independent(_)));
+        #[cfg(feature = "sobol")]
+        for (name, spp, expected) in [
+            ("ldsampler", 5, 16),
+            ("ldsampler", 16, 16),
+            ("ldsampler", 17, 64),
+            ("ldsampler", 1, 1),
+            ("sobol", 5, 5),
+        ] {
+            let s = AnySampler::by_name(name, spp, 0).unwrap().unwrap();
+            assert!(matches!(s, AnySampler::Sobol(_)));
+            assert_eq!(s.samples_per_pixel(), expected, "{name} {spp}");
+        }
+        #[cfg(feature = "sobol")]
+        assert!(AnySampler::by_name("ldsampler", u32::MAX, 0)
+            .unwrap()
+            .is_err());
+        assert!(AnySampler::by_name("multijitter", 5, 0).is_none());
+        assert!(AnySampler::by_name("independent", 0, 0).unwrap().is_err());
     }
 
     #[test]

@@ -28,16 +28,20 @@
 //! |---|---|---|---|
 //! | `independent` | `Independent` | [`IndependentSampler`] | as given |
 //! | `stratified` | `Stratified` | [`StratifiedSampler`] (jittered unless `jitter` is false) | rounded up to a perfect square, as Mitsuba does |
-//! | `ldsampler` | `LowDiscrepancy` | `SobolSampler` | as given (a power of two gives full stratification) |
+//! | `ldsampler` | `LowDiscrepancy` | `SobolSampler` | rounded up to a power of 4 by [`AnySampler::by_name`], as Mitsuba does; `SobolSampler::new` takes any count |
 //!
-//! Mitsuba's `stratified` plugin rounds its `sample_count` up to the next perfect square (5
-//! becomes 9) and warns; [`StratifiedSampler::new`] does the same, and
+//! Mitsuba 3 (checked with 3.9.1) rounds the `sample_count` of `stratified` up to the next
+//! perfect square (5 → 9, 10 → 16, 17 → 25) and that of `ldsampler` up to the next power of 4,
+//! a count that is both a square and a power of two (5 → 16, 17 → 64), with a warning.
+//! [`StratifiedSampler::new`] rounds as Mitsuba's `stratified` does, and
 //! [`Sampler::samples_per_pixel`] reports the rounded count, which is the one a renderer must
-//! loop over. Mitsuba's `ldsampler` is Kollig & Keller's padded (0,2)-sequence and wants a
-//! power-of-two count; ours is a padded Owen-scrambled Sobol sequence of the same family, which
-//! accepts any count (the first `2^k` samples of a pixel are a (0,k,2)-net in every 2D
-//! dimension; other counts are a prefix of the next net). The sample values themselves differ
-//! from Mitsuba's: the samplers are of the same kind, not bit-identical.
+//! loop over. Mitsuba's `ldsampler` is Kollig & Keller's padded (0,2)-sequence; ours is a padded
+//! Owen-scrambled Sobol sequence of the same family, which works for any count (the first `2^k`
+//! samples of a pixel are a (0,k,2)-net in every 2D dimension; other counts are a prefix of the
+//! next net). [`AnySampler::by_name`] applies Mitsuba's rounding for the name `ldsampler` so a
+//! scene file renders with the count Mitsuba would use, and none for the name `sobol`. The
+//! sample values themselves differ from Mitsuba's: the samplers are of the same kind, not
+//! bit-identical.
 //!
 //! ```
 //! use mcrt::sampling::sampler::{IndependentSampler, Sampler};

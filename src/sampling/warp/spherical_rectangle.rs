@@ -1,13 +1,14 @@
 //! Uniform sampling of the solid angle subtended by a rectangle (Ureña, Fajardo & King's
 //! area-preserving parametrisation), with a documented fallback to area sampling.
 
-use std::f64::consts::TAU;
-
-use glam::{DVec2, DVec3, Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 
 use super::spherical_triangle::planar::{triangle_solid_angle, widen, Planar};
 use super::Warp;
 use crate::sampling::SamplingError;
+use urena::Urena;
+
+mod urena;
 
 /// Below this solid angle (sr) the warp samples the rectangle by area instead.
 pub const SPHERICAL_RECTANGLE_MIN_SOLID_ANGLE: f32 = 1e-4;
@@ -19,25 +20,6 @@ pub const SPHERICAL_RECTANGLE_MIN_ANGLE: f32 = 1e-3;
 /// Edges whose directions have |cos| ≤ this are treated as orthogonal (edge_y is
 /// orthogonalised against edge_x); otherwise the shape is a parallelogram, sampled by area.
 pub const SPHERICAL_RECTANGLE_ORTHOGONALITY: f32 = 1e-5;
-
-/// Precomputed quantities of Ureña et al.'s method, in the rectangle's local frame where the
-/// rectangle is [x0, x1] × [y0, y1] at height z0 < 0.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Urena {
-    frame: [DVec3; 3],
-    x0: f64,
-    x1: f64,
-    y0: f64,
-    y1: f64,
-    z0: f64,
-    /// n0.z and n2.z (normals of the planes through the edges y = y0 and y = y1).
-    b0: f64,
-    b1: f64,
-    /// 2π − γ2 − γ3.
-    k: f64,
-    /// The solid angle S = Σγ − 2π.
-    omega: f64,
-}
 
 /// Directions toward a rectangle, uniform in solid angle: pdf 1/Ω per steradian on the
 /// directions that hit it, 0 elsewhere.
@@ -70,17 +52,14 @@ struct Urena {
 pub struct SphericalRectangle {
     planar: Planar,
     urena: Option<Urena>,
-    omega: f64,
-}
-
-/// The interior angle between the planes with unit normals `a` and `b`: atan2(|a×b|, −a·b).
-fn dihedral(a: DVec3, b: DVec3) -> f64 {
-    a.cross(b).length().atan2(-a.dot(b))
 }
 
 impl SphericalRectangle {
     /// The rectangle `corner + s·edge_x + t·edge_y`, s, t ∈ [0, 1] (world space), seen from
     /// `origin`. Errors: non-finite input, zero area, `origin` in the rectangle's plane.
+    ///
+    /// To see one rectangle from many origins, build a [`RectangleFrame`] once and call
+    /// [`RectangleFrame::seen_from`]: it skips the origin-independent work.
     pub fn new(
         origin: Vec3,
         corner: Vec3,
@@ -88,34 +67,27 @@ impl SphericalRectangle {
         edge_y: Vec3,
     ) -> Result<Self, SamplingError> {
         let o = widen("origin", origin)?;
-        let (p0, ex) = (widen("corner", corner)?, widen("edge_x", edge_x)?);
-        let mut ey = widen("edge_y", edge_y)?;
-        let lx = ex.length();
-        let orthogonal = lx > 0.0
-            && ex.dot(ey).abs() <= f64::from(SPHERICAL_RECTANGLE_ORTHOGONALITY) * lx * ey.length();
-        if orthogonal {
-            ey -= ex.dot(ey) / (lx * lx) * ex;
-        }
-        let planar = Planar::new(o, p0, ex, ey, false)?;
-        let urena = Urena::new(&planar);
-        let corners = [p0, p0 + ex, p0 + ex + ey, p0 + ey].map(|p| (p - o).normalize());
-        let vos = triangle_solid_angle(corners[0], corners[1], corners[2])
-            + triangle_solid_angle(corners[0], corners[2], corners[3]);
-        let usable = urena.filter(|&(_, s, g)| {
-            orthogonal
-                && s >= f64::from(SPHERICAL_RECTANGLE_MIN_SOLID_ANGLE)
-                && g >= f64::from(SPHERICAL_RECTANGLE_MIN_ANGLE)
-        });
-        Ok(Self {
-            planar,
-            urena: usable.map(|(u, _, _)| u),
-            omega: usable.map_or(vos, |(_, s, _)| s),
-        })
+        RectangleFrame::new(corner, edge_x, edge_y)?.seen_from_f64(o)
     }
 
     /// The solid angle Ω subtended by the shape (steradians).
     pub fn solid_angle(&self) -> f32 {
-        self.omega as f32
+        self.omega() as f32
+    }
+
+    /// Ω in `f64`: Ureña et al.'s when in use, else Van Oosterom–Strackee on two triangles
+    /// (computed on demand: the fallback's sampling never needs it).
+    fn omega(&self) -> f64 {
+        match &self.urena {
+            Some(u) => u.omega,
+            None => {
+                let p = &self.planar;
+                let corners = [p.p0, p.p0 + p.e1, p.p0 + p.e1 + p.e2, p.p0 + p.e2]
+                    .map(|c| (c - p.origin).normalize());
+                triangle_solid_angle(corners[0], corners[1], corners[2])
+                    + triangle_solid_angle(corners[0], corners[2], corners[3])
+            }
+        }
     }
 
     /// Whether the area-sampling fallback is in use (see the type's docs).
@@ -125,11 +97,12 @@ impl SphericalRectangle {
 
     /// The sampled point on the rectangle and the pdf of its direction per steradian; `None`
     /// only if rounding produced a non-finite value.
+    #[inline]
     pub fn sample_point(&self, u: Vec2) -> Option<(Vec3, f32)> {
         let (p, pdf) = match &self.urena {
             Some(urena) => (
                 self.planar.origin + urena.sample_offset(u.as_dvec2()),
-                1.0 / self.omega,
+                1.0 / urena.omega,
             ),
             None => {
                 let p = self.planar.sample_area(u.as_dvec2());
@@ -142,77 +115,80 @@ impl SphericalRectangle {
     }
 }
 
-impl Urena {
-    /// The local frame and constants, the solid angle S and the smallest interior angle.
-    fn new(planar: &Planar) -> Option<(Self, f64, f64)> {
-        let (lx, ly) = (planar.e1.length(), planar.e2.length());
-        let x = planar.e1 / lx;
-        let y = planar.e2 / ly;
-        let mut z = x.cross(y);
-        let d = planar.p0 - planar.origin;
-        let (x0, y0, mut z0) = (d.dot(x), d.dot(y), d.dot(z));
-        if z0 > 0.0 {
-            z0 = -z0;
-            z = -z;
+/// A rectangle (or parallelogram) with everything that does not depend on the point it is
+/// seen from precomputed: validation, the orthogonalised edges and the local frame. Build it
+/// once per light; [`RectangleFrame::seen_from`] then makes the [`SphericalRectangle`] for
+/// each reference point with only the origin-dependent work (3 dot products, 4 normalised
+/// edge-plane normals and 2 `atan2`s).
+///
+/// ```
+/// use mcrt::glam::{Vec2, Vec3};
+/// use mcrt::sampling::warp::{RectangleFrame, SphericalRectangle};
+///
+/// let (corner, ex, ey) = (Vec3::new(-1.0, -1.0, 1.0), 2.0 * Vec3::X, 2.0 * Vec3::Y);
+/// let frame = RectangleFrame::new(corner, ex, ey).unwrap();
+/// let a = frame.seen_from(Vec3::ZERO).unwrap();
+/// let b = SphericalRectangle::new(Vec3::ZERO, corner, ex, ey).unwrap();
+/// assert_eq!(a.sample_point(Vec2::new(0.3, 0.8)), b.sample_point(Vec2::new(0.3, 0.8)));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RectangleFrame {
+    /// The shape (origin unset), with `e2` orthogonalised against `e1` when within
+    /// [`SPHERICAL_RECTANGLE_ORTHOGONALITY`].
+    planar: Planar,
+    /// Unit edge directions and the unit normal x × y (the local frame).
+    x: DVec3,
+    y: DVec3,
+    z: DVec3,
+    /// Edge lengths.
+    lx: f64,
+    ly: f64,
+    /// The edges are orthogonal (else the shape is always area sampled).
+    orthogonal: bool,
+}
+
+impl RectangleFrame {
+    /// The rectangle `corner + s·edge_x + t·edge_y`, s, t ∈ [0, 1] (world space). Errors:
+    /// non-finite input, zero area.
+    pub fn new(corner: Vec3, edge_x: Vec3, edge_y: Vec3) -> Result<Self, SamplingError> {
+        let (p0, ex) = (widen("corner", corner)?, widen("edge_x", edge_x)?);
+        let mut ey = widen("edge_y", edge_y)?;
+        let lx = ex.length();
+        let orthogonal = lx > 0.0
+            && ex.dot(ey).abs() <= f64::from(SPHERICAL_RECTANGLE_ORTHOGONALITY) * lx * ey.length();
+        if orthogonal {
+            ey -= ex.dot(ey) / (lx * lx) * ex;
         }
-        let (x1, y1) = (x0 + lx, y0 + ly);
-        let n0 = DVec3::new(0.0, z0, -y0).normalize();
-        let n1 = DVec3::new(-z0, 0.0, x1).normalize();
-        let n2 = DVec3::new(0.0, -z0, y1).normalize();
-        let n3 = DVec3::new(z0, 0.0, -x0).normalize();
-        let g = [
-            dihedral(n0, n1),
-            dihedral(n1, n2),
-            dihedral(n2, n3),
-            dihedral(n3, n0),
-        ];
-        let s = g.iter().sum::<f64>() - TAU;
-        let min_angle = g.iter().copied().fold(f64::INFINITY, f64::min);
-        let urena = Self {
-            frame: [x, y, z],
-            x0,
-            x1,
-            y0,
-            y1,
-            z0,
-            b0: n0.z,
-            b1: n2.z,
-            k: TAU - g[2] - g[3],
-            omega: s,
-        };
-        (s.is_finite() && min_angle.is_finite()).then_some((urena, s, min_angle))
+        let planar = Planar::shape(p0, ex, ey, false)?;
+        let ly = ey.length();
+        let (x, y) = (ex / lx, ey / ly);
+        Ok(Self {
+            planar,
+            x,
+            y,
+            z: x.cross(y),
+            lx,
+            ly,
+            orthogonal,
+        })
     }
 
-    /// The local (x, y) of the sampled point: x by the solid-angle fraction u₁, y by u₂.
-    fn sample_local(&self, u: DVec2, omega: f64) -> (f64, f64) {
-        let au = u.x * omega + self.k;
-        let (sin_au, cos_au) = au.sin_cos();
-        let fu = (cos_au * self.b0 - self.b1) / sin_au;
-        let cu = (fu.signum() / (fu * fu + self.b0 * self.b0).sqrt()).clamp(-1.0, 1.0);
-        let xu = -(cu * self.z0) / ((1.0 - cu) * (1.0 + cu)).sqrt();
-        let xu = if xu.is_nan() {
-            self.x0
-        } else {
-            xu.clamp(self.x0, self.x1)
-        };
-        let d2 = xu * xu + self.z0 * self.z0;
-        let h0 = self.y0 / (d2 + self.y0 * self.y0).sqrt();
-        let h1 = self.y1 / (d2 + self.y1 * self.y1).sqrt();
-        let hv = h0 + u.y * (h1 - h0);
-        let one_minus_hv2 = (1.0 - hv) * (1.0 + hv);
-        let yv = if one_minus_hv2 > 1e-30 {
-            (hv * d2.sqrt() / one_minus_hv2.sqrt()).clamp(self.y0, self.y1)
-        } else {
-            self.y1
-        };
-        (xu, yv)
+    /// The rectangle seen from `origin`. Errors: non-finite `origin`, or `origin` in the
+    /// rectangle's plane. Same result as [`SphericalRectangle::new`].
+    #[inline]
+    pub fn seen_from(&self, origin: Vec3) -> Result<SphericalRectangle, SamplingError> {
+        self.seen_from_f64(widen("origin", origin)?)
     }
 
-    /// The sampled point relative to the origin (world axes).
-    fn sample_offset(&self, u: DVec2) -> DVec3 {
-        let (xu, yv) = self.sample_local(u, self.omega);
-        let [x, y, z] = self.frame;
-        xu * x + yv * y + self.z0 * z
+    #[inline]
+    fn seen_from_f64(&self, origin: DVec3) -> Result<SphericalRectangle, SamplingError> {
+        let planar = self.planar.seen_from(origin)?;
+        let urena = if self.orthogonal {
+            Urena::new(self, origin)
+        } else {
+            None
+        };
+        Ok(SphericalRectangle { planar, urena })
     }
 }
 
@@ -236,7 +212,7 @@ impl Warp for SphericalRectangle {
         match self.urena {
             Some(_) => {
                 if self.planar.hit(dir).is_some() {
-                    (1.0 / self.omega) as f32
+                    (1.0 / self.omega()) as f32
                 } else {
                     0.0
                 }
@@ -273,6 +249,8 @@ mod tests {
             Vec3::ZERO,
             Vec3::new(3.0, -2.0, 0.5),
             Vec3::new(0.5, 0.5, 1.9),
+            // Almost in the plane, over the rectangle: Ω close to 2π.
+            Vec3::new(0.2, -0.3, 1.999),
         ] {
             let r = square(origin, 2.0);
             assert!(!r.is_area_sampled(), "{origin}");
@@ -287,6 +265,29 @@ mod tests {
                 "{origin}: {got} vs {want}"
             );
         }
+    }
+
+    #[test]
+    fn frame_seen_from_matches_new() {
+        let (corner, ex, ey) = (
+            Vec3::new(-0.3, 0.2, 1.0),
+            Vec3::new(1.5, 0.0, 0.5),
+            Vec3::new(-0.2, 0.7, 0.6),
+        );
+        let frame = RectangleFrame::new(corner, ex, ey).unwrap();
+        for origin in [
+            Vec3::ZERO,
+            Vec3::new(4.0, -1.0, 0.3),
+            Vec3::new(0.0, 0.0, 1e3),
+        ] {
+            let a = frame.seen_from(origin).unwrap();
+            let b = SphericalRectangle::new(origin, corner, ex, ey).unwrap();
+            assert_eq!(a, b, "{origin}");
+            let u = Vec2::new(0.3, 0.7);
+            assert_eq!(a.sample_point(u), b.sample_point(u));
+        }
+        assert!(frame.seen_from(corner + 0.5 * ex).is_err());
+        assert!(frame.seen_from(Vec3::NAN).is_err());
     }
 
     #[test]

@@ -44,7 +44,7 @@ struct Arvo {
 /// triangle uniformly by area and its pdf is the converted density d² / (A |cos θ′|) per
 /// steradian (d the distance, θ′ the angle at the triangle); [`Warp::pdf`] uses the same
 /// conversion, so `sample` and `pdf` always agree. [`SphericalTriangle::is_area_sampled`]
-/// tells which mode is in use. The inside test of `pdf` accepts directions within 1e-6 rad
+/// tells which mode is in use. The inside test of `pdf` accepts directions within 1e-7 rad
 /// of the triangle, so `f32` rounding of a sample never makes its pdf 0.
 ///
 /// Arvo 1995, "Stratified Sampling of Spherical Triangles", SIGGRAPH.

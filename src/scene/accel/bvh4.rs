@@ -6,13 +6,18 @@
 //!
 //! Traversal descends into the nearest child the ray enters and pushes the others, farthest
 //! first, with their entry distances;
-//! a popped entry farther than the nearest hit so far is skipped. The stack is a per-thread
-//! buffer reused across queries (no allocation per ray).
+//! a popped entry farther than the nearest hit so far is skipped. The stack is a fixed array
+//! on the call stack when the tree is shallow enough (it always is for sane scenes: each
+//! level pushes at most three entries), else a per-thread buffer reused across queries; no
+//! allocation per ray either way.
 
 use super::aabb::{Aabb, RayBoxTest};
 use super::bvh::Bvh;
 use glam::{Vec3, Vec4};
 use std::cell::RefCell;
+
+/// Entries of the on-stack traversal stack; trees needing more use the per-thread buffer.
+const ARRAY_STACK: usize = 16;
 
 /// Marks a stack entry or child as a leaf: `LEAF | first << 3 | count`.
 const LEAF: u32 = 1 << 31;
@@ -39,6 +44,8 @@ pub struct Bvh4 {
     root: u32,
     root_box: Aabb,
     order: Vec<u32>,
+    /// Levels of 4-wide nodes on the longest root-to-leaf path.
+    depth: usize,
 }
 
 thread_local! {
@@ -54,9 +61,11 @@ impl Bvh4 {
             root: EMPTY,
             root_box: bvh.bounds(),
             order: bvh.order().to_vec(),
+            depth: 0,
         };
         if !bounds.is_empty() {
             out.root = out.collapse(&bvh, 0);
+            out.depth = out.node_depth(out.root);
         }
         out
     }
@@ -69,6 +78,20 @@ impl Bvh4 {
     /// Number of 4-wide nodes.
     pub fn node_count(&self) -> usize {
         self.nodes.len()
+    }
+
+    /// Levels of 4-wide nodes below and including `code` (0 for a leaf).
+    fn node_depth(&self, code: u32) -> usize {
+        if code & LEAF != 0 || code == EMPTY {
+            return 0;
+        }
+        let n = &self.nodes[code as usize];
+        1 + n
+            .child
+            .iter()
+            .map(|&c| self.node_depth(c))
+            .max()
+            .unwrap_or(0)
     }
 
     /// The code of binary node `b`: a leaf code, or the index of its 4-wide node.
@@ -119,7 +142,7 @@ impl Bvh4 {
     ) -> Option<f32> {
         let mut best = None;
         let mut t_max = t_max;
-        self.walk(origin, dir, &mut t_max, |i, bound| {
+        self.walk::<true>(origin, dir, &mut t_max, |i, bound| {
             if let Some(t) = test(i, *bound) {
                 *bound = t;
                 best = Some(t);
@@ -139,16 +162,17 @@ impl Bvh4 {
         mut test: impl FnMut(u32, f32) -> bool,
     ) -> bool {
         let mut t_max = t_max;
-        self.walk(origin, dir, &mut t_max, |i, t| test(i, *t))
+        // Any hit will do: children are visited in node order, not sorted by distance.
+        self.walk::<false>(origin, dir, &mut t_max, |i, t| test(i, *t))
     }
 
     #[inline(always)]
-    fn walk(
+    fn walk<const ORDERED: bool>(
         &self,
         origin: Vec3,
         dir: Vec3,
         t_max: &mut f32,
-        mut visit: impl FnMut(u32, &mut f32) -> bool,
+        visit: impl FnMut(u32, &mut f32) -> bool,
     ) -> bool {
         let rb = RayBoxTest::new(origin, dir);
         if self.root == EMPTY
@@ -158,52 +182,135 @@ impl Bvh4 {
         }
         let o = [0, 1, 2].map(|a| Vec4::splat(rb.origin[a]));
         let inv = [0, 1, 2].map(|a| Vec4::splat(rb.inv_dir[a]));
-        STACK.with_borrow_mut(|stack| {
-            stack.clear();
-            let mut code = self.root;
-            loop {
-                if code & LEAF != 0 {
-                    let first = (code & !LEAF) >> 3;
-                    for i in first..first + (code & 7) {
-                        if visit(i, t_max) {
-                            return true;
-                        }
-                    }
-                } else {
-                    let n = &self.nodes[code as usize];
-                    let mut near = Vec4::ZERO;
-                    let mut far = Vec4::splat(*t_max);
-                    for a in 0..3 {
-                        let t0 = (n.lo[a] - o[a]) * inv[a];
-                        let t1 = (n.hi[a] - o[a]) * inv[a];
-                        near = near.max(t0.min(t1));
-                        far = far.min(t0.max(t1) * SLAB_GROW);
-                    }
-                    let mask = near.cmple(far).bitmask();
-                    if let Some(next) = descend(stack, n, mask, near) {
-                        code = next;
-                        continue;
+        // Each level pushes at most three entries.
+        if 3 * self.depth < ARRAY_STACK {
+            let mut stack = ArrayStack {
+                items: [(0, 0.0); ARRAY_STACK],
+                len: 0,
+            };
+            self.traverse::<ORDERED>(&mut stack, o, inv, t_max, visit)
+        } else {
+            STACK.with_borrow_mut(|stack| {
+                stack.clear();
+                self.traverse::<ORDERED>(stack, o, inv, t_max, visit)
+            })
+        }
+    }
+
+    #[inline(always)]
+    fn traverse<const ORDERED: bool>(
+        &self,
+        stack: &mut impl Stack,
+        o: [Vec4; 3],
+        inv: [Vec4; 3],
+        t_max: &mut f32,
+        mut visit: impl FnMut(u32, &mut f32) -> bool,
+    ) -> bool {
+        let mut code = self.root;
+        loop {
+            if code & LEAF != 0 {
+                let first = (code & !LEAF) >> 3;
+                for i in first..first + (code & 7) {
+                    if visit(i, t_max) {
+                        return true;
                     }
                 }
-                // Pop the nearest pending child that may still hold a closer hit.
-                loop {
-                    let Some((next, t_entry)) = stack.pop() else {
-                        return false;
-                    };
-                    if t_entry <= *t_max {
-                        code = next;
-                        break;
-                    }
+            } else {
+                let n = &self.nodes[code as usize];
+                let mut near = Vec4::ZERO;
+                let mut far = Vec4::splat(*t_max);
+                for a in 0..3 {
+                    let t0 = (n.lo[a] - o[a]) * inv[a];
+                    let t1 = (n.hi[a] - o[a]) * inv[a];
+                    near = near.max(t0.min(t1));
+                    far = far.min(t0.max(t1) * SLAB_GROW);
+                }
+                let mask = near.cmple(far).bitmask();
+                let next = if ORDERED {
+                    descend(stack, n, mask, near)
+                } else {
+                    descend_unordered(stack, n, mask)
+                };
+                if let Some(next) = next {
+                    code = next;
+                    continue;
                 }
             }
-        })
+            // Pop the nearest pending child that may still hold a closer hit.
+            loop {
+                let Some((next, t_entry)) = stack.pop() else {
+                    return false;
+                };
+                if t_entry <= *t_max {
+                    code = next;
+                    break;
+                }
+            }
+        }
     }
+}
+
+/// A traversal stack of (child code, entry distance).
+trait Stack {
+    fn push(&mut self, e: (u32, f32));
+    fn pop(&mut self) -> Option<(u32, f32)>;
+}
+
+impl Stack for Vec<(u32, f32)> {
+    #[inline(always)]
+    fn push(&mut self, e: (u32, f32)) {
+        Vec::push(self, e);
+    }
+    #[inline(always)]
+    fn pop(&mut self) -> Option<(u32, f32)> {
+        Vec::pop(self)
+    }
+}
+
+/// A fixed-capacity stack on the call stack (capacity checked against the tree depth
+/// before use).
+struct ArrayStack {
+    items: [(u32, f32); ARRAY_STACK],
+    len: usize,
+}
+
+impl Stack for ArrayStack {
+    #[inline(always)]
+    fn push(&mut self, e: (u32, f32)) {
+        debug_assert!(self.len < ARRAY_STACK);
+        if let Some(slot) = self.items.get_mut(self.len) {
+            *slot = e;
+            self.len += 1;
+        }
+    }
+    #[inline(always)]
+    fn pop(&mut self) -> Option<(u32, f32)> {
+        self.len = self.len.checked_sub(1)?;
+        Some(self.items[self.len])
+    }
+}
+
+/// Pushes all entered children (bits of `mask`) but the first, in node order, and returns
+/// that first one: for any-hit queries, where the order does not matter.
+#[inline(always)]
+fn descend_unordered(stack: &mut impl Stack, n: &Node4, mask: u32) -> Option<u32> {
+    let mut first = None;
+    for lane in 0..4 {
+        let c = n.child[lane];
+        if mask & (1 << lane) != 0 && c != EMPTY {
+            match first {
+                None => first = Some(c),
+                Some(_) => stack.push((c, 0.0)),
+            }
+        }
+    }
+    first
 }
 
 /// Sorts the entered children (bits of `mask`) by entry distance, pushes all but the
 /// nearest (farthest first) and returns the nearest.
 #[inline(always)]
-fn descend(stack: &mut Vec<(u32, f32)>, n: &Node4, mask: u32, near: Vec4) -> Option<u32> {
+fn descend(stack: &mut impl Stack, n: &Node4, mask: u32, near: Vec4) -> Option<u32> {
     let mut hit = [(0u32, 0f32); 4];
     let mut k = 0;
     for lane in 0..4 {
@@ -222,7 +329,9 @@ fn descend(stack: &mut Vec<(u32, f32)>, n: &Node4, mask: u32, near: Vec4) -> Opt
     if k == 0 {
         return None;
     }
-    stack.extend_from_slice(&hit[..k - 1]);
+    for &e in &hit[..k - 1] {
+        stack.push(e);
+    }
     Some(hit[k - 1].0)
 }
 

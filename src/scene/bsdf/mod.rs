@@ -127,7 +127,8 @@ fn fresnel_of(f: &ConductorFresnel) -> Fresnel {
 
 impl AnyBsdf {
     /// The material a description asks for, and whether it is two-sided (`twosided`
-    /// wrappers nest; any depth means two-sided).
+    /// wrappers nest; any depth means two-sided; a wrapped dielectric stays as it is, since
+    /// it already has two sides).
     ///
     /// # Errors
     /// A roughness outside the microfacet warps' range.
@@ -135,7 +136,9 @@ impl AnyBsdf {
         let bsdf = match desc {
             BsdfDesc::TwoSided(inner) => {
                 let mut s = Self::from_desc(inner)?;
-                s.two_sided = true;
+                // A dielectric already has two sides (its inside is the other medium);
+                // mirroring it would turn refraction out of the object into refraction in.
+                s.two_sided = !s.bsdf.flags().transmission;
                 return Ok(s);
             }
             BsdfDesc::Diffuse { reflectance } => AnyBsdf::Diffuse(Diffuse {

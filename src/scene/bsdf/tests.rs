@@ -139,7 +139,7 @@ fn from_desc_reads_twosided_and_ior() {
         },
     ));
     let s = AnyBsdf::from_desc(&desc).expect("valid");
-    assert!(s.two_sided);
+    assert!(!s.two_sided, "a dielectric is not mirrored");
     match s.bsdf {
         AnyBsdf::Dielectric(d) => assert_eq!(d.eta, 1.5),
         other => panic!("wrong material {other:?}"),

@@ -3,6 +3,7 @@
 use super::error::GeometryError;
 use super::intersect::TriSoa;
 use crate::sampling::distribution::AliasTable;
+use crate::sampling::warp::RectangleFrame;
 use crate::scene::description::{ShapeDesc, ShapeKind};
 use crate::scene::obj::read_obj;
 use glam::{Affine3A, Mat3, Vec3};
@@ -41,6 +42,9 @@ pub(crate) struct MeshData {
     pub(crate) area: f32,
     /// A rectangle's corner and edges (world space), for spherical-rectangle sampling.
     pub(crate) parallelogram: Option<[Vec3; 3]>,
+    /// The same rectangle prepared for spherical-rectangle sampling (`None` when the warp
+    /// rejects it, e.g. zero area).
+    pub(crate) rect_frame: Option<Box<RectangleFrame>>,
 }
 
 /// A world-space disk.
@@ -143,7 +147,9 @@ fn shape_data(
                 flip,
                 mirrored,
             )?;
-            mesh.parallelogram = Some([p[0], p[1] - p[0], p[3] - p[0]]);
+            let (corner, ex, ey) = (p[0], p[1] - p[0], p[3] - p[0]);
+            mesh.parallelogram = Some([corner, ex, ey]);
+            mesh.rect_frame = RectangleFrame::new(corner, ex, ey).ok().map(Box::new);
             ShapeData::Mesh(mesh)
         }
         ShapeKind::Cube => {
@@ -245,6 +251,7 @@ pub(crate) fn mesh(
         pick: AliasTable::new(&areas).ok(),
         area: areas.iter().map(|&a| f64::from(a)).sum::<f64>() as f32,
         parallelogram: None,
+        rect_frame: None,
     })
 }
 

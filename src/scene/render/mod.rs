@@ -21,12 +21,10 @@
 //! ```
 
 mod effects;
-mod rng;
 mod tiles;
 mod view;
 
 pub use effects::Effects;
-pub use rng::PixelRng;
 pub use view::SceneView;
 
 /// The geometry and camera the renderer uses (one place to switch implementations).
@@ -35,11 +33,15 @@ pub(crate) mod geo {
     pub use crate::scene::geometry::*;
 }
 
-pub use geo::AccelKind;
+pub use geo::{AccelKind, ShapeSampling};
 
 use crate::integrator::{DirectIntegrator, Integrator, PathTracer, Strategy};
+use crate::sampling::sampler::{
+    AnySampler, IndependentSampler, Sampler, SobolSampler, StratifiedSampler,
+};
+use crate::sampling::SamplingError;
 use crate::scene::bsdf::{AnyBsdf, Sided};
-use crate::scene::description::{IntegratorDesc, SceneDescription, ShapeKind};
+use crate::scene::description::{IntegratorDesc, SamplerKind, SceneDescription, ShapeKind};
 use crate::scene::film::{write_exr, write_png, Film, ImageError, PixelFilter};
 use crate::scene::light::Lights;
 use geo::{Camera, Geometry};
@@ -73,6 +75,10 @@ pub struct RenderOptions {
     pub strategy: Option<Strategy>,
     /// Acceleration structure.
     pub accel: AccelKind,
+    /// How area lights on triangles and rectangles are sampled (solid angle by default).
+    pub light_sampling: ShapeSampling,
+    /// Sample generator (else the file's `sampler` type).
+    pub sampler: Option<SamplerKind>,
     /// Pick the render loop specialised to the scene's effects (default). `false` always
     /// runs the general loop (every material type, point lights and environment checked at
     /// run time); for benchmarks and tests of the specialisation.
@@ -87,6 +93,8 @@ impl Default for RenderOptions {
             threads: 0,
             strategy: None,
             accel: AccelKind::Bvh,
+            sampler: None,
+            light_sampling: ShapeSampling::SolidAngle,
             specialize: true,
         }
     }
@@ -103,7 +111,7 @@ pub struct Renderer {
     width: u32,
     height: u32,
     spp: u32,
-    seed: u64,
+    sampler: AnySampler,
     threads: usize,
     effects: Effects,
     specialize: bool,
@@ -142,6 +150,16 @@ fn scene_radius(desc: &SceneDescription) -> f32 {
     r
 }
 
+/// The sampler for a scene's `sampler` type (see `sampling::sampler` for the mapping of
+/// Mitsuba's tags; stratified counts round up to a square).
+fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, SamplingError> {
+    Ok(match kind {
+        SamplerKind::Independent => IndependentSampler::new(spp, seed)?.into(),
+        SamplerKind::Stratified => StratifiedSampler::new(spp, seed, true)?.into(),
+        SamplerKind::LowDiscrepancy => SobolSampler::new(spp, seed)?.into(),
+    })
+}
+
 fn bit(i: u32, b: u32) -> f32 {
     if (i >> b) & 1 == 1 {
         1.0
@@ -158,7 +176,8 @@ impl Renderer {
             .as_ref()
             .and_then(|p| p.parent().map(Path::to_path_buf));
         let geo = Geometry::new(&desc.shapes, base.as_deref(), opts.accel)
-            .map_err(|e| RenderError(format!("geometry: {e}")))?;
+            .map_err(|e| RenderError(format!("geometry: {e}")))?
+            .with_shape_sampling(opts.light_sampling);
         let lights =
             Lights::new(desc, &geo, scene_radius(desc)).map_err(|e| RenderError(e.to_string()))?;
         let camera = Camera::new(&desc.sensor).map_err(|e| RenderError(format!("camera: {e}")))?;
@@ -198,6 +217,11 @@ impl Renderer {
             )));
         }
         let effects = Effects::of(&bsdfs, &lights, &integrator);
+        let spp = opts.spp.unwrap_or(desc.sensor.sampler.sample_count);
+        let seed = opts.seed.unwrap_or(desc.sensor.sampler.seed);
+        let kind = opts.sampler.unwrap_or(desc.sensor.sampler.kind);
+        let sampler =
+            make_sampler(kind, spp, seed).map_err(|e| RenderError(format!("sampler: {e}")))?;
         Ok(Self {
             geo,
             lights,
@@ -207,8 +231,8 @@ impl Renderer {
             filter: PixelFilter::from_desc(&film.filter),
             width: film.width,
             height: film.height,
-            spp: opts.spp.unwrap_or(desc.sensor.sampler.sample_count),
-            seed: opts.seed.unwrap_or(desc.sensor.sampler.seed),
+            spp: sampler.samples_per_pixel(),
+            sampler,
             threads: opts.threads,
             effects,
             specialize: opts.specialize,
@@ -220,7 +244,12 @@ impl Renderer {
         self.effects
     }
 
-    /// Samples per pixel that [`Renderer::render`] will take.
+    /// The sample generator.
+    pub fn sampler(&self) -> &AnySampler {
+        &self.sampler
+    }
+
+    /// Samples per pixel that [`Renderer::render`] will take (after the sampler's rounding).
     pub fn spp(&self) -> u32 {
         self.spp
     }
@@ -251,7 +280,7 @@ impl Renderer {
             width: self.width,
             height: self.height,
             spp: self.spp,
-            seed: self.seed,
+            sampler: &self.sampler,
             t_max: f32::INFINITY,
             progress,
             cancel,

@@ -2,8 +2,8 @@
 //! accumulation merged in a fixed order so the result does not depend on the thread count.
 
 use super::geo::Camera;
-use super::rng::PixelRng;
 use crate::integrator::{Integrator, Scene};
+use crate::sampling::sampler::{AnySampler, Sampler};
 use crate::scene::film::{Film, PixelAccum, PixelFilter};
 use glam::Vec2;
 use rayon::prelude::*;
@@ -20,7 +20,7 @@ pub(crate) struct LoopParams<'a> {
     pub width: u32,
     pub height: u32,
     pub spp: u32,
-    pub seed: u64,
+    pub sampler: &'a AnySampler,
     pub t_max: f32,
     pub progress: &'a (dyn Fn(u64, u64) + Sync),
     pub cancel: &'a AtomicBool,
@@ -61,15 +61,14 @@ fn render_tile<S: Scene>(
 ) -> TileResult {
     let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
     let mut rays = 0u64;
+    let mut rng = p.sampler.clone();
     for y in y0..y1 {
         for x in x0..x1 {
             let index = (y * p.width + x) as usize;
             let mut acc = PixelAccum::default();
             for s in s0..s1 {
-                let mut rng = PixelRng::new(p.seed, index as u64, s as u64);
-                let off = p
-                    .filter
-                    .sample(crate::integrator::SampleSource::next_2d(&mut rng));
+                rng.start_pixel_sample([x, y], s);
+                let off = p.filter.sample(rng.next_2d());
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
                 let (ray, t_max) = p.camera.generate_ray_with_tmax(film);
                 let r = p

@@ -6,10 +6,11 @@ use glam::{DVec2, DVec3, Vec3};
 
 use crate::sampling::SamplingError;
 
-/// Angular tolerance (radians) of the inside test, a few `f32` ulps of a unit direction:
+/// Angular tolerance (radians) of the inside test, about two `f32` ulps of a unit direction
+/// (rounding a unit direction to `f32` moves it by at most ~5·10⁻⁸ rad):
 /// a sampled direction rounded to `f32` must still count as hitting the shape. On the
 /// shape's plane the band is this angle times d/|cos θ'|.
-pub(crate) const ANGULAR_TOLERANCE: f64 = 1e-6;
+pub(crate) const ANGULAR_TOLERANCE: f64 = 1e-7;
 
 /// The shape p0 + s e1 + t e2 with s, t ≥ 0 and s + t ≤ 1 (triangle) or s, t ≤ 1
 /// (parallelogram), seen from `origin`.
@@ -49,6 +50,18 @@ impl Planar {
         e2: DVec3,
         triangle: bool,
     ) -> Result<Self, SamplingError> {
+        Self::shape(p0, e1, e2, triangle)?.seen_from(origin)
+    }
+
+    /// The shape alone (origin at zero, unchecked): validates a nonzero area. Reference-point
+    /// independent, so it can be built once per light and reused through
+    /// [`Planar::seen_from`].
+    pub(crate) fn shape(
+        p0: DVec3,
+        e1: DVec3,
+        e2: DVec3,
+        triangle: bool,
+    ) -> Result<Self, SamplingError> {
         let cross = e1.cross(e2);
         let len = cross.length();
         if !len.is_finite() || len <= 1e-12 * e1.length() * e2.length() {
@@ -56,26 +69,37 @@ impl Planar {
                 what: "the shape has zero area (collinear or zero-length edges)",
             });
         }
-        let normal = cross / len;
-        let to = p0 - origin;
-        let scale = to.length().max(e1.length()).max(e2.length());
-        let off_plane = normal.dot(to).abs();
+        let area = if triangle { 0.5 * len } else { len };
+        Ok(Self {
+            origin: DVec3::ZERO,
+            p0,
+            e1,
+            e2,
+            cross,
+            normal: cross / len,
+            area,
+            triangle,
+        })
+    }
+
+    /// This shape seen from `origin`, which must lie off its plane (relative distance
+    /// > 1e-9).
+    #[inline]
+    pub(crate) fn seen_from(mut self, origin: DVec3) -> Result<Self, SamplingError> {
+        let to = self.p0 - origin;
+        let scale = to
+            .length_squared()
+            .max(self.e1.length_squared())
+            .max(self.e2.length_squared())
+            .sqrt();
+        let off_plane = self.normal.dot(to).abs();
         if off_plane.is_nan() || off_plane <= 1e-9 * scale {
             return Err(SamplingError::Degenerate {
                 what: "the origin lies in the plane of the shape (zero solid angle)",
             });
         }
-        let area = if triangle { 0.5 * len } else { len };
-        Ok(Self {
-            origin,
-            p0,
-            e1,
-            e2,
-            cross,
-            normal,
-            area,
-            triangle,
-        })
+        self.origin = origin;
+        Ok(self)
     }
 
     /// Where the ray from the origin along unit `dir` meets the shape (with the angular

@@ -5,6 +5,7 @@
 
 use super::{area_to_solid_angle, ShapeSampling};
 use crate::sampling::warp::{SphericalRectangle, SphericalTriangle, Warp};
+use crate::sampling::SamplingError;
 use crate::scene::geometry::build::MeshData;
 use crate::scene::geometry::{Hit, ShapeSample};
 use glam::{Vec2, Vec3};
@@ -69,8 +70,8 @@ pub(super) fn sample(
 }
 
 pub(super) fn pdf(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) -> Option<f32> {
-    if let Some(par) = &m.parallelogram {
-        return pdf_parallelogram(m, how, par, reference, hit);
+    if m.parallelogram.is_some() {
+        return pdf_parallelogram(m, how, reference, hit);
     }
     let k = hit.prim as usize;
     if k >= m.indices.len() {
@@ -87,6 +88,17 @@ pub(super) fn pdf(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) 
     Some(pmf * pdf)
 }
 
+/// The rectangle seen from `reference`, from the frame precomputed at build time.
+#[inline]
+fn rectangle(m: &MeshData, reference: Vec3) -> Result<SphericalRectangle, SamplingError> {
+    match &m.rect_frame {
+        Some(f) => f.seen_from(reference),
+        None => Err(SamplingError::Degenerate {
+            what: "not a valid rectangle",
+        }),
+    }
+}
+
 fn triangle_area([a, b, c]: [Vec3; 3]) -> f32 {
     0.5 * (b - a).cross(c - a).length()
 }
@@ -100,7 +112,7 @@ fn sample_parallelogram(
     u: Vec2,
 ) -> Option<ShapeSample> {
     let n = front_normal(m, triangle(m, 0));
-    let (p, pdf) = match solid_angle(how, || SphericalRectangle::new(reference, corner, ex, ey)) {
+    let (p, pdf) = match solid_angle(how, || rectangle(m, reference)) {
         Some(sr) => sr.sample_point(u)?,
         None => {
             let p = corner + u.x * ex + u.y * ey;
@@ -110,14 +122,8 @@ fn sample_parallelogram(
     (pdf.is_finite() && pdf > 0.0).then_some(ShapeSample { p, n, pdf })
 }
 
-fn pdf_parallelogram(
-    m: &MeshData,
-    how: ShapeSampling,
-    &[corner, ex, ey]: &[Vec3; 3],
-    reference: Vec3,
-    hit: &Hit,
-) -> Option<f32> {
-    match solid_angle(how, || SphericalRectangle::new(reference, corner, ex, ey)) {
+fn pdf_parallelogram(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) -> Option<f32> {
+    match solid_angle(how, || rectangle(m, reference)) {
         Some(sr) => Some(sr.pdf((hit.p - reference).normalize_or_zero())),
         None => area_to_solid_angle(1.0 / m.area, reference, hit.p, hit.ng),
     }
