@@ -170,8 +170,8 @@ class Sample:
 class MitsubaContender:
     """One Mitsuba variant, rendering in this process."""
 
-    def __init__(self, mi, dr, variant: str):
-        self.mi, self.dr, self.variant = mi, dr, variant
+    def __init__(self, mi, dr, variant: str, defines: dict[str, str]):
+        self.mi, self.dr, self.variant, self.defines = mi, dr, variant, defines
         self.name, self.sampler = f"mitsuba {variant}", "independent"
         self.scene = None
 
@@ -180,7 +180,7 @@ class MitsubaContender:
         check_variant(self.mi, self.variant)
         self.mi.set_log_level(self.mi.LogLevel.Warn)
         t0 = time.perf_counter()
-        self.scene = self.mi.load_file(str(scene_path))
+        self.scene = self.mi.load_file(str(scene_path), **self.defines)
         return time.perf_counter() - t0
 
     def warmup(self, spp: int) -> float:
@@ -225,9 +225,12 @@ def children_cpu_s() -> float:
 class OursContender:
     """mcrt's render example with one sampler, run as a child process."""
 
-    def __init__(self, binary: Path, sampler: str, extra: str, threads: int, tmp: str):
+    def __init__(self, binary: Path, sampler: str, extra: str, defines: dict[str, str],
+                 threads: int, tmp: str):
         self.binary, self.sampler, self.threads, self.tmp = binary, sampler, threads, tmp
         self.extra = shlex.split(extra)
+        for k, v in defines.items():
+            self.extra += ["-D", f"{k}={v}"]
         self.name = f"mcrt {extra}".strip()
         self.scene_path = None
         self.note = ""
@@ -254,7 +257,7 @@ class OursContender:
         return Sample(read_exr(self._out()), own if own is not None else wall, wall, cpu)
 
     def _out(self) -> Path:
-        tag = re.sub(r"[^A-Za-z0-9]+", "_", " ".join(self.extra))
+        tag = re.sub(r"[^A-Za-z0-9]+", "_", " ".join(self.extra))[:80]
         return Path(self.tmp) / f"{self.scene_path.stem}-{self.sampler}{tag}.exr"
 
     def _run(self, spp: int, seed: int) -> tuple[str, float, float]:
@@ -348,11 +351,13 @@ def relmse(img, ref) -> float:
     return float(np.mean((img - ref) ** 2 / (ref**2 + 0.01)))
 
 
-def reference_for(scene: str) -> tuple[Path, Path]:
-    """Split 'scene.xml[:ref.exr]'; by default the reference is <stem>.exr beside the scene."""
+def reference_for(scene: str, defines: dict[str, str]) -> tuple[Path, Path]:
+    """Split 'scene.xml[:ref.exr]'. By default the reference is <stem>.exr beside the scene,
+    or <stem>-direct.exr with -D max_depth=2 (direct lighting only)."""
     path, _, ref = scene.partition(":")
     scene_path = (REPO / path) if not os.path.isabs(path) else Path(path)
-    ref_path = Path(ref) if ref else scene_path.with_suffix(".exr")
+    direct = "-direct" if defines.get("max_depth") == "2" else ""
+    ref_path = Path(ref) if ref else scene_path.with_name(f"{scene_path.stem}{direct}.exr")
     for p in (scene_path, ref_path):
         if not p.exists():
             fail(f"{p} does not exist")
@@ -429,6 +434,8 @@ def parse_args(argv=None) -> argparse.Namespace:
     p.add_argument("scenes", nargs="*", default=DEFAULT_SCENES,
                    help="scene files, optionally 'scene.xml:reference.exr' "
                         "(default: the Cornell box and Veach's MIS scene in tests/data)")
+    p.add_argument("-D", dest="define", action="append", default=[], metavar="NAME=VALUE",
+                   help="scene parameter for both renderers (as the render example's -D)")
     p.add_argument("--spp", type=int, nargs="+", default=[64, 256], help="sample counts")
     p.add_argument("--repeats", type=int, default=2, help="seeds per configuration")
     p.add_argument("--variants", nargs="+", default=MITSUBA_VARIANTS, help="Mitsuba variants")
@@ -455,6 +462,12 @@ def parse_args(argv=None) -> argparse.Namespace:
             a.scenes = DEFAULT_SCENES[:1]
     if a.repeats < 1 or min(a.spp) < 1:
         p.error("--repeats and --spp must be positive")
+    a.defines = {}
+    for d in a.define:
+        k, sep, v = d.partition("=")
+        if not sep or not k:
+            p.error(f"-D {d}: expected NAME=VALUE")
+        a.defines[k] = v
     return a
 
 
@@ -476,12 +489,12 @@ def main(argv=None) -> int:
     seeds = list(range(1, a.repeats + 1))
     results: list[Result] = []
     with tempfile.TemporaryDirectory(prefix="mcrt-peer-") as tmp:
-        contenders = [MitsubaContender(mi, dr, v) for v in variants]
+        contenders = [MitsubaContender(mi, dr, v, a.defines) for v in variants]
         if not a.skip_ours:
-            contenders += [OursContender(a.renderer, s, x, a.threads, tmp)
+            contenders += [OursContender(a.renderer, s, x, a.defines, a.threads, tmp)
                            for x in a.ours_args for s in a.samplers]
         for scene in a.scenes:
-            scene_path, ref_path = reference_for(scene)
+            scene_path, ref_path = reference_for(scene, a.defines)
             ref = read_exr(ref_path)
             print(f"{scene_path.name} (reference {ref_path.name}):", file=sys.stderr)
             results += measure_scene(contenders, scene_path, ref, a.spp, seeds)
