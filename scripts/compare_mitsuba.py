@@ -1,185 +1,516 @@
 #!/usr/bin/env python3
-"""Mitsuba 3 and mcrt side by side: time, samples/s, relMSE and efficiency on the same scenes.
+"""Render scenes with Mitsuba 3 and with mcrt side by side, and compare speed and error.
 
-Usage:
-    pip install mitsuba                      # Mitsuba 3 (PyPI), also brings numpy
-    apt-get install -y libllvm19             # for the llvm_ad_rgb variant (Debian)
-    scripts/compare_mitsuba.py [--scenes tests/data/cornell-box.xml ...] [--spp 64 256]
-                               [--variants scalar_rgb llvm_ad_rgb] [--ours] [--sampler ...]
+For every scene, sample count and renderer (Mitsuba's `scalar_rgb` and `llvm_ad_rgb`
+variants, and mcrt's `render` example with each requested sampler) the script measures
 
-For each scene, sample count and Mitsuba variant: load the scene (timed), render once to warm
-up (Mitsuba's JIT compiles its kernels there; timed and reported separately), then render again
-with another seed and time that render alone. Our renderer (with --ours) runs as
-`cargo run --release --example render -- SCENE --spp N -o OUT.exr [--sampler S]`; its time is
-the render time it prints (`time X s, ...`), and the rest of the process's wall time (loading,
-BVH build, image output) goes in the warm-up column; without such a line the wall time is used
-and the row says so. The script builds the example once, untimed, before the first run.
+* the render time, without scene loading and without Mitsuba's JIT compilation: a warm-up
+  render comes first and its time is reported separately;
+* samples per second (spp x width x height / render time);
+* relMSE against the reference image,
+  mean((img - ref)^2 / (ref^2 + 0.01)) over all pixels and channels;
+* efficiency = 1 / (relMSE x render time), and its ratio to Mitsuba's `llvm_ad_rgb`.
 
-relMSE = mean over pixels and RGB channels of (img − ref)² / (ref² + 0.01), against the
-reference EXR in tests/data/ (see tests/data/REFERENCES.md); efficiency = 1 / (relMSE × time).
-A scene with `-D max_depth=2` is compared with its `-direct` reference.
+Each configuration is rendered `--repeats` times with different seeds; the table shows the
+mean render time, the mean relMSE and the efficiency computed from those two means.
+
+Requirements: see scripts/README.md (`pip install -r scripts/requirements.txt`).
+Example:
+
+    python3 scripts/compare_mitsuba.py --quick
+    python3 scripts/compare_mitsuba.py --json out/peer.json --markdown out/peer.md
 """
 
+from __future__ import annotations
+
 import argparse
+import glob
+import json
 import os
+import platform
 import re
+import resource
+import shlex
+import shutil
 import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
 
-REPO = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-DATA = os.path.join(REPO, "tests", "data")
-LLVM_CANDIDATES = [
-    "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1",
-    "/usr/lib/x86_64-linux-gnu/libLLVM-19.so",
-]
-
-
-def parse_args():
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--scenes", nargs="+", default=[
-        os.path.join(DATA, "cornell-box.xml"), os.path.join(DATA, "veach-mis.xml")])
-    p.add_argument("--spp", nargs="+", type=int, default=[64, 256])
-    p.add_argument("--variants", nargs="+", default=["scalar_rgb", "llvm_ad_rgb"])
-    p.add_argument("--define", "-D", action="append", default=[],
-                   help="NAME=VALUE scene parameter, as the renderer's -D")
-    p.add_argument("--ours", action="store_true", help="also run our renderer example")
-    p.add_argument("--sampler", action="append", default=[],
-                   help="our renderer's --sampler value(s) to run besides the scene's own")
-    p.add_argument("--mitsuba", action=argparse.BooleanOptionalAction, default=True,
-                   help="run Mitsuba (default); --no-mitsuba runs ours only")
-    p.add_argument("--threads", type=int, default=0, help="threads for both (0: all cores)")
-    return p.parse_args()
+REPO = Path(__file__).resolve().parent.parent
+DEFAULT_SCENES = ["tests/data/cornell-box.xml", "tests/data/veach-mis.xml"]
+DEFAULT_BINARY = "target/release/examples/render"
+MITSUBA_VARIANTS = ["scalar_rgb", "llvm_ad_rgb"]
+BASELINE = "mitsuba llvm_ad_rgb"
+WARMUP_SEED = 1_000_003
 
 
-def reference_for(scene, defines):
-    """The reference EXR of a scene file under the given -D parameters."""
-    name = os.path.splitext(os.path.basename(scene))[0]
-    if defines.get("max_depth") == "2":
-        name += "-direct"
-    path = os.path.join(os.path.dirname(os.path.abspath(scene)), name + ".exr")
-    if not os.path.exists(path):
-        path = os.path.join(DATA, name + ".exr")
-    return path
+@dataclass
+class Result:
+    """One configuration (scene, renderer, sampler, spp) measured over several seeds."""
+
+    scene: str
+    renderer: str
+    sampler: str
+    spp: int
+    pixels: int
+    setup_s: float = float("nan")
+    warmup_s: float = float("nan")
+    render_s: list[float] = field(default_factory=list)
+    wall_s: list[float] = field(default_factory=list)
+    cpu_s: list[float] = field(default_factory=list)
+    relmse: list[float] = field(default_factory=list)
+    note: str = ""
+
+    def mean_time(self) -> float:
+        """Mean render time over the repeats, in seconds."""
+        return mean(self.render_s)
+
+    def samples_per_s(self) -> float:
+        """Samples (camera paths) per second at the mean render time."""
+        return self.spp * self.pixels / self.mean_time()
+
+    def mean_relmse(self) -> float:
+        """Mean relMSE over the repeats."""
+        return mean(self.relmse)
+
+    def efficiency(self) -> float:
+        """1 / (relMSE x time), from the means over the repeats."""
+        return 1.0 / (self.mean_relmse() * self.mean_time())
+
+    def cpu_efficiency(self) -> float:
+        """1 / (relMSE x CPU time): less sensitive to other processes on the machine."""
+        return 1.0 / (self.mean_relmse() * mean(self.cpu_s))
 
 
-def read_exr(path):
-    """An EXR as a float64 array (height, width, 3), read with Mitsuba's Bitmap."""
-    import mitsuba as mi
-    import numpy as np
-    bmp = mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, False)
-    return np.array(bmp, dtype=np.float64)
+def mean(xs: list[float]) -> float:
+    """Arithmetic mean; NaN for an empty list."""
+    return sum(xs) / len(xs) if xs else float("nan")
 
 
-def rel_mse(img, ref):
-    import numpy as np
-    img = np.asarray(img, dtype=np.float64)[..., :3]
-    if img.shape != ref.shape:
-        raise ValueError(f"image shape {img.shape} differs from the reference's {ref.shape}")
-    return float(np.mean((img - ref) ** 2 / (ref ** 2 + 0.01)))
+def fail(msg: str) -> None:
+    """Print an error and exit with status 2."""
+    print(f"compare_mitsuba: error: {msg}", file=sys.stderr)
+    sys.exit(2)
 
 
-def setup_llvm():
-    if "DRJIT_LIBLLVM_PATH" not in os.environ:
-        for path in LLVM_CANDIDATES:
-            if os.path.exists(path):
-                os.environ["DRJIT_LIBLLVM_PATH"] = path
-                break
+# ---------------------------------------------------------------- Mitsuba
 
 
-def run_mitsuba(variant, scene, spp, defines, ref, threads):
-    import mitsuba as mi
-    mi.set_variant(variant)
-    if threads:
-        mi.Thread.thread_count = threads  # scalar variants; llvm uses drjit's pool
+def find_libllvm() -> str | None:
+    """Locate a libLLVM (16 or newer) for Dr.Jit's LLVM backend, if one is installed."""
+    patterns = [
+        "/usr/lib/x86_64-linux-gnu/libLLVM.so.*",
+        "/usr/lib/x86_64-linux-gnu/libLLVM-*.so",
+        "/usr/lib/aarch64-linux-gnu/libLLVM.so.*",
+        "/usr/lib/llvm-*/lib/libLLVM*.so*",
+    ]
+    for pattern in patterns:
+        for path in sorted(glob.glob(pattern), reverse=True):
+            m = re.search(r"LLVM[.-](?:so\.)?(\d+)", os.path.basename(path))
+            if m and int(m.group(1)) >= 16:
+                return path
+    return None
+
+
+def import_mitsuba(variants: list[str]):
+    """Import mitsuba (and numpy), with a clear message if they are missing."""
+    if "llvm_ad_rgb" in variants and "DRJIT_LIBLLVM_PATH" not in os.environ:
+        lib = find_libllvm()
+        if lib:
+            os.environ["DRJIT_LIBLLVM_PATH"] = lib
+    try:
         import drjit as dr
-        dr.set_thread_count(threads)
-    params = dict(defines)
-    params["spp"] = str(spp)
-    t0 = time.perf_counter()
-    sc = mi.load_file(scene, **params)
-    load = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    img = mi.render(sc, spp=spp, seed=0)
-    _ = float(img.array[0]) if hasattr(img, "array") else None  # force evaluation
-    warm = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    img = mi.render(sc, spp=spp, seed=1)
-    import numpy as np
-    arr = np.array(img)  # forces evaluation of the JIT kernels
-    render = time.perf_counter() - t0
-    w, h = arr.shape[1], arr.shape[0]
-    return dict(who=f"mitsuba {variant}", load=load, warm=warm, time=render,
-                samples=w * h * spp, rel_mse=rel_mse(arr, ref))
+        import mitsuba as mi
+        import numpy as np  # noqa: F401  (needed by mi.Bitmap -> array)
+    except ImportError as e:
+        fail(
+            f"cannot import {e.name}: install the requirements with "
+            "'pip install -r scripts/requirements.txt' (see scripts/README.md); "
+            "mitsuba is needed even with --skip-mitsuba, to read the EXR images"
+        )
+    missing = [v for v in variants if v not in mi.variants()]
+    if missing:
+        fail(f"this mitsuba build lacks the variant(s) {missing}")
+    return mi, dr
 
 
-def build_ours():
-    subprocess.run(["cargo", "build", "--release", "--example", "render"], cwd=REPO, check=True)
+def check_variant(mi, variant: str) -> None:
+    """Select a Mitsuba variant; explain the libLLVM requirement if it fails."""
+    try:
+        mi.set_variant(variant)
+        if variant.startswith("llvm"):
+            mi.Float(1.0) + 1.0  # forces the LLVM backend to initialise
+    except Exception as e:  # noqa: BLE001 (drjit raises several types)
+        hint = ""
+        if variant.startswith("llvm"):
+            hint = (
+                " -- the LLVM variants need libLLVM 16+ (e.g. Debian's libllvm19); set "
+                "DRJIT_LIBLLVM_PATH to its libLLVM.so"
+            )
+        fail(f"mitsuba variant {variant} unavailable: {e}{hint}")
 
 
-def run_ours(scene, spp, defines, ref, sampler, threads):
-    """HOOK: our renderer, through the `render` example (issue 4's CLI)."""
-    with tempfile.TemporaryDirectory() as tmp:
-        out = os.path.join(tmp, "out.exr")
-        cmd = ["cargo", "run", "--quiet", "--release", "--example", "render", "--",
-               scene, "--spp", str(spp), "-o", out]
-        for k, v in defines.items():
-            cmd += ["-D", f"{k}={v}"]
-        if sampler:
-            cmd += ["--sampler", sampler]
-        if threads:
-            cmd += ["--threads", str(threads)]
+class Skip(Exception):
+    """A contender that cannot run this configuration (e.g. a sampler the build lacks)."""
+
+
+@dataclass
+class Sample:
+    """One timed render: the image, render seconds, process wall and CPU seconds."""
+
+    img: object
+    render_s: float
+    wall_s: float
+    cpu_s: float
+
+
+class MitsubaContender:
+    """One Mitsuba variant, rendering in this process."""
+
+    def __init__(self, mi, dr, variant: str, defines: dict[str, str]):
+        self.mi, self.dr, self.variant, self.defines = mi, dr, variant, defines
+        self.name, self.sampler = f"mitsuba {variant}", "independent"
+        self.scene = None
+
+    def setup(self, scene_path: Path) -> float:
+        """Load the scene; return the loading time in seconds."""
+        check_variant(self.mi, self.variant)
+        self.mi.set_log_level(self.mi.LogLevel.Warn)
         t0 = time.perf_counter()
-        proc = subprocess.run(cmd, cwd=REPO, capture_output=True, text=True)
-        wall = time.perf_counter() - t0
-        if proc.returncode != 0:
-            raise RuntimeError(f"{' '.join(cmd)} failed:\n{proc.stderr[-2000:]}")
-        text = proc.stdout + proc.stderr
-        # The example prints "time 1.234 s, ... M samples/s, ... (N samples, M rays)".
-        m = re.search(r"\btime:?\s*([0-9.eE+-]+)\s*s\b", text)
-        render = float(m.group(1)) if m else wall
-        n = re.search(r"\((\d+) samples", text)
-        img = read_exr(out)
-    h, w = img.shape[:2]
-    samples = int(n.group(1)) if n else w * h * spp
-    return dict(who=f"mcrt {sampler or 'scene sampler'}" + ("" if m else " (wall time)"),
-                load=float("nan"), warm=wall - render if m else float("nan"), time=render,
-                samples=samples, rel_mse=rel_mse(img, ref))
+        self.scene = self.mi.load_file(str(scene_path), **self.defines)
+        return time.perf_counter() - t0
+
+    def warmup(self, spp: int) -> float:
+        """Render once untimed (JIT variants compile here); return its seconds."""
+        self.mi.set_variant(self.variant)
+        # Scalar variants compile nothing: a few samples warm the caches. JIT variants may
+        # compile a kernel per sample count, so they warm up at the measured count.
+        warm_spp = spp if self.dr.is_jit_v(self.mi.Float) else min(spp, 4)
+        return self.render(warm_spp, WARMUP_SEED).render_s
+
+    def render(self, spp: int, seed: int) -> Sample:
+        """Render once, timed from mi.render until the image is evaluated."""
+        import numpy as np
+
+        self.mi.set_variant(self.variant)
+        c0, t0 = time.process_time(), time.perf_counter()
+        img = self.mi.render(self.scene, spp=spp, seed=seed)
+        self.dr.eval(img)
+        self.dr.sync_thread()
+        dt, cpu = time.perf_counter() - t0, time.process_time() - c0
+        return Sample(np.asarray(img, dtype=np.float64)[..., :3], dt, dt, cpu)
 
 
-def print_row(scene, spp, r):
-    eff = 1.0 / (r["rel_mse"] * r["time"]) if r["rel_mse"] > 0 else float("inf")
-    print(f"| {os.path.basename(scene)} | {spp} | {r['who']} | {r['load']:.3f} | "
-          f"{r['warm']:.3f} | {r['time']:.3f} | {r['samples'] / r['time'] / 1e6:.2f} | "
-          f"{r['rel_mse']:.4e} | {eff:.1f} |", flush=True)
+TIME_RE = re.compile(r"\btime\s*[:=]?\s*([0-9]+(?:\.[0-9]*)?(?:[eE][-+]?\d+)?)\s*(ms|s)\b")
 
 
-def main():
-    args = parse_args()
-    setup_llvm()
-    defines = dict(d.split("=", 1) for d in args.define)
-    if args.ours:
-        build_ours()
-    print("| scene | spp | renderer | load s | warm-up s | render s | M samples/s | relMSE "
-          "| efficiency 1/(relMSE·s) |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    for scene in args.scenes:
-        ref_path = reference_for(scene, defines)
-        ref = read_exr(ref_path)
-        for spp in args.spp:
-            if args.mitsuba:
-                for variant in args.variants:
-                    try:
-                        print_row(scene, spp, run_mitsuba(variant, scene, spp, defines, ref,
-                                                          args.threads))
-                    except Exception as e:  # a missing variant or libLLVM: say so, go on
-                        print(f"| {os.path.basename(scene)} | {spp} | mitsuba {variant} | "
-                              f"failed: {e} |", flush=True)
-            if args.ours:
-                for sampler in [None] + args.sampler:
-                    print_row(scene, spp, run_ours(scene, spp, defines, ref, sampler,
-                                                   args.threads))
+def parse_render_time(stdout: str) -> float | None:
+    """Find the renderer's own render time ('time 1.234 s', last match), in seconds."""
+    matches = TIME_RE.findall(stdout)
+    if not matches:
+        return None
+    value, unit = matches[-1]
+    return float(value) / (1000.0 if unit == "ms" else 1.0)
+
+
+def children_cpu_s() -> float:
+    """CPU seconds (user + system) used so far by finished child processes."""
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+class OursContender:
+    """mcrt's render example with one sampler, run as a child process."""
+
+    def __init__(self, binary: Path, sampler: str, extra: str, defines: dict[str, str],
+                 threads: int, tmp: str):
+        self.binary, self.sampler, self.threads, self.tmp = binary, sampler, threads, tmp
+        self.extra = shlex.split(extra)
+        for k, v in defines.items():
+            self.extra += ["-D", f"{k}={v}"]
+        self.name = f"mcrt {extra}".strip()
+        self.scene_path = None
+        self.note = ""
+
+    def setup(self, scene_path: Path) -> float:
+        """Run a 1-spp render (warms the page cache, checks the sampler); return its wall s."""
+        self.scene_path = scene_path
+        try:
+            _, self.warm_s, _ = self._run(1, WARMUP_SEED)
+        except RuntimeError as e:
+            raise Skip(f"mcrt --sampler {self.sampler} on {scene_path.name}: {e}") from e
+        return self.warm_s
+
+    def warmup(self, spp: int) -> float:
+        """Nothing to compile: the 1-spp run of setup() was the warm-up; return its wall s."""
+        return self.warm_s
+
+    def render(self, spp: int, seed: int) -> Sample:
+        """Render once; the render time is the one the binary prints."""
+        stdout, wall, cpu = self._run(spp, seed)
+        own = parse_render_time(stdout)
+        if own is None:
+            self.note = "(no render time printed: wall time used)"
+        return Sample(read_exr(self._out()), own if own is not None else wall, wall, cpu)
+
+    def _out(self) -> Path:
+        tag = re.sub(r"[^A-Za-z0-9]+", "_", " ".join(self.extra))[:80]
+        return Path(self.tmp) / f"{self.scene_path.stem}-{self.sampler}{tag}.exr"
+
+    def _run(self, spp: int, seed: int) -> tuple[str, float, float]:
+        """Run the binary; return (stdout, wall s, CPU s) or raise RuntimeError."""
+        cmd = [str(self.binary), str(self.scene_path), "--spp", str(spp),
+               "--seed", str(seed), "-o", str(self._out())]
+        if self.sampler != "independent":
+            cmd += ["--sampler", self.sampler]
+        if self.threads:
+            cmd += ["--threads", str(self.threads)]
+        cmd += self.extra
+        c0, t0 = children_cpu_s(), time.perf_counter()
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        wall, cpu = time.perf_counter() - t0, children_cpu_s() - c0
+        if p.returncode != 0:
+            msg = (p.stderr.strip() or p.stdout.strip()).splitlines()
+            raise RuntimeError(f"'{' '.join(cmd)}' failed: {msg[-1] if msg else p.returncode}")
+        return p.stdout, wall, cpu
+
+
+def build_renderer(binary: Path) -> None:
+    """Build the render example in release mode (not timed)."""
+    cmd = ["cargo", "build", "--release", "--example", "render"]
+    print("building:", " ".join(cmd), file=sys.stderr)
+    if shutil.which("cargo") is None:
+        fail("cargo not found; build the renderer yourself and pass --no-build")
+    if subprocess.run(cmd, cwd=REPO).returncode != 0:
+        fail("cargo build failed (is examples/render.rs in this checkout?)")
+    if not binary.exists():
+        fail(f"the build did not produce {binary}")
+
+
+def measure_scene(contenders, scene_path, ref, spps, seeds) -> list[Result]:
+    """Measure every contender on one scene; renders of one seed run back to back."""
+    h, w = ref.shape[:2]
+    active, setup = [], {}
+    for c in contenders:
+        try:
+            setup[c] = c.setup(scene_path)
+            active.append(c)
+        except Skip as e:
+            print(f"  skipping {e}", file=sys.stderr)
+    results = []
+    for spp in spps:
+        rs = {c: Result(scene_path.stem, c.name, c.sampler, spp, w * h, setup[c]) for c in active}
+        for c in active:
+            rs[c].warmup_s = c.warmup(spp)
+        # Round robin over the contenders, so that a change of machine load hits all alike.
+        for seed in seeds:
+            for c in active:
+                s = c.render(spp, seed)
+                r = rs[c]
+                r.render_s.append(s.render_s)
+                r.wall_s.append(s.wall_s)
+                r.cpu_s.append(s.cpu_s)
+                r.relmse.append(relmse(s.img, ref))
+        for c in active:
+            r = rs[c]
+            r.note = getattr(c, "note", "")
+            if r.wall_s != r.render_s:  # a child process: loading, writing the image
+                r.setup_s = mean(r.wall_s) - r.mean_time()
+            log_result(r)
+        results += rs.values()
+    return results
+
+
+# ---------------------------------------------------------------- images
+
+
+def read_exr(path: Path):
+    """Read an RGB EXR as a float64 array HxWx3 (with Mitsuba's Bitmap class)."""
+    import mitsuba as mi
+    import numpy as np
+
+    if not mi.variant():
+        mi.set_variant("scalar_rgb")
+    bmp = mi.Bitmap(str(path)).convert(
+        mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False
+    )
+    return np.asarray(bmp, dtype=np.float64)
+
+
+def relmse(img, ref) -> float:
+    """mean((img - ref)^2 / (ref^2 + 0.01)) over pixels and channels; inf if any NaN."""
+    import numpy as np
+
+    if img.shape != ref.shape:
+        raise ValueError(f"image shape {img.shape} differs from the reference {ref.shape}")
+    if not np.all(np.isfinite(img)):
+        return float("inf")
+    return float(np.mean((img - ref) ** 2 / (ref**2 + 0.01)))
+
+
+def reference_for(scene: str, defines: dict[str, str]) -> tuple[Path, Path]:
+    """Split 'scene.xml[:ref.exr]'. By default the reference is <stem>.exr beside the scene,
+    or <stem>-direct.exr with -D max_depth=2 (direct lighting only)."""
+    path, _, ref = scene.partition(":")
+    scene_path = (REPO / path) if not os.path.isabs(path) else Path(path)
+    direct = "-direct" if defines.get("max_depth") == "2" else ""
+    ref_path = Path(ref) if ref else scene_path.with_name(f"{scene_path.stem}{direct}.exr")
+    for p in (scene_path, ref_path):
+        if not p.exists():
+            fail(f"{p} does not exist")
+    return scene_path, ref_path
+
+
+# ---------------------------------------------------------------- report
+
+
+def fmt(x: float, digits: int = 3) -> str:
+    """Format a float with a number of significant digits; '–' for NaN."""
+    return "–" if x != x else f"{x:.{digits}g}"
+
+
+def markdown_table(results: list[Result]) -> str:
+    """The comparison as a Markdown table, grouped by scene and spp."""
+    base = {(r.scene, r.spp): r for r in results if r.renderer == BASELINE}
+    lines = [
+        "| scene | spp | renderer | sampler | load / overhead (s) | warm-up (s) | "
+        "render (s) | CPU (s) | M samples/s | relMSE | efficiency (1/s) | vs llvm_ad_rgb | "
+        "vs llvm_ad_rgb, CPU |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in sorted(results, key=lambda r: (r.scene, r.spp)):
+        b = base.get((r.scene, r.spp))
+        ratio = r.efficiency() / b.efficiency() if b else float("nan")
+        cpu_ratio = r.cpu_efficiency() / b.cpu_efficiency() if b else float("nan")
+        lines.append(
+            f"| {r.scene} | {r.spp} | {r.renderer} | {r.sampler} | {fmt(r.setup_s, 2)} | "
+            f"{fmt(r.warmup_s, 3)} | {fmt(r.mean_time(), 3)} | {fmt(mean(r.cpu_s), 3)} | "
+            f"{fmt(r.samples_per_s() / 1e6, 3)} | {fmt(r.mean_relmse(), 3)} | "
+            f"{fmt(r.efficiency(), 3)} | {fmt(ratio, 3)} | "
+            f"{fmt(cpu_ratio, 3)}{' ' + r.note if r.note else ''} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def machine_info(mi_version: str | None) -> dict:
+    """Machine and tool versions, for the record."""
+    info = {"nproc": os.cpu_count(), "python": platform.python_version(), "mitsuba": mi_version}
+    try:
+        with open("/proc/cpuinfo") as f:
+            info["cpu"] = next(
+                (ln.split(":", 1)[1].strip() for ln in f if ln.startswith("model name")), None
+            )
+    except OSError:
+        info["cpu"] = platform.processor()
+    try:
+        info["rustc"] = subprocess.run(
+            ["rustc", "--version"], capture_output=True, text=True
+        ).stdout.strip()
+    except OSError:
+        info["rustc"] = None
+    info["loadavg"] = os.getloadavg() if hasattr(os, "getloadavg") else None
+    return info
+
+
+def log_result(r: Result) -> None:
+    """Print one finished configuration to stderr (progress)."""
+    print(
+        f"  {r.scene:12} {r.spp:5} spp  {r.renderer:22} {r.sampler:11} "
+        f"time {fmt(r.mean_time())} s  relMSE {fmt(r.mean_relmse())}  "
+        f"eff {fmt(r.efficiency())}",
+        file=sys.stderr,
+    )
+
+
+# ---------------------------------------------------------------- main
+
+
+def parse_args(argv=None) -> argparse.Namespace:
+    """Command-line options."""
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("scenes", nargs="*", default=DEFAULT_SCENES,
+                   help="scene files, optionally 'scene.xml:reference.exr' "
+                        "(default: the Cornell box and Veach's MIS scene in tests/data)")
+    p.add_argument("-D", dest="define", action="append", default=[], metavar="NAME=VALUE",
+                   help="scene parameter for both renderers (as the render example's -D)")
+    p.add_argument("--spp", type=int, nargs="+", default=[64, 256], help="sample counts")
+    p.add_argument("--repeats", type=int, default=2, help="seeds per configuration")
+    p.add_argument("--variants", nargs="+", default=MITSUBA_VARIANTS, help="Mitsuba variants")
+    p.add_argument("--samplers", nargs="+", default=["independent", "sobol"],
+                   help="our samplers (one the renderer rejects is skipped with a message)")
+    p.add_argument("--ours-args", nargs="+", default=[""], metavar="ARGS",
+                   help="extra arguments for our renderer, one configuration each "
+                        "(e.g. '' '--light-sampling area'); crossed with --samplers")
+    p.add_argument("--renderer", type=Path, default=REPO / DEFAULT_BINARY,
+                   help="our render binary")
+    p.add_argument("--no-build", action="store_true", help="do not run cargo build first")
+    p.add_argument("--threads", type=int, default=0,
+                   help="threads for both renderers (default: all cores)")
+    p.add_argument("--skip-mitsuba", action="store_true", help="only our renderer")
+    p.add_argument("--skip-ours", action="store_true", help="only Mitsuba")
+    p.add_argument("--quick", action="store_true",
+                   help="smoke test: 16 spp, one seed, Cornell box only (unless scenes given)")
+    p.add_argument("--json", type=Path, help="also write the results as JSON here")
+    p.add_argument("--markdown", type=Path, help="also write the table here")
+    a = p.parse_args(argv)
+    if a.quick:
+        a.spp, a.repeats = [16], 1
+        if a.scenes == DEFAULT_SCENES:
+            a.scenes = DEFAULT_SCENES[:1]
+    if a.repeats < 1 or min(a.spp) < 1:
+        p.error("--repeats and --spp must be positive")
+    a.defines = {}
+    for d in a.define:
+        k, sep, v = d.partition("=")
+        if not sep or not k:
+            p.error(f"-D {d}: expected NAME=VALUE")
+        a.defines[k] = v
+    return a
+
+
+def main(argv=None) -> int:
+    """Run the comparison and print the Markdown table on stdout."""
+    a = parse_args(argv)
+    variants = [] if a.skip_mitsuba else a.variants
+    # mitsuba also reads the EXR files, so it is needed even for --skip-mitsuba.
+    mi, dr = import_mitsuba(variants)
+    mi.set_variant("scalar_rgb")
+    if a.threads:
+        dr.set_thread_count(a.threads)
+    if not a.skip_ours:
+        if not a.no_build:
+            build_renderer(a.renderer)
+        elif not a.renderer.exists():
+            fail(f"renderer binary {a.renderer} missing: run "
+                 "'cargo build --release --example render' or drop --no-build")
+    seeds = list(range(1, a.repeats + 1))
+    results: list[Result] = []
+    with tempfile.TemporaryDirectory(prefix="mcrt-peer-") as tmp:
+        contenders = [MitsubaContender(mi, dr, v, a.defines) for v in variants]
+        if not a.skip_ours:
+            contenders += [OursContender(a.renderer, s, x, a.defines, a.threads, tmp)
+                           for x in a.ours_args for s in a.samplers]
+        for scene in a.scenes:
+            scene_path, ref_path = reference_for(scene, a.defines)
+            ref = read_exr(ref_path)
+            print(f"{scene_path.name} (reference {ref_path.name}):", file=sys.stderr)
+            results += measure_scene(contenders, scene_path, ref, a.spp, seeds)
+    table = markdown_table(results)
+    print(table)
+    info = machine_info(mi.__version__)
+    if a.markdown:
+        a.markdown.write_text(table)
+    if a.json:
+        a.json.write_text(json.dumps(
+            {"machine": info, "command": sys.argv, "seeds": seeds,
+             "results": [dict(asdict(r), efficiency=r.efficiency(),
+                              cpu_efficiency=r.cpu_efficiency()) for r in results]},
+            indent=2))
+    print(f"machine: {info}", file=sys.stderr)
+    return 0
 
 
 if __name__ == "__main__":
