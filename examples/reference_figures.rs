@@ -177,7 +177,10 @@ fn main() -> ExitCode {
     println!("|---|---|---|---|---|---|---|");
     let mut all_pass = true;
     for case in &CASES {
-        eprintln!("rendering {} {:?} ...", case.scene, case.defines);
+        eprintln!(
+            "rendering {} {:?} at {spp} spp ...",
+            case.scene, case.defines
+        );
         let f = match run(case, spp, block) {
             Ok(f) => f,
             Err(e) => {
@@ -185,10 +188,12 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
         };
-        let name = match case.defines {
-            [] => case.scene.to_string(),
-            d => format!("{}, {d:?}", case.scene),
-        };
+        let name = case
+            .defines
+            .iter()
+            .fold(case.scene.to_string(), |n, (k, v)| {
+                format!("{n}, `{k}={v}`")
+            });
         let m = f.mean_ratio;
         let pass = f.passes();
         all_pass &= pass;
