@@ -5,6 +5,8 @@
 //! For every ray: the same nearest `t` (relative 1e-4), the same shape and primitive (unless
 //! two primitives tie at the same `t`, e.g. on a shared edge), and the same occlusion answer
 //! for a random `t_max`.
+//!
+//! Throughput and build time are measured in `benches/accel.rs` (`cargo bench --bench accel`).
 
 use mcrt::glam::{Mat4, Vec3};
 use mcrt::scene::description::{ShapeDesc, ShapeKind};
@@ -437,42 +439,6 @@ fn hit_data_on_cornell_box() {
     assert_eq!(h.ns, h.ng);
 }
 
-/// Throughput on the Cornell box (run with `-- --ignored --nocapture`): closest-hit and
-/// occlusion rays per second for each structure, single thread.
-#[test]
-#[ignore = "timing, not a check"]
-fn throughput_cornell_box() {
-    let shapes = cornell_box();
-    let mut r = rng(11);
-    let n = 1_000_000;
-    let rays: Vec<Ray> = (0..n)
-        .map(|_| Ray {
-            origin: point(&mut r, 0.95),
-            dir: unit_vec(&mut r),
-        })
-        .collect();
-    for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::BruteForce] {
-        let g = Geometry::new(&shapes, None, kind).unwrap();
-        let start = std::time::Instant::now();
-        let mut hits = 0usize;
-        for ray in &rays {
-            hits += usize::from(g.intersect(ray, f32::INFINITY).is_some());
-        }
-        let closest = n as f64 / start.elapsed().as_secs_f64();
-        let start = std::time::Instant::now();
-        let mut occ = 0usize;
-        for ray in &rays {
-            occ += usize::from(g.occluded(ray, 1.0));
-        }
-        let any = n as f64 / start.elapsed().as_secs_f64();
-        println!(
-            "{kind:?}: {:.2} M closest-hit rays/s, {:.2} M occlusion rays/s ({hits} hits, {occ} occluded)",
-            closest / 1e6,
-            any / 1e6
-        );
-    }
-}
-
 #[test]
 fn obj_meshes_load_relative_to_the_base_dir() {
     let dir = std::env::temp_dir().join(format!("mcrt-geometry-test-{}", std::process::id()));
@@ -639,41 +605,4 @@ fn shadow_rays_between_surface_points() {
         }
     }
     assert!(free > 50 && blocked > 10, "free {free}, blocked {blocked}");
-}
-
-/// Build time and throughput on a 100k-triangle soup (every point of space lies in the
-/// boxes of hundreds of triangles: a hard case) and a 131k-triangle tessellated sphere, rays
-/// from inside (run with `-- --ignored --nocapture`).
-#[test]
-#[ignore = "timing, not a check"]
-fn throughput_large_meshes() {
-    let mut r = rng(15);
-    let n = 200_000;
-    let rays = random_rays(&mut r, n, 0.5);
-    for (name, shapes) in [
-        ("soup", vec![soup(&mut r, 100_000)]),
-        ("sphere", vec![tessellated_sphere(256, 256)]),
-    ] {
-        throughput(name, &shapes, &rays);
-    }
-}
-
-fn throughput(name: &str, shapes: &[ShapeDesc], rays: &[Ray]) {
-    let n = rays.len();
-    for kind in [AccelKind::Bvh, AccelKind::Grid] {
-        let start = std::time::Instant::now();
-        let g = Geometry::new(shapes, None, kind).unwrap();
-        let build = start.elapsed().as_secs_f64();
-        let start = std::time::Instant::now();
-        let hits = rays
-            .iter()
-            .filter(|ray| g.intersect(ray, f32::INFINITY).is_some())
-            .count();
-        let rate = n as f64 / start.elapsed().as_secs_f64();
-        println!(
-            "{name} {kind:?}: build {:.3} s, {:.2} M closest-hit rays/s ({hits} hits)",
-            build,
-            rate / 1e6
-        );
-    }
 }

@@ -8,9 +8,10 @@
 //! Šidák-corrected over blocks and channels to a family-wise α = 0.01; and a bias bound on the image mean: within
 //! 1% of the reference plus 3 standard errors. Fixed seed.
 //!
-//! The strict figures at 1024 spp (every 32×32 block within 3%, image mean within 1%) are
-//! the ignored test `strict_at_1024_spp` (`cargo test --release --test reference_match --
-//! --ignored`, several minutes) and are recorded in docs/renderer.md.
+//! The strict figures at 1024 spp (every 32×32 block within 3%, image mean within 1%; about
+//! 25 minutes, too slow for CI) are a check a person runs: `cargo run --release --example
+//! reference_figures -- --spp 1024` prints them and exits non-zero if a bound is exceeded;
+//! they are recorded in docs/renderer.md.
 
 use mcrt::glam::Vec3;
 use mcrt::scene::description::SceneDescription;
@@ -133,33 +134,4 @@ fn cornell_box_direct_matches_mitsuba() {
 #[test]
 fn veach_mis_matches_mitsuba() {
     check_low_spp("veach-mis.xml", &[], "veach-mis.exr", 32);
-}
-
-#[test]
-#[ignore = "several minutes; the figures in docs/renderer.md"]
-fn strict_at_1024_spp() {
-    for (scene, defines, reference) in [
-        ("cornell-box.xml", &[][..], "cornell-box.exr"),
-        (
-            "cornell-box.xml",
-            &[("max_depth", "2")][..],
-            "cornell-box-direct.exr",
-        ),
-        ("veach-mis.xml", &[][..], "veach-mis.exr"),
-    ] {
-        let o = run(scene, defines, reference, 1024, 32);
-        println!(
-            "{scene} {defines:?}: worst 32×32 block {:.2}%, mean ratio {}, worst |z| {:.2} (critical {:.2})",
-            100.0 * o.worst_block,
-            o.mean_ratio,
-            o.worst_z,
-            o.z_critical
-        );
-        assert!(
-            o.worst_block <= 0.03,
-            "{scene}: worst block {}",
-            o.worst_block
-        );
-        assert!((o.mean_ratio - Vec3::ONE).abs().max_element() <= 0.01);
-    }
 }
