@@ -37,7 +37,8 @@ impl Warp for UniformTriangle {
 
     fn sample(&self, u: Vec2) -> Vec2 {
         let s = u.x.max(0.0).sqrt();
-        Vec2::new(1.0 - s, u.y * s)
+        // b₁ = 1 − √u₁ written as (1 − u₁)/(1 + √u₁): no cancellation as u₁ → 1.
+        Vec2::new((1.0 - u.x) / (1.0 + s), u.y * s)
     }
 
     /// `2` per unit barycentric area inside the reference triangle (edges included), else 0.
@@ -103,6 +104,21 @@ pub fn triangle_area_pdf(a: Vec3, b: Vec3, c: Vec3) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn first_barycentric_keeps_its_digits_near_u1_one() {
+        // Found by the f32/f64 study (examples/convergence): 1 − √u₁ lost every digit.
+        for k in [1, 3, 10, 20, 24] {
+            let u1 = 1.0 - (2f32).powi(-k);
+            let b = UniformTriangle.sample(Vec2::new(u1, 0.3));
+            let exact = 1.0 - f64::from(u1).sqrt();
+            let rel = (f64::from(b.x) - exact).abs() / exact;
+            assert!(
+                b.x.is_finite() && rel < 4.0 * f64::from(f32::EPSILON),
+                "k {k}: {rel}"
+            );
+        }
+    }
     use crate::sampling::warp::sphere::polar::ONE_MINUS_EPSILON;
 
     #[test]
