@@ -17,11 +17,13 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode, Throughput};
-use mcrt::glam::{Mat4, Vec3};
-use mcrt::scene::description::{ShapeDesc, ShapeKind};
 use mcrt::scene::geometry::{AccelKind, Geometry, Ray};
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_pcg::Pcg64;
+
+#[path = "../tests/common/scenes.rs"]
+mod scenes;
+use scenes::{cornell_box, random_rays, soup, tessellated_sphere};
 
 /// Rays per timed iteration on the Cornell box.
 const CORNELL_RAYS: usize = 16_384;
@@ -35,128 +37,6 @@ fn config() -> Criterion {
         .measurement_time(Duration::from_millis(1500))
         .sample_size(10)
         .without_plots()
-}
-
-fn unit_vec(r: &mut Pcg64) -> Vec3 {
-    let z = r.random_range(-1.0f32..1.0);
-    let phi = r.random_range(0.0f32..std::f32::consts::TAU);
-    let s = (1.0 - z * z).max(0.0).sqrt();
-    Vec3::new(s * phi.cos(), s * phi.sin(), z)
-}
-
-fn point(r: &mut Pcg64, h: f32) -> Vec3 {
-    Vec3::new(
-        r.random_range(-h..h),
-        r.random_range(-h..h),
-        r.random_range(-h..h),
-    )
-}
-
-fn random_rays(r: &mut Pcg64, n: usize, h: f32) -> Vec<Ray> {
-    (0..n)
-        .map(|_| Ray {
-            origin: point(r, h),
-            dir: unit_vec(r),
-        })
-        .collect()
-}
-
-fn mesh(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> ShapeDesc {
-    ShapeDesc::new(ShapeKind::Mesh {
-        positions,
-        normals: vec![],
-        indices,
-    })
-}
-
-/// A triangle soup with every tenth triangle degenerate (collinear or repeated vertices).
-fn soup(r: &mut Pcg64, n: usize) -> ShapeDesc {
-    let mut pos = Vec::new();
-    for k in 0..n {
-        let c = point(r, 1.0);
-        let a = c + point(r, 0.15);
-        let (b, d) = match k % 10 {
-            0 => (a, c),
-            5 => (c + (a - c) * 2.0, a + a - c),
-            _ => (c + point(r, 0.15), c + point(r, 0.15)),
-        };
-        pos.extend([a, b, d]);
-    }
-    let idx = (0..n as u32)
-        .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
-        .collect();
-    mesh(pos, idx)
-}
-
-/// A closed latitude–longitude sphere mesh of radius 1 with shared vertices
-/// (`2 · n_theta · n_phi − 2 · n_phi` triangles).
-fn tessellated_sphere(n_theta: u32, n_phi: u32) -> ShapeDesc {
-    let mut pos = vec![Vec3::Z, -Vec3::Z];
-    for i in 1..n_theta {
-        let th = std::f32::consts::PI * i as f32 / n_theta as f32;
-        for j in 0..n_phi {
-            let ph = std::f32::consts::TAU * j as f32 / n_phi as f32;
-            pos.push(Vec3::new(
-                th.sin() * ph.cos(),
-                th.sin() * ph.sin(),
-                th.cos(),
-            ));
-        }
-    }
-    let v = |i: u32, j: u32| 2 + (i - 1) * n_phi + j % n_phi;
-    let mut idx = Vec::new();
-    for j in 0..n_phi {
-        idx.push([0, v(1, j), v(1, j + 1)]);
-        idx.push([1, v(n_theta - 1, j + 1), v(n_theta - 1, j)]);
-        for i in 1..n_theta - 1 {
-            idx.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
-            idx.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
-        }
-    }
-    mesh(pos, idx)
-}
-
-fn row_major(m: [f32; 16]) -> Mat4 {
-    Mat4::from_cols_array(&m).transpose()
-}
-
-/// The Cornell box shapes of `tests/data/cornell-box.xml`, in file order.
-fn cornell_box() -> Vec<ShapeDesc> {
-    let with = |kind, m| {
-        let mut s = ShapeDesc::new(kind);
-        s.to_world = row_major(m);
-        s
-    };
-    let rect = |m| with(ShapeKind::Rectangle, m);
-    let cube = |m| with(ShapeKind::Cube, m);
-    vec![
-        rect([
-            0.23, 0., 0., 0., 0., 0., -0.19, 0.99, 0., 0.19, 0., 0.01, 0., 0., 0., 1.,
-        ]),
-        rect([
-            1., 0., 0., 0., 0., 0., 1., -1., 0., -1., 0., 0., 0., 0., 0., 1.,
-        ]),
-        rect([
-            1., 0., 0., 0., 0., 0., -1., 1., 0., 1., 0., 0., 0., 0., 0., 1.,
-        ]),
-        rect([
-            1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., -1., 0., 0., 0., 1.,
-        ]),
-        rect([
-            0., 0., -1., 1., 0., 1., 0., 0., 1., 0., 0., 0., 0., 0., 0., 1.,
-        ]),
-        rect([
-            0., 0., 1., -1., 0., 1., 0., 0., -1., 0., 0., 0., 0., 0., 0., 1.,
-        ]),
-        cube([
-            0.286891, 0., -0.0877115, 0.335, 0., 0.3, 0., -0.7, 0.0877115, 0., 0.286891, 0.38, 0.,
-            0., 0., 1.,
-        ]),
-        cube([
-            0.28491, 0., 0.0939491, -0.33, 0., 0.61, 0., -0.4, -0.0939491, 0., 0.28491, -0.28, 0.,
-            0., 0., 1.,
-        ]),
-    ]
 }
 
 /// Number of rays with a closest hit (kept so the queries cannot be optimised away).
