@@ -6,12 +6,10 @@
 //! primitive) is taken (Wald 2007, "On fast Construction of SAH-based Bounding Volume
 //! Hierarchies", IEEE Symposium on Interactive Ray Tracing). A node with at most
 //! [`MAX_LEAF`] primitives becomes a leaf when that is no costlier than its best split.
-//! Nodes store their boxes padded by a relative 2⁻²⁰ ([`Aabb::padded`]). Traversal tests
-//! both children's boxes at an interior node, descends into the nearer (by entry distance),
-//! pushes the other with its entry distance (skipped when popped if beyond the shrunk
-//! `t_max`), and shrinks `t_max` as hits are found.
+//! Nodes store their boxes padded by a relative 2⁻²⁰ ([`Aabb::padded`]). Rays traverse the
+//! 4-wide tree collapsed from this one ([`super::Bvh4`]), not this binary tree.
 
-use super::aabb::{Aabb, RayBoxTest};
+use super::aabb::Aabb;
 use glam::{Vec3, Vec3A};
 
 /// Number of SAH bins per axis.
@@ -20,8 +18,6 @@ pub const BINS: usize = 16;
 pub const MAX_LEAF: usize = 4;
 /// Depth beyond which the build splits at the median, so the traversal stack stays bounded.
 const MEDIAN_DEPTH: u32 = 36;
-/// Traversal stack size: enough for [`MEDIAN_DEPTH`] plus a balanced tree of 2²⁴ leaves.
-const STACK: usize = 64;
 
 /// A flattened node: 48 bytes (bounds in SIMD lanes).
 #[derive(Debug, Clone, Copy)]
@@ -114,110 +110,6 @@ impl Bvh {
         Aabb {
             min: self.nodes[0].min.into(),
             max: self.nodes[0].max.into(),
-        }
-    }
-
-    /// Visits the primitives that may be hit in `(0, t_max)`, nearest subtrees first.
-    /// `test(i, t_max)` intersects primitive `i` (in stored order) and returns the hit
-    /// distance if it hits before `t_max`; the search then continues with that distance as
-    /// the new bound. Returns the nearest distance found, if any.
-    #[inline]
-    pub fn closest(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut test: impl FnMut(u32, f32) -> Option<f32>,
-    ) -> Option<f32> {
-        let mut best = None;
-        let mut t_max = t_max;
-        self.walk(origin, dir, &mut t_max, |i, bound| {
-            if let Some(t) = test(i, *bound) {
-                *bound = t;
-                best = Some(t);
-            }
-            false
-        });
-        best
-    }
-
-    /// True when `test(i, t_max)` holds for some primitive `i`; stops at the first one.
-    #[inline]
-    pub fn any(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut test: impl FnMut(u32, f32) -> bool,
-    ) -> bool {
-        let mut t_max = t_max;
-        self.walk(origin, dir, &mut t_max, |i, t| test(i, *t))
-    }
-
-    /// The traversal loop; `visit` returns true to stop. At an interior node both
-    /// children's boxes are tested; the nearer one (by entry distance) is visited next and
-    /// the other pushed with its entry distance, which is checked against the shrunk
-    /// `t_max` when popped.
-    #[inline(always)]
-    fn walk(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: &mut f32,
-        mut visit: impl FnMut(u32, &mut f32) -> bool,
-    ) -> bool {
-        let rb = RayBoxTest::new(origin, dir);
-        let root = &self.nodes[0];
-        if self.order.is_empty() || !rb.hits(root.min, root.max, *t_max) {
-            return false;
-        }
-        let mut stack = [(0u32, 0f32); STACK];
-        let mut sp = 0usize;
-        let mut node = 0usize;
-        loop {
-            let n = &self.nodes[node];
-            if n.count == 0 {
-                let (a, b) = (node + 1, n.offset as usize);
-                let (na, nb) = (&self.nodes[a], &self.nodes[b]);
-                let ha = rb.clip(na.min, na.max, *t_max);
-                let hb = rb.clip(nb.min, nb.max, *t_max);
-                match (ha, hb) {
-                    (Some((ta, _)), Some((tb, _))) => {
-                        let (near, far, t_far) = if ta <= tb { (a, b, tb) } else { (b, a, ta) };
-                        stack[sp] = (far as u32, t_far);
-                        sp += 1;
-                        node = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        node = a;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        node = b;
-                        continue;
-                    }
-                    (None, None) => {}
-                }
-            } else {
-                let first = n.offset;
-                for i in first..first + u32::from(n.count) {
-                    if visit(i, t_max) {
-                        return true;
-                    }
-                }
-            }
-            loop {
-                if sp == 0 {
-                    return false;
-                }
-                sp -= 1;
-                let (next, t_entry) = stack[sp];
-                if t_entry <= *t_max {
-                    node = next as usize;
-                    break;
-                }
-            }
         }
     }
 }
@@ -373,23 +265,5 @@ mod tests {
         assert!(o.iter().enumerate().all(|(i, &v)| i as u32 == v));
         assert!(bvh.nodes.iter().all(|n| (n.count as usize) <= MAX_LEAF));
         assert!(bvh.node_count() < 2 * 1000);
-    }
-
-    #[test]
-    fn identical_boxes_still_build() {
-        let b = vec![Aabb::from_points(&[Vec3::ZERO, Vec3::ONE]); 300];
-        let bvh = Bvh::build(&b);
-        let mut hits = 0;
-        bvh.any(Vec3::new(0.5, 0.5, -1.0), Vec3::Z, f32::INFINITY, |_, _| {
-            hits += 1;
-            false
-        });
-        assert_eq!(hits, 300);
-    }
-
-    #[test]
-    fn empty_bvh_finds_nothing() {
-        let bvh = Bvh::build(&[]);
-        assert!(!bvh.any(Vec3::ZERO, Vec3::Z, 1.0, |_, _| true));
     }
 }

@@ -131,7 +131,10 @@ impl Bvh4 {
         me as u32
     }
 
-    /// See [`Bvh::closest`].
+    /// Visits the primitives that may be hit in `(0, t_max)`, nearest subtrees first.
+    /// `test(i, t_max)` intersects primitive `i` (in stored order) and returns the hit
+    /// distance if it hits before `t_max`; the search then continues with that distance as
+    /// the new bound. Returns the nearest distance found, if any.
     #[inline]
     pub fn closest(
         &self,
@@ -152,7 +155,7 @@ impl Bvh4 {
         best
     }
 
-    /// See [`Bvh::any`].
+    /// True when `test(i, t_max)` holds for some primitive `i`; stops at the first one.
     #[inline]
     pub fn any(
         &self,
@@ -338,6 +341,24 @@ fn descend(stack: &mut impl Stack, n: &Node4, mask: u32, near: Vec4) -> Option<u
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn identical_boxes_still_build() {
+        let b = vec![Aabb::from_points(&[Vec3::ZERO, Vec3::ONE]); 300];
+        let bvh = Bvh4::build(&b);
+        let mut hits = 0;
+        bvh.any(Vec3::new(0.5, 0.5, -1.0), Vec3::Z, f32::INFINITY, |_, _| {
+            hits += 1;
+            false
+        });
+        assert_eq!(hits, 300);
+    }
+
+    #[test]
+    fn empty_bvh_finds_nothing() {
+        let bvh = Bvh4::build(&[]);
+        assert!(!bvh.any(Vec3::ZERO, Vec3::Z, 1.0, |_, _| true));
+    }
 
     #[test]
     fn small_scenes_and_leaf_roots() {

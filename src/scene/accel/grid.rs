@@ -112,7 +112,7 @@ impl Grid {
         self.items = items;
     }
 
-    /// Like [`super::Bvh::closest`]: visits primitives along the ray, `test` returns a hit
+    /// Like [`super::Bvh4::closest`]: visits primitives along the ray, `test` returns a hit
     /// distance below its bound, and the nearest distance found is returned.
     #[inline]
     pub fn closest(
@@ -139,7 +139,7 @@ impl Grid {
         best.0
     }
 
-    /// Like [`super::Bvh::any`]: true as soon as `test(i, t_max)` holds for a primitive.
+    /// Like [`super::Bvh4::any`]: true as soon as `test(i, t_max)` holds for a primitive.
     #[inline]
     pub fn any(
         &self,
