@@ -288,20 +288,25 @@ mod tests {
         }
     }
 
+    /// Unit, finite normals with finite positive pdf at every pair of edge values of u.
+    fn assert_edges_are_finite(name: &str, warp: &dyn Warp<Point = Vec3>) {
+        for u1 in EDGES {
+            for u2 in EDGES {
+                let (m, pdf) = warp.sample_with_pdf(Vec2::new(u1, u2));
+                assert!(
+                    m.is_finite() && (m.length() - 1.0).abs() < 1e-6,
+                    "{name} {m}"
+                );
+                assert!(pdf.is_finite() && pdf > 0.0, "{name} u ({u1},{u2})");
+            }
+        }
+    }
+
     #[test]
     fn beckmann_mitsuba_nan_input_and_edges() {
         for alpha in [1e-4, 1e-3, 0.01, 0.1, 0.5, 1.0] {
             let b = Beckmann::new(alpha).unwrap();
-            for u1 in EDGES {
-                for u2 in EDGES {
-                    let (m, pdf) = b.sample_with_pdf(Vec2::new(u1, u2));
-                    assert!(
-                        m.is_finite() && (m.length() - 1.0).abs() < 1e-6,
-                        "{alpha} {m}"
-                    );
-                    assert!(pdf.is_finite() && pdf > 0.0, "alpha {alpha} u ({u1},{u2})");
-                }
-            }
+            assert_edges_are_finite(&format!("Beckmann {alpha}"), &b);
         }
     }
 
@@ -309,16 +314,7 @@ mod tests {
     fn ggx_edges() {
         for alpha in [1e-4, 1e-3, 0.01, 0.1, 0.5, 1.0] {
             let g = Ggx::new(alpha).unwrap();
-            for u1 in EDGES {
-                for u2 in EDGES {
-                    let (m, pdf) = g.sample_with_pdf(Vec2::new(u1, u2));
-                    assert!(
-                        m.is_finite() && (m.length() - 1.0).abs() < 1e-6,
-                        "{alpha} {m}"
-                    );
-                    assert!(pdf.is_finite() && pdf > 0.0, "alpha {alpha} u ({u1},{u2})");
-                }
-            }
+            assert_edges_are_finite(&format!("Ggx {alpha}"), &g);
         }
     }
 
