@@ -8,7 +8,8 @@ For every benchmark whose group id starts with a PREFIX, prints the median time 
 fastest sample's time per call (time per iteration / elements per iteration). On a loaded
 machine the fastest sample is the better estimate of the cost; the median shows the noise.
 With --pivot, one row per group and one column per operation, each cell
-"fastest (median)".
+"fastest (median)". With --rate, elements per second instead of time per call (the group's
+throughput: samples or rays for `render/`), with the speed-up over the group's first row.
 """
 
 import json
@@ -75,9 +76,22 @@ def pivot(rows):
         print(f"| {g} | " + " | ".join(out) + " |")
 
 
+def rate(rows):
+    print("| benchmark | run | M per s, fastest sample (median) | speed-up (fastest) |")
+    print("|---|---|---|---|")
+    first = {}
+    for group, function, elements, median, fastest in rows:
+        best = elements / fastest * 1e3
+        base = first.setdefault(group, best)
+        print(f"| {group} | {function} | {best:.3f} ({elements / median * 1e3:.3f}) | "
+              f"{best / base:.2f}× |")
+
+
 def main():
     args = sys.argv[1:]
     pivoted = "--pivot" in args
+    rated = "--rate" in args
+    args = [a for a in args if a != "--rate"]
     excluded = [a[1:] for a in args if a.startswith("!")]
     prefixes = [a for a in args if a != "--pivot" and not a.startswith("!")] or [""]
     rows = []
@@ -91,6 +105,9 @@ def main():
     rows.sort(key=lambda r: (r[0], r[1]))
     if pivoted:
         pivot(rows)
+        return
+    if rated:
+        rate(rows)
         return
     print("| benchmark | operation | fastest sample per call | median per call |")
     print("|---|---|---|---|")

@@ -21,6 +21,7 @@ TABLES = {
     "rand_distr": ["warp/vs"],
     "distributions": ["distribution/"],
     "samplers": ["--pivot", "sampler/"],
+    "render_threads": ["--rate", "render/"],
 }
 
 

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Runs the three benchmark files and rewrites the tables of docs/performance.md.
+# Runs the benchmark files and rewrites the tables of docs/performance.md.
 # The load average before and after goes to target/criterion/loadavg.txt (the doc quotes it).
 set -e
 cd "$(dirname "$0")/.."
@@ -8,5 +8,7 @@ mkdir -p target/criterion
 cargo bench --bench warps
 cargo bench --bench distributions
 cargo bench --bench samplers
+cargo bench --bench render_threads
+cargo bench --bench accel
 { printf 'end %s: ' "$(date -u +%H:%M)"; cut -d' ' -f1-3 /proc/loadavg; } >> target/criterion/loadavg.txt
 python3 scripts/perf_doc.py
