@@ -1,6 +1,9 @@
-//! The low-discrepancy sampler: padded Owen-scrambled Sobol points from `sobol_burley`.
+//! The low-discrepancy sampler: padded Owen-scrambled Sobol points, bit-identical to
+//! `sobol_burley`'s, computed by a scalar path for the two dimensions padding uses.
 
 use glam::Vec2;
+
+mod burley;
 
 use super::hash::{combine, pixel_key};
 use super::{check_spp, Sampler};
@@ -10,7 +13,7 @@ use crate::sampling::SamplingError;
 const BLOCK_BITS: u32 = 16;
 
 /// Owen-scrambled Sobol sample values (Burley 2020, "Practical Hash-based Owen Scrambling",
-/// Journal of Computer Graphics Techniques 9(4)), through the `sobol_burley` crate.
+/// Journal of Computer Graphics Techniques 9(4)), bit-identical to the `sobol_burley` crate's.
 ///
 /// Every dimension the sampler hands out is a separately seeded scramble of the first two Sobol
 /// dimensions (the first for a 1D value), with the seed hashed from (seed, pixel, dimension):
@@ -20,11 +23,19 @@ const BLOCK_BITS: u32 = 16;
 /// different dimensions and different pixels are decorrelated, and the sequence is progressive:
 /// any sample count works, and a power of two is stratified best.
 ///
-/// Limits of `sobol_burley` and what this type does about them: it has 256 dimensions, and we
-/// use only its dimensions 0 and 1, so any number of dimensions per path works; it supports
-/// sample indices below 2¹⁶, so index `i ≥ 2¹⁶` is drawn as index `i mod 2¹⁶` of a sequence
-/// scrambled with another seed (each block of 2¹⁶ samples is a net on its own; the blocks are
-/// independent of each other). Values lie in `[0, 1)`. Mitsuba 3's `ldsampler` maps here.
+/// Exactly: with `s` the 32-bit scramble seed of the current (seed, pixel, dimension, index
+/// block) and `i` the sample index modulo 2¹⁶, [`Sampler::next_2d`] returns
+/// `(sobol_burley::sample(i, 0, s), sobol_burley::sample(i, 1, s))` and [`Sampler::next_1d`]
+/// returns `sobol_burley::sample(i, 0, s)` (crate version 0.5). They are computed by a scalar
+/// path for those two dimensions (identity and Pascal generator matrices, one bit reversal for
+/// both outputs) rather than by `sobol_burley`'s table walk or 4-lane SIMD; tests pin the
+/// values to the crate's for every index.
+///
+/// Limits of `sobol_burley`'s sequence and what this type does about them: we use only its
+/// dimensions 0 and 1, so any number of dimensions per path works; it has indices below 2¹⁶,
+/// so index `i ≥ 2¹⁶` is drawn as index `i mod 2¹⁶` of a sequence scrambled with another seed
+/// (each block of 2¹⁶ samples is a net on its own; the blocks are independent of each other).
+/// Values lie in `[0, 1)` (multiples of 2⁻²³). Mitsuba 3's `ldsampler` maps here.
 ///
 /// ```
 /// use mcrt::sampling::sampler::{Sampler, SobolSampler};
@@ -43,7 +54,8 @@ pub struct SobolSampler {
     spp: u32,
     seed: u64,
     pixel_key: u64,
-    index: u32,
+    /// The sample index modulo 2¹⁶ with its 32 bits reversed (what the scramble works on).
+    index_rev: u32,
     block: u32,
     dimension: u64,
 }
@@ -56,7 +68,7 @@ impl SobolSampler {
             spp: check_spp(spp)?,
             seed,
             pixel_key: 0,
-            index: 0,
+            index_rev: 0,
             block: 0,
             dimension: 0,
         })
@@ -84,7 +96,7 @@ impl Sampler for SobolSampler {
     #[inline]
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
         self.pixel_key = pixel_key(self.seed, pixel);
-        self.index = sample_index & ((1 << BLOCK_BITS) - 1);
+        self.index_rev = (sample_index & ((1 << BLOCK_BITS) - 1)).reverse_bits();
         self.block = sample_index >> BLOCK_BITS;
         self.dimension = 0;
     }
@@ -93,16 +105,14 @@ impl Sampler for SobolSampler {
     fn next_1d(&mut self) -> f32 {
         let seed = self.scramble_seed();
         self.dimension += 1;
-        sobol_burley::sample(self.index, 0, seed)
+        burley::sample_1d(self.index_rev, seed)
     }
 
     #[inline]
     fn next_2d(&mut self) -> Vec2 {
         let seed = self.scramble_seed();
         self.dimension += 1;
-        // `sample_4d` computes dimensions 0..4 at once (SIMD on x86-64) and gives the same
-        // values as `sample` for each of them; we keep the first two.
-        let [x, y, _, _] = sobol_burley::sample_4d(self.index, 0, seed);
+        let [x, y] = burley::sample_2d(self.index_rev, seed);
         Vec2::new(x, y)
     }
 
