@@ -16,17 +16,21 @@ const BLOCK_BITS: u32 = 16;
 /// Journal of Computer Graphics Techniques 9(4)), bit-identical to the `sobol_burley` crate's.
 ///
 /// Every dimension the sampler hands out is a separately seeded scramble of the first two Sobol
-/// dimensions (the first for a 1D value), with the seed hashed from (seed, pixel, dimension):
-/// the padding Burley recommends. So the first `2^k` samples of a pixel form a (0,k,2)-net in
+/// dimensions (the first for a 1D value), with a scramble seed of its own per (seed, pixel,
+/// dimension): the padding Burley recommends. So the first `2^k` samples of a pixel form a (0,k,2)-net in
 /// each 2D dimension (each elementary interval of area `2^-k`, of any shape `2^-a × 2^-b`,
 /// holds exactly one point), each 1D dimension holds one point per interval of length `2^-k`,
 /// different dimensions and different pixels are decorrelated, and the sequence is progressive:
 /// any sample count works, and a power of two is stratified best.
 ///
-/// Exactly: with `s` the 32-bit scramble seed of the current (seed, pixel, dimension, index
-/// block) and `i` the sample index modulo 2¹⁶, [`Sampler::next_2d`] returns
-/// `(sobol_burley::sample(i, 0, s), sobol_burley::sample(i, 1, s))` and [`Sampler::next_1d`]
-/// returns `sobol_burley::sample(i, 0, s)` (crate version 0.5). They are computed by a scalar
+/// Exactly: let `i` be the sample index modulo 2¹⁶, `k` a 64-bit hash of (seed, pixel, `⌊index
+/// / 2¹⁶⌋`), and `s_d = (k ⊕ (k >> 32)) + d · 0x9e3779b9 mod 2³²` the 32-bit scramble seed of
+/// dimension `d` (counting 1D and 2D calls alike since [`Sampler::start_pixel_sample`]). Then
+/// [`Sampler::next_2d`] returns `(sobol_burley::sample(i, 0, s_d), sobol_burley::sample(i, 1,
+/// s_d))` and [`Sampler::next_1d`] returns `sobol_burley::sample(i, 0, s_d)` (crate version
+/// 0.5). The crate hashes the seed again for the index shuffle and for each Owen scramble, so
+/// the per-pixel hash plus a Weyl step per dimension decorrelates dimensions (the crate's own
+/// padding example steps the seed by one); only one full hash per pixel sample is paid. They are computed by a scalar
 /// path for those two dimensions (identity and Pascal generator matrices, one bit reversal for
 /// both outputs) rather than by `sobol_burley`'s table walk or 4-lane SIMD; tests pin the
 /// values to the crate's for every index.
@@ -53,11 +57,10 @@ const BLOCK_BITS: u32 = 16;
 pub struct SobolSampler {
     spp: u32,
     seed: u64,
-    pixel_key: u64,
     /// The sample index modulo 2¹⁶ with its 32 bits reversed (what the scramble works on).
     index_rev: u32,
-    block: u32,
-    dimension: u64,
+    /// The scramble seed of the next dimension.
+    next_seed: u32,
 }
 
 impl SobolSampler {
@@ -67,10 +70,8 @@ impl SobolSampler {
         Ok(Self {
             spp: check_spp(spp)?,
             seed,
-            pixel_key: 0,
             index_rev: 0,
-            block: 0,
-            dimension: 0,
+            next_seed: 0,
         })
     }
 
@@ -79,39 +80,48 @@ impl SobolSampler {
         self.seed
     }
 
-    /// The 32-bit scramble seed of the current (pixel, dimension, index block).
+    /// Returns the scramble seed of the next dimension and steps to the one after it.
     #[inline]
-    fn scramble_seed(&self) -> u32 {
-        let k = combine(self.pixel_key, self.dimension);
-        let k = if self.block == 0 {
-            k
-        } else {
-            combine(k, u64::from(self.block))
-        };
-        (k ^ (k >> 32)) as u32
+    fn take_seed(&mut self) -> u32 {
+        let seed = self.next_seed;
+        self.next_seed = seed.wrapping_add(DIMENSION_STEP);
+        seed
     }
+}
+
+/// The step between the scramble seeds of successive dimensions: 2³² divided by the golden
+/// ratio, odd, so the first 2³² dimensions of a pixel sample get distinct seeds.
+const DIMENSION_STEP: u32 = 0x9e37_79b9;
+
+/// The scramble seed of dimension 0 of (seed, pixel, index block): a 64-bit hash folded to 32
+/// bits.
+#[inline]
+fn first_seed(seed: u64, pixel: [u32; 2], block: u32) -> u32 {
+    let k = pixel_key(seed, pixel);
+    let k = if block == 0 {
+        k
+    } else {
+        combine(k, u64::from(block))
+    };
+    (k ^ (k >> 32)) as u32
 }
 
 impl Sampler for SobolSampler {
     #[inline]
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
-        self.pixel_key = pixel_key(self.seed, pixel);
         self.index_rev = (sample_index & ((1 << BLOCK_BITS) - 1)).reverse_bits();
-        self.block = sample_index >> BLOCK_BITS;
-        self.dimension = 0;
+        self.next_seed = first_seed(self.seed, pixel, sample_index >> BLOCK_BITS);
     }
 
     #[inline]
     fn next_1d(&mut self) -> f32 {
-        let seed = self.scramble_seed();
-        self.dimension += 1;
+        let seed = self.take_seed();
         burley::sample_1d(self.index_rev, seed)
     }
 
     #[inline]
     fn next_2d(&mut self) -> Vec2 {
-        let seed = self.scramble_seed();
-        self.dimension += 1;
+        let seed = self.take_seed();
         let [x, y] = burley::sample_2d(self.index_rev, seed);
         Vec2::new(x, y)
     }
@@ -152,7 +162,7 @@ mod tests {
         let mut s = SobolSampler::new(1, 9).unwrap();
         for i in 0..64 {
             s.start_pixel_sample([2, 3], i);
-            let seed = s.scramble_seed();
+            let seed = s.next_seed;
             let u = s.next_2d();
             assert_eq!(u.x, sobol_burley::sample(i, 0, seed));
             assert_eq!(u.y, sobol_burley::sample(i, 1, seed));
