@@ -157,15 +157,31 @@ mod tests {
         assert_ne!(a, s.next_2d());
     }
 
+    /// The documented definition, value by value: dimension `d` of a pixel sample is
+    /// `sobol_burley::sample(i mod 2¹⁶, 0 | 1, s₀ + d · 0x9e3779b9)`, 1D and 2D calls mixed.
     #[test]
-    fn next_2d_matches_two_single_dimension_samples() {
+    fn values_are_sobol_burley_samples_with_a_weyl_seed_per_dimension() {
         let mut s = SobolSampler::new(1, 9).unwrap();
-        for i in 0..64 {
-            s.start_pixel_sample([2, 3], i);
-            let seed = s.next_seed;
-            let u = s.next_2d();
-            assert_eq!(u.x, sobol_burley::sample(i, 0, seed));
-            assert_eq!(u.y, sobol_burley::sample(i, 1, seed));
+        for (pixel, i) in [
+            ([2, 3], 0u32),
+            ([2, 3], 63),
+            ([700, 1], 12_345),
+            ([5, 5], 70_000),
+        ] {
+            s.start_pixel_sample(pixel, i);
+            let (i, mut seed) = (i & 0xffff, first_seed(9, pixel, i >> 16));
+            for d in 0..40u32 {
+                if d % 3 == 2 {
+                    assert_eq!(s.next_1d(), sobol_burley::sample(i, 0, seed), "dim {d}");
+                } else {
+                    let want = Vec2::new(
+                        sobol_burley::sample(i, 0, seed),
+                        sobol_burley::sample(i, 1, seed),
+                    );
+                    assert_eq!(s.next_2d(), want, "pixel {pixel:?} index {i} dim {d}");
+                }
+                seed = seed.wrapping_add(DIMENSION_STEP);
+            }
         }
     }
 
