@@ -17,23 +17,23 @@ const BLOCK_BITS: u32 = 16;
 ///
 /// Every dimension the sampler hands out is a separately seeded scramble of the first two Sobol
 /// dimensions (the first for a 1D value), with a scramble seed of its own per (seed, pixel,
-/// dimension): the padding Burley recommends. So the first `2^k` samples of a pixel form a (0,k,2)-net in
-/// each 2D dimension (each elementary interval of area `2^-k`, of any shape `2^-a × 2^-b`,
-/// holds exactly one point), each 1D dimension holds one point per interval of length `2^-k`,
-/// different dimensions and different pixels are decorrelated, and the sequence is progressive:
-/// any sample count works, and a power of two is stratified best.
+/// dimension): the padding Burley recommends. So the first `2^k` samples of a pixel form a
+/// (0,k,2)-net in each 2D dimension (each elementary interval of area `2^-k`, of any shape
+/// `2^-a × 2^-b`, holds exactly one point), each 1D dimension holds one point per interval of
+/// length `2^-k`, different dimensions and different pixels are decorrelated, and the sequence
+/// is progressive: any sample count works, and a power of two is stratified best.
 ///
-/// Exactly: let `i` be the sample index modulo 2¹⁶, `k` a 64-bit hash of (seed, pixel, `⌊index
-/// / 2¹⁶⌋`), and `s_d = (k ⊕ (k >> 32)) + d · 0x9e3779b9 mod 2³²` the 32-bit scramble seed of
-/// dimension `d` (counting 1D and 2D calls alike since [`Sampler::start_pixel_sample`]). Then
-/// [`Sampler::next_2d`] returns `(sobol_burley::sample(i, 0, s_d), sobol_burley::sample(i, 1,
-/// s_d))` and [`Sampler::next_1d`] returns `sobol_burley::sample(i, 0, s_d)` (crate version
-/// 0.5). The crate hashes the seed again for the index shuffle and for each Owen scramble, so
-/// the per-pixel hash plus a Weyl step per dimension decorrelates dimensions (the crate's own
-/// padding example steps the seed by one); only one full hash per pixel sample is paid. They are computed by a scalar
-/// path for those two dimensions (identity and Pascal generator matrices, one bit reversal for
-/// both outputs) rather than by `sobol_burley`'s table walk or 4-lane SIMD; tests pin the
-/// values to the crate's for every index.
+/// Exactly: let `i` be the sample index modulo 2¹⁶, `k` a 64-bit hash of (seed, pixel,
+/// `⌊index / 2¹⁶⌋`), and `s_d = (k ⊕ (k >> 32)) + d · 0x9e3779b9 mod 2³²` the 32-bit scramble
+/// seed of dimension `d` (1D and 2D calls since [`Sampler::start_pixel_sample`] both count).
+/// Then [`Sampler::next_2d`] returns `(sobol_burley::sample(i, 0, s_d),
+/// sobol_burley::sample(i, 1, s_d))` and [`Sampler::next_1d`] returns
+/// `sobol_burley::sample(i, 0, s_d)` (crate version 0.5). The crate hashes the seed again for
+/// its index shuffle and for each Owen scramble, so one full hash per pixel sample plus a Weyl
+/// step per dimension decorrelates the dimensions (the crate's own padding example steps the
+/// seed by one). The values are computed by a scalar path for those two dimensions (identity
+/// and Pascal generator matrices, one 64-bit reversal for both outputs) instead of the crate's
+/// table walk or 4-lane SIMD; unit tests pin them to the crate's for every index.
 ///
 /// Limits of `sobol_burley`'s sequence and what this type does about them: we use only its
 /// dimensions 0 and 1, so any number of dimensions per path works; it has indices below 2¹⁶,
