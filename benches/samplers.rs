@@ -1,8 +1,10 @@
-//! ns per 2D sample value for each sampler of `mcrt::sampling::sampler`.
+//! ns per 2D and per 1D sample value for each sampler of `mcrt::sampling::sampler`.
 //!
 //! Run: `cargo bench --bench samplers`. Each timed iteration starts `BATCH / 8` pixel samples
-//! and draws 8 2D values from each, so time per iteration / `BATCH` is the cost of one 2D
+//! and draws 8 2D (or 1D) values from each, so time per iteration / `BATCH` is the cost of one
 //! value including its share of `start_pixel_sample`; `start_pixel_sample` is also timed alone.
+//! On a shared machine only the ratios between samplers within one run mean anything; the
+//! instruction counts of docs/performance-profile.md are the stable figures.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use mcrt::glam::Vec2;
@@ -33,6 +35,17 @@ fn draw_2d<S: Sampler>(s: &mut S, index: u32) -> Vec2 {
     acc
 }
 
+fn draw_1d<S: Sampler>(s: &mut S, index: u32) -> f32 {
+    let mut acc = 0.0;
+    for i in 0..(BATCH / DIMS) as u32 {
+        s.start_pixel_sample(pixel(i), index);
+        for _ in 0..DIMS {
+            acc += black_box(s.next_1d());
+        }
+    }
+    acc
+}
+
 fn starts_only<S: Sampler>(s: &mut S, index: u32) {
     for i in 0..BATCH as u32 {
         s.start_pixel_sample(pixel(i), index);
@@ -44,6 +57,7 @@ fn bench_one<S: Sampler>(c: &mut Criterion, name: &str, mut s: S) {
     let mut group = c.benchmark_group(format!("sampler/{name}"));
     group.throughput(Throughput::Elements(BATCH as u64));
     group.bench_function("next_2d", |b| b.iter(|| draw_2d(&mut s, black_box(5))));
+    group.bench_function("next_1d", |b| b.iter(|| draw_1d(&mut s, black_box(5))));
     group.bench_function("start_pixel_sample", |b| {
         b.iter(|| starts_only(&mut s, black_box(5)))
     });
@@ -66,8 +80,9 @@ fn samplers(c: &mut Criterion) {
     bench_one(c, "any(independent)", any);
 }
 
-/// The `sobol_burley` call alone (two dimensions via `sample_4d`, a new seed per call as our
-/// padding uses), to show how much of the Sobol sampler's cost is the scrambled sequence.
+/// The `sobol_burley` calls alone (two dimensions via `sample_4d` or two `sample` calls, a new
+/// seed per call as our padding uses): what `SobolSampler` cost before its scalar path, which
+/// returns the same values.
 #[cfg(feature = "sobol")]
 fn raw_sobol(c: &mut Criterion) {
     let mut group = c.benchmark_group("sampler/sobol_burley_raw");

@@ -420,3 +420,7 @@ proptest! {
         prop_assert!(failures.is_empty(), "{:?}", failures);
     }
 }
+
+// A crate root resolves child modules beside itself, so the path names the subdirectory.
+#[path = "samplers/dimensions.rs"]
+mod dimensions;
