@@ -2,13 +2,15 @@
 //! and an environment map, chosen for next-event estimation by power.
 
 mod envmap;
+mod rect;
 
 pub use envmap::EnvMap;
+use rect::AreaRect;
 
 use crate::integrator::{is_positive, LightSample, SurfacePoint};
 use crate::sampling::distribution::AliasTable;
 use crate::scene::description::{EmitterDesc, SceneDescription};
-use crate::scene::render::geo::{Geometry, Hit};
+use crate::scene::render::geo::{Geometry, Hit, ShapeSampling};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -60,10 +62,44 @@ pub struct Lights {
     shape_light: Vec<Option<u32>>,
     env: Option<u32>,
     has_delta: bool,
+    /// Per light: the rectangle of an area light on a rectangle shape, sampled here
+    /// directly when the geometry samples rectangles by area (same points, same density).
+    rects: Vec<Option<AreaRect>>,
+    /// Exactly one light: no choice to sample (its probability is 1).
+    single: bool,
 }
 
 fn mean(v: Vec3) -> f32 {
     (v.x + v.y + v.z) / 3.0
+}
+
+/// A direction toward area light `shape` through [`Geometry::sample_shape`] (`u_rest` picks
+/// a mesh triangle, `u` the point), its density times the light's choice probability `pick`.
+fn sample_shape_light(
+    geo: &Geometry,
+    shape: u32,
+    radiance: Vec3,
+    from: Vec3,
+    (u_rest, u): (f32, Vec2),
+    pick: f32,
+) -> Option<LightSample> {
+    let s = geo.sample_shape(shape, from, u_rest, u)?;
+    let d = s.p - from;
+    let dist = d.length();
+    if !is_positive(dist) {
+        return None;
+    }
+    let wi = d / dist;
+    if s.n.dot(wi) >= 0.0 || !is_positive(s.pdf) || !s.pdf.is_finite() {
+        return None;
+    }
+    Some(LightSample {
+        wi,
+        dist,
+        radiance,
+        pdf: s.pdf * pick,
+        delta: false,
+    })
 }
 
 impl Lights {
@@ -124,8 +160,19 @@ impl Lights {
                 }
             }
         }
+        let rects = lights
+            .iter()
+            .map(|l| match *l {
+                Light::Area { shape, .. } => geo
+                    .parallelogram(shape)
+                    .and_then(|(par, n, area)| AreaRect::new(par, n, area)),
+                _ => None,
+            })
+            .collect();
         Ok(Self {
             picker: AliasTable::new(&power).ok(),
+            single: lights.len() == 1,
+            rects,
             lights,
             shape_light,
             env,
@@ -182,28 +229,26 @@ impl Lights {
         u_pick: Vec2,
         u: Vec2,
     ) -> Option<LightSample> {
-        let (i, pick) = self.picker.as_ref()?.sample_with_pmf(u_pick.x);
-        let u_rest = u_pick.y;
+        let picker = self.picker.as_ref()?;
+        let (i, pick) = if self.single {
+            (0, 1.0)
+        } else {
+            picker.sample_with_pmf(u_pick.x)
+        };
         match self.lights[i] {
-            Light::Area { shape, radiance } => {
-                let s = geo.sample_shape(shape, from.p, u_rest, u)?;
-                let d = s.p - from.p;
-                let dist = d.length();
-                if !is_positive(dist) {
-                    return None;
+            Light::Area { shape, radiance } => match &self.rects[i] {
+                Some(r) if geo.shape_sampling() == ShapeSampling::Area => {
+                    let s = r.sample(from.p, u)?;
+                    Some(LightSample {
+                        wi: s.wi,
+                        dist: s.dist,
+                        radiance,
+                        pdf: s.pdf * pick,
+                        delta: false,
+                    })
                 }
-                let wi = d / dist;
-                if s.n.dot(wi) >= 0.0 || !is_positive(s.pdf) || !s.pdf.is_finite() {
-                    return None;
-                }
-                Some(LightSample {
-                    wi,
-                    dist,
-                    radiance,
-                    pdf: s.pdf * pick,
-                    delta: false,
-                })
-            }
+                _ => sample_shape_light(geo, shape, radiance, from.p, (u_pick.y, u), pick),
+            },
             Light::Point {
                 position,
                 intensity,

@@ -71,6 +71,17 @@ impl Geometry {
         }
     }
 
+    /// Shape `shape` as a rectangle sampled as a whole: its corner and edges
+    /// (`corner + s·ex + t·ey`, s, t ∈ [0, 1]), unit front normal and area; `None` for any
+    /// other shape. With [`ShapeSampling::Area`], [`Geometry::sample_shape`] samples it as
+    /// `corner + u.x·ex + u.y·ey`, so a light can do the same without the shape lookup.
+    pub(crate) fn parallelogram(&self, shape: u32) -> Option<([Vec3; 3], Vec3, f32)> {
+        match self.shapes.get(shape as usize)? {
+            ShapeData::Mesh(m) => mesh::parallelogram(m),
+            _ => None,
+        }
+    }
+
     /// A point on shape `shape` for lighting `reference`: `u_pick` chooses a triangle of a
     /// mesh or cube (ignored otherwise), `u` the point. `pdf` is per unit solid angle at
     /// `reference`, by the strategies in the module docs of `geometry`. `None` when the
