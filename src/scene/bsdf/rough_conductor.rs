@@ -129,6 +129,11 @@ impl Bsdf for RoughConductor {
         (f, pdf)
     }
 
+    #[inline]
+    fn samples_component(&self) -> bool {
+        false
+    }
+
     fn sample(&self, wo: Vec3, _u1: f32, u2: Vec2) -> Option<BsdfSample> {
         if wo.z <= 0.0 {
             return None;

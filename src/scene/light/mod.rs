@@ -67,6 +67,8 @@ pub struct Lights {
     rects: Vec<Option<AreaRect>>,
     /// Exactly one light: no choice to sample (its probability is 1).
     single: bool,
+    /// [`Lights::sample`] reads `u_pick`: several lights, or a light on a triangle mesh.
+    reads_pick: bool,
 }
 
 fn mean(v: Vec3) -> f32 {
@@ -169,9 +171,13 @@ impl Lights {
                 _ => None,
             })
             .collect();
+        let single = lights.len() == 1;
+        let on_mesh =
+            |l: &Light| matches!(*l, Light::Area { shape, .. } if geo.shape_reads_pick(shape));
         Ok(Self {
             picker: AliasTable::new(&power).ok(),
-            single: lights.len() == 1,
+            reads_pick: !single || lights.iter().any(on_mesh),
+            single,
             rects,
             lights,
             shape_light,
@@ -189,6 +195,13 @@ impl Lights {
     #[inline]
     fn pmf(&self, i: u32) -> f32 {
         self.picker.as_ref().map_or(0.0, |t| t.pmf(i as usize))
+    }
+
+    /// Whether [`Lights::sample`] reads its `u_pick` argument: there are several lights to
+    /// choose from, or the light is a triangle mesh (a triangle to choose). With a single
+    /// rectangle, sphere, disk, point or environment light it does not.
+    pub fn reads_pick(&self) -> bool {
+        self.reads_pick
     }
 
     /// Whether any light is a point light.

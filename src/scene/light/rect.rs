@@ -154,6 +154,36 @@ mod tests {
         assert_eq!(got, want);
     }
 
+    /// `u_pick` is read only with several lights or a light on a triangle mesh.
+    #[test]
+    fn light_choice_is_drawn_only_when_read() {
+        use crate::scene::description::{EmitterDesc, ShapeKind};
+        let (_, lights) = cornell(ShapeSampling::Area);
+        assert!(!lights.reads_pick(), "one rectangle light");
+        let mut desc = crate::scene::cornell_box::cornell_box();
+        let i = desc
+            .shapes
+            .iter()
+            .position(|s| s.emitter.is_some())
+            .unwrap();
+        desc.shapes[i].kind = ShapeKind::Cube;
+        let geo = Geometry::new(&desc.shapes, None, AccelKind::Bvh).unwrap();
+        assert!(
+            Lights::new(&desc, &geo, 10.0).unwrap().reads_pick(),
+            "a cube light"
+        );
+        desc.shapes[i].kind = ShapeKind::Rectangle;
+        desc.emitters.push(EmitterDesc::Point {
+            position: Vec3::Y,
+            intensity: Vec3::ONE,
+        });
+        let geo = Geometry::new(&desc.shapes, None, AccelKind::Bvh).unwrap();
+        assert!(
+            Lights::new(&desc, &geo, 10.0).unwrap().reads_pick(),
+            "two lights"
+        );
+    }
+
     #[test]
     fn rejects_no_area_and_the_back_side() {
         let par = [Vec3::ZERO, Vec3::X, Vec3::Z];

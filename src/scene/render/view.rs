@@ -102,6 +102,11 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
     }
 
     #[inline]
+    fn samples_light_choice(&self) -> bool {
+        self.lights.reads_pick()
+    }
+
+    #[inline]
     fn light_pdf(&self, from: &SurfacePoint, hit: &SurfacePoint) -> f32 {
         self.lights.pdf_hit(self.geo, from, hit)
     }

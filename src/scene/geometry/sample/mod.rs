@@ -82,6 +82,15 @@ impl Geometry {
         }
     }
 
+    /// Whether [`Geometry::sample_shape`] reads `u_pick` for shape `shape`: only triangle
+    /// meshes and cubes do (to choose a triangle); rectangles, spheres and disks ignore it.
+    pub(crate) fn shape_reads_pick(&self, shape: u32) -> bool {
+        matches!(
+            self.shapes.get(shape as usize),
+            Some(ShapeData::Mesh(m)) if m.parallelogram.is_none()
+        )
+    }
+
     /// A point on shape `shape` for lighting `reference`: `u_pick` chooses a triangle of a
     /// mesh or cube (ignored otherwise), `u` the point. `pdf` is per unit solid angle at
     /// `reference`, by the strategies in the module docs of `geometry`. `None` when the
