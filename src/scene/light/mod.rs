@@ -60,6 +60,8 @@ pub struct Lights {
     /// Chooses a light by power; `None` when no light emits.
     picker: Option<AliasTable>,
     shape_light: Vec<Option<u32>>,
+    /// Per shape: its emitted radiance if it is an area light (one load per hit).
+    shape_radiance: Vec<Option<Vec3>>,
     env: Option<u32>,
     has_delta: bool,
     /// Per light: the rectangle of an area light on a rectangle shape, sampled here
@@ -67,6 +69,8 @@ pub struct Lights {
     rects: Vec<Option<AreaRect>>,
     /// Exactly one light: no choice to sample (its probability is 1).
     single: bool,
+    /// The scene's only light, an emitting rectangle (its choice probability is 1).
+    only_rect: Option<(AreaRect, Vec3)>,
     /// [`Lights::sample`] reads `u_pick`: several lights, or a light on a triangle mesh.
     reads_pick: bool,
 }
@@ -162,7 +166,7 @@ impl Lights {
                 }
             }
         }
-        let rects = lights
+        let rects: Vec<Option<AreaRect>> = lights
             .iter()
             .map(|l| match *l {
                 Light::Area { shape, .. } => geo
@@ -172,10 +176,26 @@ impl Lights {
             })
             .collect();
         let single = lights.len() == 1;
+        let picker = AliasTable::new(&power).ok();
+        let only_rect = match (single, picker.is_some(), rects.first(), lights.first()) {
+            (true, true, Some(Some(r)), Some(&Light::Area { radiance, .. })) => {
+                Some((*r, radiance))
+            }
+            _ => None,
+        };
         let on_mesh =
             |l: &Light| matches!(*l, Light::Area { shape, .. } if geo.shape_reads_pick(shape));
+        let shape_radiance = shape_light
+            .iter()
+            .map(|l| match l.map(|i| &lights[i as usize]) {
+                Some(Light::Area { radiance, .. }) => Some(*radiance),
+                _ => None,
+            })
+            .collect();
         Ok(Self {
-            picker: AliasTable::new(&power).ok(),
+            shape_radiance,
+            picker,
+            only_rect,
             reads_pick: !single || lights.iter().any(on_mesh),
             single,
             rects,
@@ -217,11 +237,7 @@ impl Lights {
     /// Emitted radiance of shape `shape` if it is an area light.
     #[inline]
     pub fn area_radiance(&self, shape: u32) -> Option<Vec3> {
-        let i = (*self.shape_light.get(shape as usize)?)?;
-        match self.lights[i as usize] {
-            Light::Area { radiance, .. } => Some(radiance),
-            _ => None,
-        }
+        *self.shape_radiance.get(shape as usize)?
     }
 
     /// Radiance arriving from the environment against the ray direction `dir`.
@@ -235,7 +251,32 @@ impl Lights {
     }
 
     /// Chooses a light by power and samples a direction toward it from `from`.
+    #[inline]
     pub fn sample(
+        &self,
+        geo: &Geometry,
+        from: &SurfacePoint,
+        u_pick: Vec2,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        // A lone rectangle light (the Cornell box) inline; everything else out of line.
+        if let Some((r, radiance)) = &self.only_rect {
+            if geo.shape_sampling() == ShapeSampling::Area {
+                let s = r.sample(from.p, u)?;
+                return Some(LightSample {
+                    wi: s.wi,
+                    dist: s.dist,
+                    radiance: *radiance,
+                    pdf: s.pdf,
+                    delta: false,
+                });
+            }
+        }
+        self.sample_chosen(geo, from, u_pick, u)
+    }
+
+    /// [`Lights::sample`] in general: the choice of light, then its own sampling.
+    fn sample_chosen(
         &self,
         geo: &Geometry,
         from: &SurfacePoint,

@@ -109,7 +109,7 @@ mod tests {
                 _ => None,
             })
             .unwrap();
-        assert!(lights.single && lights.rects[i].is_some());
+        assert!(lights.single && lights.rects[i].is_some() && lights.only_rect.is_some());
         let froms = [
             Vec3::new(0.0, 0.0, 0.0),
             Vec3::new(-0.9, 0.5, 0.3),
