@@ -2,7 +2,7 @@
 //! Russian roulette.
 
 use super::{is_positive, Bsdf, SampleSource, Scene, Strategy, SurfacePoint};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// A path tracer with Mitsuba 3's `path` semantics.
 ///
@@ -123,14 +123,23 @@ impl PathTracer {
             let bsdf = scene.bsdf(&sp);
             let wo = sp.frame.to_local(wo_world);
             let flags = bsdf.flags();
-            let u_pick = rng.next_2d();
+            // Only the values the scene and the BSDF read are drawn.
+            let u_pick = if scene.samples_light_choice() {
+                rng.next_2d()
+            } else {
+                Vec2::splat(0.5)
+            };
             let u_light = rng.next_2d();
             if flags.smooth && (self.strategy.samples_lights() || scene.has_delta_lights()) {
                 if let Some(ls) = scene.sample_light(&sp, u_pick, u_light) {
                     out.radiance += throughput * self.nee(scene, bsdf, &sp, wo, &ls, &mut out.rays);
                 }
             }
-            let u1 = rng.next_1d();
+            let u1 = if bsdf.samples_component() {
+                rng.next_1d()
+            } else {
+                0.5
+            };
             let u2 = rng.next_2d();
             let Some(bs) = bsdf.sample(wo, u1, u2) else {
                 break;

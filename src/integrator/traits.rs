@@ -73,6 +73,14 @@ pub trait Bsdf {
 
     /// Samples `wi` given `wo`: `u1` picks a component, `u2` the direction.
     fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample>;
+
+    /// Whether [`Bsdf::sample`] reads `u1` (a choice among components, such as reflection
+    /// or refraction). When `false` [`PathTracer`](super::PathTracer) does not draw `u1`
+    /// from its sample source and passes `0.5`. The default, `true`, is always correct.
+    #[inline]
+    fn samples_component(&self) -> bool {
+        true
+    }
 }
 
 /// One sample of the light arriving at a point, from next-event estimation.
@@ -143,6 +151,15 @@ pub trait Scene {
     /// Next-event estimation: choose a light (`u_pick.x`), a part of it such as a triangle
     /// (`u_pick.y`) and a direction toward it (`u`).
     fn sample_light(&self, from: &SurfacePoint, u_pick: Vec2, u: Vec2) -> Option<LightSample>;
+
+    /// Whether [`Scene::sample_light`] reads `u_pick` (there is a choice of light, or of a
+    /// part of one). When `false` [`PathTracer`](super::PathTracer) does not draw `u_pick`
+    /// from its sample source and passes `(0.5, 0.5)`. The default, `true`, is always
+    /// correct.
+    #[inline]
+    fn samples_light_choice(&self) -> bool {
+        true
+    }
 
     /// Density per unit solid angle (with the light choice) with which
     /// [`Scene::sample_light`] at `from` returns the direction toward the emitter point `hit`.

@@ -54,6 +54,11 @@ impl Bsdf for Conductor {
         0.0
     }
 
+    #[inline]
+    fn samples_component(&self) -> bool {
+        false
+    }
+
     fn sample(&self, wo: Vec3, _u1: f32, _u2: Vec2) -> Option<BsdfSample> {
         if wo.z <= 0.0 {
             return None;

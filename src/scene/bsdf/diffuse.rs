@@ -48,6 +48,11 @@ impl Bsdf for Diffuse {
     }
 
     #[inline]
+    fn samples_component(&self) -> bool {
+        false
+    }
+
+    #[inline]
     fn sample(&self, wo: Vec3, _u1: f32, u2: Vec2) -> Option<BsdfSample> {
         if wo.z <= 0.0 {
             return None;

@@ -68,6 +68,10 @@ impl Bsdf for AnyBsdf {
     fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
         dispatch!(self, b => b.sample(wo, u1, u2))
     }
+    #[inline]
+    fn samples_component(&self) -> bool {
+        dispatch!(self, b => b.samples_component())
+    }
 }
 
 /// A BSDF with Mitsuba's `twosided` option: when `two_sided`, a direction below the surface
@@ -115,6 +119,10 @@ impl<B: Bsdf> Bsdf for Sided<B> {
         } else {
             self.bsdf.sample(wo, u1, u2)
         }
+    }
+    #[inline]
+    fn samples_component(&self) -> bool {
+        self.bsdf.samples_component()
     }
 }
 

@@ -43,16 +43,6 @@ impl Ndf {
             Ndf::Beckmann(b) => BeckmannVisible::new(b.alpha(), wo).map_or(0.0, |v| v.pdf(m)),
         }
     }
-
-    #[inline]
-    fn sample_visible(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
-        match self {
-            Ndf::Ggx(g) => GgxVisible::new(g.alpha(), wo).ok().map(|v| v.sample(u)),
-            Ndf::Beckmann(b) => BeckmannVisible::new(b.alpha(), wo)
-                .ok()
-                .map(|v| v.sample(u)),
-        }
-    }
 }
 
 /// Microfacet reflection `f = F(wo·h) D(h) G(wo, wi, h) / (4 cos θ_o cos θ_i)` with Mitsuba's
@@ -118,27 +108,24 @@ impl Bsdf for RoughConductor {
             return (Vec3::ZERO, 0.0);
         }
         let h = (wo + wi).normalize_or_zero();
-        let d = self.ndf.d(h);
-        let dot = wi.dot(h);
-        if !is_positive(d) || !is_positive(dot) {
-            return (Vec3::ZERO, 0.0);
-        }
-        let g = self.ndf.g(wo, wi, h);
-        let f = self.fresnel.eval(wo.dot(h)) * self.specular_reflectance * (d * g / (4.0 * wo.z));
-        let pdf = self.ndf.pdf_visible(wo, h) / (4.0 * dot);
-        (f, pdf)
+        self.eval_pdf_at(wo, wi, h, |h| self.ndf.pdf_visible(wo, h))
+    }
+
+    #[inline]
+    fn samples_component(&self) -> bool {
+        false
     }
 
     fn sample(&self, wo: Vec3, _u1: f32, u2: Vec2) -> Option<BsdfSample> {
         if wo.z <= 0.0 {
             return None;
         }
-        let m = self.ndf.sample_visible(wo, u2)?;
-        let wi = 2.0 * wo.dot(m) * m - wo;
-        if wi.z <= 0.0 {
-            return None;
-        }
-        let (f, pdf) = self.eval_pdf(wo, wi);
+        let (wi, f, pdf) = match self.ndf {
+            Ndf::Ggx(g) => self.sample_with(&GgxVisible::new(g.alpha(), wo).ok()?, wo, u2)?,
+            Ndf::Beckmann(b) => {
+                self.sample_with(&BeckmannVisible::new(b.alpha(), wo).ok()?, wo, u2)?
+            }
+        };
         if !is_positive(pdf) || !pdf.is_finite() {
             return None;
         }
@@ -149,5 +136,48 @@ impl Bsdf for RoughConductor {
             delta: false,
             eta: 1.0,
         })
+    }
+}
+
+impl RoughConductor {
+    /// [`Bsdf::eval_pdf`] at the half-vector `h` of `wo` and `wi` (both above the surface),
+    /// with `pdf_visible(h)` the density of visible normals seen from `wo`.
+    #[inline]
+    fn eval_pdf_at(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        h: Vec3,
+        pdf_visible: impl FnOnce(Vec3) -> f32,
+    ) -> (Vec3, f32) {
+        let d = self.ndf.d(h);
+        let dot = wi.dot(h);
+        if !is_positive(d) || !is_positive(dot) {
+            return (Vec3::ZERO, 0.0);
+        }
+        let g = self.ndf.g(wo, wi, h);
+        let f = self.fresnel.eval(wo.dot(h)) * self.specular_reflectance * (d * g / (4.0 * wo.z));
+        let pdf = pdf_visible(h) / (4.0 * dot);
+        (f, pdf)
+    }
+
+    /// A direction reflected about a visible normal drawn from `visible` (the warp of the
+    /// normals visible from `wo`, built once and used for the density too), with
+    /// `f · cos θ_i` and the pdf as [`Bsdf::eval_pdf`] gives them.
+    #[inline]
+    fn sample_with<V: Warp<Point = Vec3>>(
+        &self,
+        visible: &V,
+        wo: Vec3,
+        u2: Vec2,
+    ) -> Option<(Vec3, Vec3, f32)> {
+        let m = visible.sample(u2);
+        let wi = 2.0 * wo.dot(m) * m - wo;
+        if wi.z <= 0.0 {
+            return None;
+        }
+        let h = (wo + wi).normalize_or_zero();
+        let (f, pdf) = self.eval_pdf_at(wo, wi, h, |h| visible.pdf(h));
+        Some((wi, f, pdf))
     }
 }

@@ -145,3 +145,37 @@ fn from_desc_reads_twosided_and_ior() {
         other => panic!("wrong material {other:?}"),
     }
 }
+
+/// Only smooth glass chooses a component with `u1`; the estimators skip drawing it for the
+/// others, so those must really ignore it.
+#[test]
+fn only_dielectric_reads_u1() {
+    let glass = Sided {
+        bsdf: AnyBsdf::Dielectric(Dielectric {
+            eta: 1.5,
+            specular_reflectance: Vec3::ONE,
+            specular_transmittance: Vec3::ONE,
+        }),
+        two_sided: false,
+    };
+    assert!(glass.samples_component());
+    let mut bsdfs = smooth_bsdfs();
+    bsdfs.push(Sided {
+        bsdf: AnyBsdf::Conductor(Conductor {
+            fresnel: Fresnel::Perfect,
+            specular_reflectance: Vec3::ONE,
+        }),
+        two_sided: true,
+    });
+    let mut state = 7u64;
+    for b in bsdfs {
+        assert!(!b.samples_component(), "{b:?}");
+        for _ in 0..50 {
+            let wo = Vec3::new(lcg(&mut state) - 0.5, lcg(&mut state) - 0.5, 0.3).normalize();
+            let u2 = Vec2::new(lcg(&mut state), lcg(&mut state));
+            let a = b.sample(wo, 0.01, u2);
+            let c = b.sample(wo, 0.99, u2);
+            assert_eq!(a, c, "{b:?}: the result depends on u1");
+        }
+    }
+}

@@ -2,13 +2,15 @@
 //! and an environment map, chosen for next-event estimation by power.
 
 mod envmap;
+mod rect;
 
 pub use envmap::EnvMap;
+use rect::AreaRect;
 
 use crate::integrator::{is_positive, LightSample, SurfacePoint};
 use crate::sampling::distribution::AliasTable;
 use crate::scene::description::{EmitterDesc, SceneDescription};
-use crate::scene::render::geo::{Geometry, Hit};
+use crate::scene::render::geo::{Geometry, Hit, ShapeSampling};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -58,12 +60,52 @@ pub struct Lights {
     /// Chooses a light by power; `None` when no light emits.
     picker: Option<AliasTable>,
     shape_light: Vec<Option<u32>>,
+    /// Per shape: its emitted radiance if it is an area light (one load per hit).
+    shape_radiance: Vec<Option<Vec3>>,
     env: Option<u32>,
     has_delta: bool,
+    /// Per light: the rectangle of an area light on a rectangle shape, sampled here
+    /// directly when the geometry samples rectangles by area (same points, same density).
+    rects: Vec<Option<AreaRect>>,
+    /// Exactly one light: no choice to sample (its probability is 1).
+    single: bool,
+    /// The scene's only light, an emitting rectangle (its choice probability is 1).
+    only_rect: Option<(AreaRect, Vec3)>,
+    /// [`Lights::sample`] reads `u_pick`: several lights, or a light on a triangle mesh.
+    reads_pick: bool,
 }
 
 fn mean(v: Vec3) -> f32 {
     (v.x + v.y + v.z) / 3.0
+}
+
+/// A direction toward area light `shape` through [`Geometry::sample_shape`] (`u_rest` picks
+/// a mesh triangle, `u` the point), its density times the light's choice probability `pick`.
+fn sample_shape_light(
+    geo: &Geometry,
+    shape: u32,
+    radiance: Vec3,
+    from: Vec3,
+    (u_rest, u): (f32, Vec2),
+    pick: f32,
+) -> Option<LightSample> {
+    let s = geo.sample_shape(shape, from, u_rest, u)?;
+    let d = s.p - from;
+    let dist = d.length();
+    if !is_positive(dist) {
+        return None;
+    }
+    let wi = d / dist;
+    if s.n.dot(wi) >= 0.0 || !is_positive(s.pdf) || !s.pdf.is_finite() {
+        return None;
+    }
+    Some(LightSample {
+        wi,
+        dist,
+        radiance,
+        pdf: s.pdf * pick,
+        delta: false,
+    })
 }
 
 impl Lights {
@@ -124,8 +166,39 @@ impl Lights {
                 }
             }
         }
+        let rects: Vec<Option<AreaRect>> = lights
+            .iter()
+            .map(|l| match *l {
+                Light::Area { shape, .. } => geo
+                    .parallelogram(shape)
+                    .and_then(|(par, n, area)| AreaRect::new(par, n, area)),
+                _ => None,
+            })
+            .collect();
+        let single = lights.len() == 1;
+        let picker = AliasTable::new(&power).ok();
+        let only_rect = match (single, picker.is_some(), rects.first(), lights.first()) {
+            (true, true, Some(Some(r)), Some(&Light::Area { radiance, .. })) => {
+                Some((*r, radiance))
+            }
+            _ => None,
+        };
+        let on_mesh =
+            |l: &Light| matches!(*l, Light::Area { shape, .. } if geo.shape_reads_pick(shape));
+        let shape_radiance = shape_light
+            .iter()
+            .map(|l| match l.map(|i| &lights[i as usize]) {
+                Some(Light::Area { radiance, .. }) => Some(*radiance),
+                _ => None,
+            })
+            .collect();
         Ok(Self {
-            picker: AliasTable::new(&power).ok(),
+            shape_radiance,
+            picker,
+            only_rect,
+            reads_pick: !single || lights.iter().any(on_mesh),
+            single,
+            rects,
             lights,
             shape_light,
             env,
@@ -144,6 +217,13 @@ impl Lights {
         self.picker.as_ref().map_or(0.0, |t| t.pmf(i as usize))
     }
 
+    /// Whether [`Lights::sample`] reads its `u_pick` argument: there are several lights to
+    /// choose from, or the light is a triangle mesh (a triangle to choose). With a single
+    /// rectangle, sphere, disk, point or environment light it does not.
+    pub fn reads_pick(&self) -> bool {
+        self.reads_pick
+    }
+
     /// Whether any light is a point light.
     pub fn has_delta(&self) -> bool {
         self.has_delta
@@ -157,11 +237,7 @@ impl Lights {
     /// Emitted radiance of shape `shape` if it is an area light.
     #[inline]
     pub fn area_radiance(&self, shape: u32) -> Option<Vec3> {
-        let i = (*self.shape_light.get(shape as usize)?)?;
-        match self.lights[i as usize] {
-            Light::Area { radiance, .. } => Some(radiance),
-            _ => None,
-        }
+        *self.shape_radiance.get(shape as usize)?
     }
 
     /// Radiance arriving from the environment against the ray direction `dir`.
@@ -175,6 +251,7 @@ impl Lights {
     }
 
     /// Chooses a light by power and samples a direction toward it from `from`.
+    #[inline]
     pub fn sample(
         &self,
         geo: &Geometry,
@@ -182,28 +259,50 @@ impl Lights {
         u_pick: Vec2,
         u: Vec2,
     ) -> Option<LightSample> {
-        let (i, pick) = self.picker.as_ref()?.sample_with_pmf(u_pick.x);
-        let u_rest = u_pick.y;
-        match self.lights[i] {
-            Light::Area { shape, radiance } => {
-                let s = geo.sample_shape(shape, from.p, u_rest, u)?;
-                let d = s.p - from.p;
-                let dist = d.length();
-                if !is_positive(dist) {
-                    return None;
-                }
-                let wi = d / dist;
-                if s.n.dot(wi) >= 0.0 || !is_positive(s.pdf) || !s.pdf.is_finite() {
-                    return None;
-                }
-                Some(LightSample {
-                    wi,
-                    dist,
-                    radiance,
-                    pdf: s.pdf * pick,
+        // A lone rectangle light (the Cornell box) inline; everything else out of line.
+        if let Some((r, radiance)) = &self.only_rect {
+            if geo.shape_sampling() == ShapeSampling::Area {
+                let s = r.sample(from.p, u)?;
+                return Some(LightSample {
+                    wi: s.wi,
+                    dist: s.dist,
+                    radiance: *radiance,
+                    pdf: s.pdf,
                     delta: false,
-                })
+                });
             }
+        }
+        self.sample_chosen(geo, from, u_pick, u)
+    }
+
+    /// [`Lights::sample`] in general: the choice of light, then its own sampling.
+    fn sample_chosen(
+        &self,
+        geo: &Geometry,
+        from: &SurfacePoint,
+        u_pick: Vec2,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        let picker = self.picker.as_ref()?;
+        let (i, pick) = if self.single {
+            (0, 1.0)
+        } else {
+            picker.sample_with_pmf(u_pick.x)
+        };
+        match self.lights[i] {
+            Light::Area { shape, radiance } => match &self.rects[i] {
+                Some(r) if geo.shape_sampling() == ShapeSampling::Area => {
+                    let s = r.sample(from.p, u)?;
+                    Some(LightSample {
+                        wi: s.wi,
+                        dist: s.dist,
+                        radiance,
+                        pdf: s.pdf * pick,
+                        delta: false,
+                    })
+                }
+                _ => sample_shape_light(geo, shape, radiance, from.p, (u_pick.y, u), pick),
+            },
             Light::Point {
                 position,
                 intensity,

@@ -102,6 +102,11 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
     }
 
     #[inline]
+    fn samples_light_choice(&self) -> bool {
+        self.lights.reads_pick()
+    }
+
+    #[inline]
     fn light_pdf(&self, from: &SurfacePoint, hit: &SurfacePoint) -> f32 {
         self.lights.pdf_hit(self.geo, from, hit)
     }
@@ -113,5 +118,74 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
         } else {
             0.0
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::{PathTracer, SampleSource};
+    use crate::scene::bsdf::{AnyBsdf, Diffuse, Sided};
+    use crate::scene::camera::Camera;
+    use crate::scene::description::{EmitterDesc, SceneDescription};
+    use crate::scene::geometry::{AccelKind, ShapeSampling};
+
+    /// Counts the values drawn (a constant value is enough here).
+    struct Counting(u32);
+
+    impl SampleSource for Counting {
+        fn next_1d(&mut self) -> f32 {
+            self.0 += 1;
+            0.37
+        }
+    }
+
+    /// Values drawn by one direct-lighting path (`max_depth` 2: one vertex, no roulette)
+    /// from the centre of the Cornell box's camera.
+    fn draws(desc: &SceneDescription) -> u32 {
+        let geo = Geometry::new(&desc.shapes, None, AccelKind::Bvh)
+            .unwrap()
+            .with_shape_sampling(ShapeSampling::Area);
+        let lights = Lights::new(desc, &geo, 10.0).unwrap();
+        let bsdfs: Vec<Sided<Diffuse>> = desc
+            .shapes
+            .iter()
+            .map(|s| {
+                let b = AnyBsdf::from_desc(&s.bsdf).unwrap();
+                Sided {
+                    bsdf: b.bsdf.as_diffuse().unwrap(),
+                    two_sided: b.two_sided,
+                }
+            })
+            .collect();
+        let scene = SceneView::<_, true, false> {
+            geo: &geo,
+            bsdfs,
+            lights: &lights,
+        };
+        let camera = Camera::new(&desc.sensor).unwrap();
+        let f = &desc.sensor.film;
+        let ray = camera.generate_ray(Vec2::new(f.width as f32, f.height as f32) * 0.5);
+        let pt = PathTracer {
+            max_depth: 2,
+            ..PathTracer::default()
+        };
+        let mut rng = Counting(0);
+        let r = pt.li(&scene, ray.origin, ray.dir, f32::INFINITY, &mut rng);
+        assert!(r.radiance.is_finite() && r.rays >= 2, "{r:?}");
+        rng.0
+    }
+
+    /// A diffuse vertex lit by one rectangle draws the light sample and the BSDF sample
+    /// only (2 + 2 values); a second light adds the light choice (2 more).
+    #[test]
+    fn path_vertex_draws_only_what_is_read() {
+        let mut desc = crate::scene::cornell_box::cornell_box();
+        assert_eq!(draws(&desc), 4);
+        desc.emitters.push(EmitterDesc::Point {
+            position: Vec3::new(0.0, 1.0, 0.0),
+            intensity: Vec3::ONE,
+        });
+        assert_eq!(draws(&desc), 6);
     }
 }

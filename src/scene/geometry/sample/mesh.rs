@@ -103,6 +103,13 @@ fn triangle_area([a, b, c]: [Vec3; 3]) -> f32 {
     0.5 * (b - a).cross(c - a).length()
 }
 
+/// A rectangle mesh's corner and edges, its unit front normal and its area (`None` for
+/// other meshes).
+pub(super) fn parallelogram(m: &MeshData) -> Option<([Vec3; 3], Vec3, f32)> {
+    let par = m.parallelogram?;
+    Some((par, front_normal(m, triangle(m, 0)), m.area))
+}
+
 /// A rectangle `corner + s·ex + t·ey`, s, t ∈ [0, 1], as a whole.
 fn sample_parallelogram(
     m: &MeshData,

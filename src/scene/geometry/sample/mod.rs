@@ -71,6 +71,26 @@ impl Geometry {
         }
     }
 
+    /// Shape `shape` as a rectangle sampled as a whole: its corner and edges
+    /// (`corner + s·ex + t·ey`, s, t ∈ [0, 1]), unit front normal and area; `None` for any
+    /// other shape. With [`ShapeSampling::Area`], [`Geometry::sample_shape`] samples it as
+    /// `corner + u.x·ex + u.y·ey`, so a light can do the same without the shape lookup.
+    pub(crate) fn parallelogram(&self, shape: u32) -> Option<([Vec3; 3], Vec3, f32)> {
+        match self.shapes.get(shape as usize)? {
+            ShapeData::Mesh(m) => mesh::parallelogram(m),
+            _ => None,
+        }
+    }
+
+    /// Whether [`Geometry::sample_shape`] reads `u_pick` for shape `shape`: only triangle
+    /// meshes and cubes do (to choose a triangle); rectangles, spheres and disks ignore it.
+    pub(crate) fn shape_reads_pick(&self, shape: u32) -> bool {
+        matches!(
+            self.shapes.get(shape as usize),
+            Some(ShapeData::Mesh(m)) if m.parallelogram.is_none()
+        )
+    }
+
     /// A point on shape `shape` for lighting `reference`: `u_pick` chooses a triangle of a
     /// mesh or cube (ignored otherwise), `u` the point. `pdf` is per unit solid angle at
     /// `reference`, by the strategies in the module docs of `geometry`. `None` when the
