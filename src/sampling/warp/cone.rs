@@ -80,6 +80,32 @@ impl UniformCone {
         Self::from_one_minus_cos(2.0 * half_sin * half_sin, "theta_max", f64::from(t))
     }
 
+    /// The cone whose half-angle has sine `sin_theta_max ∈ (0, 1]`, for example the cone a
+    /// sphere of radius r subtends from distance d > r (sin θ_max = r / d), which then
+    /// needs no trigonometry: `1 − cos θ_max = s² / (1 + √(1 − s²))`, computed in f64 (the
+    /// product form avoids the cancellation of `1 − √(1 − s²)`). Only cones up to a
+    /// hemisphere can be given this way. Errors on NaN, infinities, values outside `(0, 1]`,
+    /// or a cone too narrow (as [`UniformCone::from_angle`]).
+    ///
+    /// ```
+    /// use mcrt::sampling::warp::UniformCone;
+    ///
+    /// // A sphere of radius 1 seen from distance 2: θ_max = 30°.
+    /// let cone = UniformCone::from_sin_theta_max(0.5).unwrap();
+    /// assert!((cone.cos_theta_max() - 0.75f32.sqrt()).abs() < 1e-6);
+    /// ```
+    pub fn from_sin_theta_max(sin_theta_max: f32) -> Result<Self, SamplingError> {
+        let s = check_param("sin_theta_max", sin_theta_max, "finite, in (0, 1]", |s| {
+            s > 0.0 && s <= 1.0
+        })?;
+        let s2 = f64::from(s) * f64::from(s);
+        Self::from_one_minus_cos(
+            s2 / (1.0 + (1.0 - s2).sqrt()),
+            "sin_theta_max",
+            f64::from(s),
+        )
+    }
+
     fn from_one_minus_cos(omc: f64, name: &'static str, value: f64) -> Result<Self, SamplingError> {
         if !(MIN_ONE_MINUS_COS..=2.0).contains(&omc) {
             return Err(SamplingError::InvalidParameter {
@@ -167,6 +193,20 @@ mod tests {
         }
         assert!(UniformCone::new(-1.0).is_ok());
         assert!(UniformCone::from_angle(std::f32::consts::PI).is_ok());
+    }
+
+    #[test]
+    fn from_sine_matches_from_angle() {
+        for s in [1.0f32, 0.999, 0.5, 0.1, 1e-3, 1e-6, 1e-12, 1e-14] {
+            let a = UniformCone::from_sin_theta_max(s).unwrap();
+            let b = UniformCone::from_angle(f64::from(s).asin() as f32).unwrap();
+            let (x, y) = (a.one_minus_cos_theta_max(), b.one_minus_cos_theta_max());
+            assert!(x.is_finite() && y.is_finite() && x > 0.0, "s {s}: {x} {y}");
+            assert!((x / y - 1.0).abs() < 1e-6, "s {s}: {x} against {y}");
+        }
+        for bad in [0.0, -0.5, 1.5, f32::NAN, f32::INFINITY, 1e-15] {
+            assert!(UniformCone::from_sin_theta_max(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]

@@ -17,8 +17,7 @@ fn cone(center: Vec3, radius: f32, reference: Vec3) -> Option<(UniformCone, Vec3
     if d.is_nan() || d <= radius * (1.0 + INSIDE) {
         return None;
     }
-    let theta_max = (f64::from(radius) / f64::from(d)).asin() as f32;
-    let cone = UniformCone::from_angle(theta_max).ok()?;
+    let cone = UniformCone::from_sin_theta_max(radius / d).ok()?;
     Some((cone, to_c / d, d))
 }
 
