@@ -45,7 +45,9 @@
 mod build;
 mod error;
 mod intersect;
+mod leaves;
 mod offset;
+mod packet;
 mod sample;
 
 pub use crate::scene::accel::AccelKind;
@@ -115,6 +117,8 @@ pub struct Geometry {
     prims: Vec<Prim>,
     ids: Vec<PrimId>,
     accel: Accel,
+    /// The BVH's leaves with packed triangles (empty for the other structures).
+    leaves: Vec<leaves::Leaf>,
     shapes: Vec<ShapeData>,
     bounds: Aabb,
     shape_sampling: ShapeSampling,
@@ -148,11 +152,17 @@ impl Geometry {
             .collect();
         let scene = bounds.iter().fold(Aabb::EMPTY, |b, p| b.union(*p));
         let accel = Accel::build(accel, &bounds);
-        let order = accel.order();
+        let mut order = accel.order().to_vec();
+        // With the BVH, each leaf stores its triangles first (queries go leaf by leaf).
+        let leaves = match accel.bvh4() {
+            Some(bvh) => leaves::pack(bvh, &built.prims, &mut order),
+            None => Vec::new(),
+        };
         Ok(Self {
             prims: order.iter().map(|&i| built.prims[i as usize]).collect(),
             ids: order.iter().map(|&i| built.ids[i as usize]).collect(),
             accel,
+            leaves,
             shapes: built.shapes,
             bounds: scene,
             shape_sampling: ShapeSampling::default(),
@@ -189,8 +199,12 @@ impl Geometry {
     }
 
     /// The nearest hit with `0 < t < t_max`.
-    #[inline]
+    #[inline(never)]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        if let Some(bvh) = self.accel.bvh4() {
+            let (t, rec) = self.closest_packed(bvh, ray, t_max)?;
+            return Some(self.make_hit(ray, t, rec));
+        }
         let tri = TriRay::new(ray.origin, ray.dir);
         let mut rec = HitRecord {
             index: 0,
@@ -206,8 +220,11 @@ impl Geometry {
     }
 
     /// True when anything is hit with `0 < t < t_max`.
-    #[inline]
+    #[inline(never)]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        if let Some(bvh) = self.accel.bvh4() {
+            return self.occluded_packed(bvh, ray, t_max);
+        }
         let tri = TriRay::new(ray.origin, ray.dir);
         self.accel.any(ray.origin, ray.dir, t_max, |i, bound| {
             self.hit_prim(&tri, ray, i, bound).is_some()
@@ -228,6 +245,16 @@ impl Geometry {
                 }
                 _ => None,
             },
+        }
+    }
+
+    /// Intersects stored primitive `i` without a prepared triangle ray: spheres and disks
+    /// (and, should a BVH leaf ever hold more than four triangles, the extra ones).
+    #[inline(always)]
+    fn hit_other(&self, ray: &Ray, i: u32, t_max: f32) -> Option<(f32, f32, f32)> {
+        match &self.prims[i as usize] {
+            Prim::Tri(_) => self.hit_prim(&TriRay::new(ray.origin, ray.dir), ray, i, t_max),
+            _ => self.hit_prim(&TriRay::DUMMY, ray, i, t_max),
         }
     }
 
