@@ -119,6 +119,8 @@ pub struct Geometry {
     accel: Accel,
     /// The BVH's leaves with packed triangles (empty for the other structures).
     leaves: Vec<leaves::Leaf>,
+    /// Per stored primitive: a triangle's unit front normal ([`Hit::ng`]), else zero.
+    face_ng: Vec<Vec3>,
     shapes: Vec<ShapeData>,
     bounds: Aabb,
     shape_sampling: ShapeSampling,
@@ -158,9 +160,14 @@ impl Geometry {
             Some(bvh) => leaves::pack(bvh, &built.prims, &mut order),
             None => Vec::new(),
         };
+        let ids: Vec<PrimId> = order.iter().map(|&i| built.ids[i as usize]).collect();
         Ok(Self {
             prims: order.iter().map(|&i| built.prims[i as usize]).collect(),
-            ids: order.iter().map(|&i| built.ids[i as usize]).collect(),
+            face_ng: ids
+                .iter()
+                .map(|id| face_normal(&built.shapes, id))
+                .collect(),
+            ids,
             accel,
             leaves,
             shapes: built.shapes,
@@ -277,7 +284,7 @@ impl Geometry {
                 let b0 = 1.0 - rec.b1 - rec.b2;
                 hit.p = a * b0 + b * rec.b1 + c * rec.b2;
                 let sign = if m.flip { -1.0 } else { 1.0 };
-                hit.ng = sign * (b - a).cross(c - a).normalize_or(Vec3::Z);
+                hit.ng = self.face_ng[rec.index as usize];
                 hit.ns = if m.normals.is_empty() {
                     hit.ng
                 } else {
@@ -310,6 +317,18 @@ impl Geometry {
             }
         }
         hit
+    }
+}
+
+/// The unit front normal of a triangle (zero for other primitives), as hits report it.
+fn face_normal(shapes: &[ShapeData], id: &PrimId) -> Vec3 {
+    match &shapes[id.shape as usize] {
+        ShapeData::Mesh(m) => {
+            let [a, b, c] = m.indices[id.prim as usize].map(|v| m.positions[v as usize]);
+            let sign = if m.flip { -1.0 } else { 1.0 };
+            sign * (b - a).cross(c - a).normalize_or(Vec3::Z)
+        }
+        _ => Vec3::ZERO,
     }
 }
 

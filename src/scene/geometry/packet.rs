@@ -71,12 +71,15 @@ struct Edges {
 impl TriRay4 {
     #[inline]
     pub(crate) fn new(origin: Vec3, dir: Vec3) -> Self {
+        // (kx, ky) follow kz cyclically, swapped when dz < 0 to keep the winding.
+        const NEXT: [[usize; 2]; 3] = [[1, 2], [2, 0], [0, 1]];
         let kz = dir.abs().max_position();
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if dir[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
+        let [kx, ky] = if dir[kz] < 0.0 {
+            let [a, b] = NEXT[kz];
+            [b, a]
+        } else {
+            NEXT[kz]
+        };
         let sz = 1.0 / dir[kz];
         Self {
             k: [kx, ky, kz],
