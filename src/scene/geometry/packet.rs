@@ -13,7 +13,8 @@ use glam::{BVec4A, DVec3, Vec3, Vec4};
 /// lane holds a real triangle and a duplicate never wins a tie (lower lanes win).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct TriPacket {
-    v: [[Vec4; 3]; 3],
+    /// The fourth axis is padding, so that indexing by `k & 3` needs no bounds check.
+    v: [[Vec4; 4]; 3],
 }
 
 impl TriPacket {
@@ -21,9 +22,9 @@ impl TriPacket {
     pub(crate) fn new(tris: &[[Vec3; 3]]) -> Self {
         debug_assert!(tris.len() <= 4);
         let lane = |l: usize| tris.get(l.min(tris.len().saturating_sub(1))).copied();
-        let mut v = [[Vec4::ZERO; 3]; 3];
+        let mut v = [[Vec4::ZERO; 4]; 3];
         for (j, vj) in v.iter_mut().enumerate() {
-            for (a, va) in vj.iter_mut().enumerate() {
+            for (a, va) in vj.iter_mut().take(3).enumerate() {
                 *va = Vec4::from_array([0, 1, 2, 3].map(|l| lane(l).map_or(f32::NAN, |t| t[j][a])));
             }
         }
@@ -91,7 +92,7 @@ impl TriRay4 {
     /// The edge functions and the tests that need no division; `None` when no lane is left.
     #[inline(always)]
     fn edges(&self, p: &TriPacket, t_max: f32) -> Option<Edges> {
-        let [kx, ky, kz] = self.k;
+        let [kx, ky, kz] = self.k.map(|k| k & 3);
         // Vertices relative to the origin, sheared: (x, y) per vertex; z kept unscaled.
         let rel = |j: usize| {
             let z = p.v[j][kz] - self.o[2];
