@@ -4,12 +4,11 @@
 //! IEEE Symposium on Interactive Ray Tracing). Collapsing repeatedly opens the interior child
 //! of largest surface area until four children are gathered.
 //!
-//! Traversal descends into the nearest child the ray enters and pushes the others, farthest
-//! first, with their entry distances;
-//! a popped entry farther than the nearest hit so far is skipped. The stack is a fixed array
-//! on the call stack when the tree is shallow enough (it always is for sane scenes: each
-//! level pushes at most three entries), else a per-thread buffer reused across queries; no
-//! allocation per ray either way.
+//! Leaves are numbered; a child code is a node index, `LEAF | leaf index` or [`EMPTY`], and
+//! [`Bvh4::leaf`] gives a leaf's range of stored primitives. Queries either call back per
+//! primitive ([`Bvh4::closest`], [`Bvh4::any`]) or per leaf ([`Bvh4::closest_leaf`],
+//! [`Bvh4::any_leaf`], which `Geometry` uses to test a leaf's triangles as one SIMD packet).
+//! Traversal is in `traverse.rs`.
 
 use super::aabb::Aabb;
 use super::bvh::Bvh;
@@ -38,8 +37,8 @@ pub struct Bvh4 {
     /// The root: a node index or a leaf code (a scene of at most four primitives).
     pub(super) root: u32,
     order: Vec<u32>,
-    /// Leaf `k` holds the stored primitives `leaves[k].0 .. leaves[k].0 + leaves[k].1`, in
-    /// depth-first order (so ranges follow one another).
+    /// Leaf `k` holds the stored primitives `leaves[k].0 .. leaves[k].0 + leaves[k].1`; the
+    /// ranges partition the stored order.
     leaves: Vec<(u32, u32)>,
     /// Levels of 4-wide nodes on the longest root-to-leaf path.
     pub(super) depth: usize,
@@ -78,8 +77,8 @@ impl Bvh4 {
         self.leaves.len()
     }
 
-    /// The stored primitives of leaf `k` (positions in [`Bvh4::order`]); leaves are
-    /// numbered in storage order, so their ranges follow one another. Empty past the end.
+    /// The stored primitives of leaf `k` (positions in [`Bvh4::order`]); the leaves'
+    /// ranges partition the stored order. Empty past the end.
     pub fn leaf(&self, k: usize) -> std::ops::Range<u32> {
         self.leaves
             .get(k)
@@ -230,6 +229,57 @@ mod tests {
             false
         });
         assert_eq!(hits, 300);
+    }
+
+    #[test]
+    fn leaves_partition_the_stored_order_and_leaf_walks_reach_them() {
+        for n in [0usize, 1, 4, 5, 37, 500] {
+            let b: Vec<Aabb> = (0..n)
+                .map(|i| {
+                    let p = Vec3::new((i % 7) as f32, (i / 7 % 5) as f32, (i / 35) as f32);
+                    Aabb::from_points(&[p, p + Vec3::splat(0.5)])
+                })
+                .collect();
+            let bvh = Bvh4::build(&b);
+            let mut ranges: Vec<_> = (0..bvh.leaf_count()).map(|k| bvh.leaf(k)).collect();
+            ranges.sort_by_key(|r| r.start);
+            let mut next = 0;
+            for r in ranges {
+                assert!(
+                    r.start == next && r.end > r.start && r.len() <= 4,
+                    "n {n} {r:?}"
+                );
+                next = r.end;
+            }
+            assert_eq!(next as usize, n);
+            assert!(bvh.leaf(bvh.leaf_count()).is_empty());
+            // A ray along +x through the first row: every leaf on it is visited once.
+            let o = Vec3::new(-1.0, 0.25, 0.25);
+            let mut seen = vec![0; bvh.leaf_count()];
+            bvh.any_leaf(o, Vec3::X, f32::INFINITY, |k, _| {
+                seen[k as usize] += 1;
+                false
+            });
+            let on_row = |k: usize| {
+                bvh.leaf(k).any(|i| {
+                    let bx = b[bvh.order()[i as usize] as usize];
+                    bx.min.y <= 0.25 && bx.min.z <= 0.25
+                })
+            };
+            for (k, &s) in seen.iter().enumerate() {
+                assert!(s <= 1 && (s == 1 || !on_row(k)), "n {n} leaf {k} seen {s}");
+            }
+            // The closest walk shrinks the bound to the first box's face.
+            let bound = bvh.closest_leaf(o, Vec3::X, f32::INFINITY, |k, t| {
+                for i in bvh.leaf(k as usize) {
+                    let hit = b[bvh.order()[i as usize] as usize].min.x + 1.0;
+                    if on_row(k as usize) && hit < *t {
+                        *t = hit;
+                    }
+                }
+            });
+            assert_eq!(bound, if n == 0 { f32::INFINITY } else { 1.0 }, "n {n}");
+        }
     }
 
     #[test]
