@@ -22,6 +22,14 @@ impl TriSoa {
         }
     }
 
+    /// The point with barycentric weights `w` (of vertices 0, 1, 2), summed in the order
+    /// `(w0 v0 + w1 v1) + w2 v2` per coordinate.
+    #[inline(always)]
+    pub(crate) fn point(&self, w: Vec3A) -> Vec3 {
+        let sum = |c: Vec3A| c.x + c.y + c.z;
+        Vec3::new(sum(self.x * w), sum(self.y * w), sum(self.z * w))
+    }
+
     /// The three vertices.
     pub(crate) fn vertices(&self) -> [Vec3; 3] {
         [0, 1, 2].map(|i| Vec3::new(self.x[i], self.y[i], self.z[i]))

@@ -58,7 +58,7 @@ pub use sample::ShapeSampling;
 use crate::scene::accel::{Aabb, Accel};
 use crate::scene::description::ShapeDesc;
 use build::{Prim, PrimId, ShapeData};
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec3A};
 use intersect::{hit_disk, hit_sphere, TriRay};
 use std::f32::consts::PI;
 use std::path::Path;
@@ -279,15 +279,16 @@ impl Geometry {
         };
         match &self.shapes[id.shape as usize] {
             ShapeData::Mesh(m) => {
-                let idx = m.indices[id.prim as usize];
-                let [a, b, c] = idx.map(|v| m.positions[v as usize]);
                 let b0 = 1.0 - rec.b1 - rec.b2;
-                hit.p = a * b0 + b * rec.b1 + c * rec.b2;
+                if let Prim::Tri(tri) = &self.prims[rec.index as usize] {
+                    hit.p = tri.point(Vec3A::new(b0, rec.b1, rec.b2));
+                }
                 let sign = if m.flip { -1.0 } else { 1.0 };
                 hit.ng = self.face_ng[rec.index as usize];
                 hit.ns = if m.normals.is_empty() {
                     hit.ng
                 } else {
+                    let idx = m.indices[id.prim as usize];
                     let [na, nb, nc] = idx.map(|v| m.normals[v as usize]);
                     sign * (na * b0 + nb * rec.b1 + nc * rec.b2).normalize_or(hit.ng * sign)
                 };

@@ -109,8 +109,10 @@ impl TriRay4 {
         if on_edge.any() {
             edges_f64(&mut e, on_edge.bitmask(), [ax, bx, cx], [ay, by, cy]);
         }
-        let neg = e[0].cmplt(zero) | e[1].cmplt(zero) | e[2].cmplt(zero);
-        let pos = e[0].cmpgt(zero) | e[1].cmpgt(zero) | e[2].cmpgt(zero);
+        // Edges of both signs: the ray passes outside. (A NaN edge, possible only for
+        // coordinates near f32::MAX, makes det NaN, and NaN lanes fail every test below.)
+        let neg = e[0].min(e[1]).min(e[2]).cmplt(zero);
+        let pos = e[0].max(e[1]).max(e[2]).cmpgt(zero);
         let det = e[0] + e[1] + e[2];
         let sure = !(neg & pos) & det.cmpne(zero);
         if !sure.any() {
