@@ -107,14 +107,9 @@ impl RayBoxTest {
     /// Prepares a ray with the given origin and direction.
     #[inline]
     pub fn new(origin: Vec3, dir: Vec3) -> Self {
-        let tiny = |d: f32| {
-            if d.abs() < 1e-30 {
-                1e-30f32.copysign(d)
-            } else {
-                d
-            }
-        };
-        let d = Vec3A::new(tiny(dir.x), tiny(dir.y), tiny(dir.z));
+        let d = Vec3A::from(dir);
+        let tiny = Vec3A::splat(1e-30);
+        let d = Vec3A::select(d.abs().cmplt(tiny), tiny.copysign(d), d);
         Self {
             origin: origin.into(),
             inv_dir: d.recip(),

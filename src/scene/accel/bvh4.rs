@@ -4,52 +4,44 @@
 //! IEEE Symposium on Interactive Ray Tracing). Collapsing repeatedly opens the interior child
 //! of largest surface area until four children are gathered.
 //!
-//! Traversal descends into the nearest child the ray enters and pushes the others, farthest
-//! first, with their entry distances;
-//! a popped entry farther than the nearest hit so far is skipped. The stack is a fixed array
-//! on the call stack when the tree is shallow enough (it always is for sane scenes: each
-//! level pushes at most three entries), else a per-thread buffer reused across queries; no
-//! allocation per ray either way.
+//! Leaves are numbered; a child code is a node index, `LEAF | leaf index` or [`EMPTY`], and
+//! [`Bvh4::leaf`] gives a leaf's range of stored primitives. Queries either call back per
+//! primitive ([`Bvh4::closest`], [`Bvh4::any`]) or per leaf ([`Bvh4::closest_leaf`],
+//! [`Bvh4::any_leaf`], which `Geometry` uses to test a leaf's triangles as one SIMD packet).
+//! Traversal is in `traverse.rs`.
 
-use super::aabb::{Aabb, RayBoxTest};
+use super::aabb::Aabb;
 use super::bvh::Bvh;
 use glam::{Vec3, Vec4};
-use std::cell::RefCell;
 
-/// Entries of the on-stack traversal stack; trees needing more use the per-thread buffer.
-const ARRAY_STACK: usize = 16;
-
-/// Marks a stack entry or child as a leaf: `LEAF | first << 3 | count`.
-const LEAF: u32 = 1 << 31;
-/// An empty child slot (its box is empty, so it is never entered).
-const EMPTY: u32 = u32::MAX;
-
-/// `1 + 2γ₃` (see [`RayBoxTest`]).
-const SLAB_GROW: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+/// Marks a stack entry or child as a leaf: `LEAF | leaf index`.
+pub(super) const LEAF: u32 = 1 << 31;
+/// An empty child slot (never entered: its lane is not in [`Node4::valid`]).
+pub(super) const EMPTY: u32 = u32::MAX;
 
 /// Four child boxes by coordinate (lane = child), and the children: a node index, or a leaf
-/// `LEAF | first << 3 | count`, or [`EMPTY`].
+/// `LEAF | leaf index`, or [`EMPTY`].
 #[derive(Debug, Clone, Copy)]
-struct Node4 {
-    lo: [Vec4; 3],
-    hi: [Vec4; 3],
-    child: [u32; 4],
+pub(super) struct Node4 {
+    pub(super) lo: [Vec4; 3],
+    pub(super) hi: [Vec4; 3],
+    pub(super) child: [u32; 4],
+    /// Bit `i` set when child `i` is not [`EMPTY`].
+    pub(super) valid: u32,
 }
 
 /// The 4-wide BVH.
 #[derive(Debug, Clone)]
 pub struct Bvh4 {
-    nodes: Vec<Node4>,
+    pub(super) nodes: Vec<Node4>,
     /// The root: a node index or a leaf code (a scene of at most four primitives).
-    root: u32,
-    root_box: Aabb,
+    pub(super) root: u32,
     order: Vec<u32>,
+    /// Leaf `k` holds the stored primitives `leaves[k].0 .. leaves[k].0 + leaves[k].1`; the
+    /// ranges partition the stored order.
+    leaves: Vec<(u32, u32)>,
     /// Levels of 4-wide nodes on the longest root-to-leaf path.
-    depth: usize,
-}
-
-thread_local! {
-    static STACK: RefCell<Vec<(u32, f32)>> = RefCell::new(Vec::with_capacity(256));
+    pub(super) depth: usize,
 }
 
 impl Bvh4 {
@@ -59,8 +51,8 @@ impl Bvh4 {
         let mut out = Self {
             nodes: Vec::with_capacity(bvh.node_count() / 2 + 1),
             root: EMPTY,
-            root_box: bvh.bounds(),
             order: bvh.order().to_vec(),
+            leaves: Vec::new(),
             depth: 0,
         };
         if !bounds.is_empty() {
@@ -80,6 +72,19 @@ impl Bvh4 {
         self.nodes.len()
     }
 
+    /// Number of leaves.
+    pub fn leaf_count(&self) -> usize {
+        self.leaves.len()
+    }
+
+    /// The stored primitives of leaf `k` (positions in [`Bvh4::order`]); the leaves'
+    /// ranges partition the stored order. Empty past the end.
+    pub fn leaf(&self, k: usize) -> std::ops::Range<u32> {
+        self.leaves
+            .get(k)
+            .map_or(0..0, |&(first, n)| first..first + n)
+    }
+
     /// Levels of 4-wide nodes below and including `code` (0 for a leaf).
     fn node_depth(&self, code: u32) -> usize {
         if code & LEAF != 0 || code == EMPTY {
@@ -96,9 +101,10 @@ impl Bvh4 {
 
     /// The code of binary node `b`: a leaf code, or the index of its 4-wide node.
     fn collapse(&mut self, bvh: &Bvh, b: usize) -> u32 {
-        if let Some((first, count)) = bvh.leaf(b) {
-            debug_assert!(first < 1 << 28 && count <= 7, "leaf code overflow");
-            return LEAF | first << 3 | count;
+        if let Some(range) = bvh.leaf(b) {
+            debug_assert!(self.leaves.len() < LEAF as usize, "leaf code overflow");
+            self.leaves.push(range);
+            return LEAF | (self.leaves.len() - 1) as u32;
         }
         let mut kids = bvh.children(b).to_vec();
         while kids.len() < 4 {
@@ -117,6 +123,7 @@ impl Bvh4 {
             lo: [Vec4::splat(f32::INFINITY); 3],
             hi: [Vec4::splat(f32::NEG_INFINITY); 3],
             child: [EMPTY; 4],
+            valid: 0,
         });
         for (lane, &k) in kids.iter().enumerate() {
             let code = self.collapse(bvh, k);
@@ -127,6 +134,7 @@ impl Bvh4 {
                 n.hi[a][lane] = hi[a];
             }
             n.child[lane] = code;
+            n.valid |= 1 << lane;
         }
         me as u32
     }
@@ -144,15 +152,50 @@ impl Bvh4 {
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> Option<f32> {
         let mut best = None;
-        let mut t_max = t_max;
-        self.walk::<true>(origin, dir, &mut t_max, |i, bound| {
-            if let Some(t) = test(i, *bound) {
-                *bound = t;
-                best = Some(t);
+        self.closest_leaf(origin, dir, t_max, |k, bound| {
+            let (first, n) = self.leaves[k as usize];
+            for i in first..first + n {
+                if let Some(t) = test(i, *bound) {
+                    *bound = t;
+                    best = Some(t);
+                }
             }
-            false
         });
         best
+    }
+
+    /// Visits the leaves that may hold a hit in `(0, t_max)`, nearest subtrees first:
+    /// `visit(k, bound)` intersects the primitives of leaf `k` ([`Bvh4::leaf`]) and lowers
+    /// `bound` to the distance of any hit nearer than it; leaves entered beyond the bound
+    /// are skipped. Returns the final bound.
+    #[inline]
+    pub fn closest_leaf(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_max: f32,
+        mut visit: impl FnMut(u32, &mut f32),
+    ) -> f32 {
+        let mut t_max = t_max;
+        self.walk::<true>(origin, dir, &mut t_max, |k, bound| {
+            visit(k, bound);
+            false
+        });
+        t_max
+    }
+
+    /// True when `visit(k, t_max)` holds for some leaf `k` the ray may meet within
+    /// `(0, t_max)`; stops at the first one. Leaves are visited in no particular order.
+    #[inline]
+    pub fn any_leaf(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_max: f32,
+        mut visit: impl FnMut(u32, f32) -> bool,
+    ) -> bool {
+        let mut t_max = t_max;
+        self.walk::<false>(origin, dir, &mut t_max, |k, t| visit(k, *t))
     }
 
     /// True when `test(i, t_max)` holds for some primitive `i`; stops at the first one.
@@ -164,178 +207,12 @@ impl Bvh4 {
         t_max: f32,
         mut test: impl FnMut(u32, f32) -> bool,
     ) -> bool {
-        let mut t_max = t_max;
         // Any hit will do: children are visited in node order, not sorted by distance.
-        self.walk::<false>(origin, dir, &mut t_max, |i, t| test(i, *t))
+        self.any_leaf(origin, dir, t_max, |k, t| {
+            let (first, n) = self.leaves[k as usize];
+            (first..first + n).any(|i| test(i, t))
+        })
     }
-
-    #[inline(always)]
-    fn walk<const ORDERED: bool>(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: &mut f32,
-        visit: impl FnMut(u32, &mut f32) -> bool,
-    ) -> bool {
-        let rb = RayBoxTest::new(origin, dir);
-        if self.root == EMPTY
-            || !rb.hits(self.root_box.min.into(), self.root_box.max.into(), *t_max)
-        {
-            return false;
-        }
-        let o = [0, 1, 2].map(|a| Vec4::splat(rb.origin[a]));
-        let inv = [0, 1, 2].map(|a| Vec4::splat(rb.inv_dir[a]));
-        // Each level pushes at most three entries.
-        if 3 * self.depth < ARRAY_STACK {
-            let mut stack = ArrayStack {
-                items: [(0, 0.0); ARRAY_STACK],
-                len: 0,
-            };
-            self.traverse::<ORDERED>(&mut stack, o, inv, t_max, visit)
-        } else {
-            STACK.with_borrow_mut(|stack| {
-                stack.clear();
-                self.traverse::<ORDERED>(stack, o, inv, t_max, visit)
-            })
-        }
-    }
-
-    #[inline(always)]
-    fn traverse<const ORDERED: bool>(
-        &self,
-        stack: &mut impl Stack,
-        o: [Vec4; 3],
-        inv: [Vec4; 3],
-        t_max: &mut f32,
-        mut visit: impl FnMut(u32, &mut f32) -> bool,
-    ) -> bool {
-        let mut code = self.root;
-        loop {
-            if code & LEAF != 0 {
-                let first = (code & !LEAF) >> 3;
-                for i in first..first + (code & 7) {
-                    if visit(i, t_max) {
-                        return true;
-                    }
-                }
-            } else {
-                let n = &self.nodes[code as usize];
-                let mut near = Vec4::ZERO;
-                let mut far = Vec4::splat(*t_max);
-                for a in 0..3 {
-                    let t0 = (n.lo[a] - o[a]) * inv[a];
-                    let t1 = (n.hi[a] - o[a]) * inv[a];
-                    near = near.max(t0.min(t1));
-                    far = far.min(t0.max(t1) * SLAB_GROW);
-                }
-                let mask = near.cmple(far).bitmask();
-                let next = if ORDERED {
-                    descend(stack, n, mask, near)
-                } else {
-                    descend_unordered(stack, n, mask)
-                };
-                if let Some(next) = next {
-                    code = next;
-                    continue;
-                }
-            }
-            // Pop the nearest pending child that may still hold a closer hit.
-            loop {
-                let Some((next, t_entry)) = stack.pop() else {
-                    return false;
-                };
-                if t_entry <= *t_max {
-                    code = next;
-                    break;
-                }
-            }
-        }
-    }
-}
-
-/// A traversal stack of (child code, entry distance).
-trait Stack {
-    fn push(&mut self, e: (u32, f32));
-    fn pop(&mut self) -> Option<(u32, f32)>;
-}
-
-impl Stack for Vec<(u32, f32)> {
-    #[inline(always)]
-    fn push(&mut self, e: (u32, f32)) {
-        Vec::push(self, e);
-    }
-    #[inline(always)]
-    fn pop(&mut self) -> Option<(u32, f32)> {
-        Vec::pop(self)
-    }
-}
-
-/// A fixed-capacity stack on the call stack (capacity checked against the tree depth
-/// before use).
-struct ArrayStack {
-    items: [(u32, f32); ARRAY_STACK],
-    len: usize,
-}
-
-impl Stack for ArrayStack {
-    #[inline(always)]
-    fn push(&mut self, e: (u32, f32)) {
-        debug_assert!(self.len < ARRAY_STACK);
-        if let Some(slot) = self.items.get_mut(self.len) {
-            *slot = e;
-            self.len += 1;
-        }
-    }
-    #[inline(always)]
-    fn pop(&mut self) -> Option<(u32, f32)> {
-        self.len = self.len.checked_sub(1)?;
-        Some(self.items[self.len])
-    }
-}
-
-/// Pushes all entered children (bits of `mask`) but the first, in node order, and returns
-/// that first one: for any-hit queries, where the order does not matter.
-#[inline(always)]
-fn descend_unordered(stack: &mut impl Stack, n: &Node4, mask: u32) -> Option<u32> {
-    let mut first = None;
-    for lane in 0..4 {
-        let c = n.child[lane];
-        if mask & (1 << lane) != 0 && c != EMPTY {
-            match first {
-                None => first = Some(c),
-                Some(_) => stack.push((c, 0.0)),
-            }
-        }
-    }
-    first
-}
-
-/// Sorts the entered children (bits of `mask`) by entry distance, pushes all but the
-/// nearest (farthest first) and returns the nearest.
-#[inline(always)]
-fn descend(stack: &mut impl Stack, n: &Node4, mask: u32, near: Vec4) -> Option<u32> {
-    let mut hit = [(0u32, 0f32); 4];
-    let mut k = 0;
-    for lane in 0..4 {
-        if mask & (1 << lane) != 0 && n.child[lane] != EMPTY {
-            // Insertion sort, descending by entry distance.
-            let entry = (n.child[lane], near[lane]);
-            let mut j = k;
-            while j > 0 && hit[j - 1].1 < entry.1 {
-                hit[j] = hit[j - 1];
-                j -= 1;
-            }
-            hit[j] = entry;
-            k += 1;
-        }
-    }
-    if k == 0 {
-        return None;
-    }
-    for &e in &hit[..k - 1] {
-        stack.push(e);
-    }
-    Some(hit[k - 1].0)
 }
 
 #[cfg(test)]
@@ -352,6 +229,57 @@ mod tests {
             false
         });
         assert_eq!(hits, 300);
+    }
+
+    #[test]
+    fn leaves_partition_the_stored_order_and_leaf_walks_reach_them() {
+        for n in [0usize, 1, 4, 5, 37, 500] {
+            let b: Vec<Aabb> = (0..n)
+                .map(|i| {
+                    let p = Vec3::new((i % 7) as f32, (i / 7 % 5) as f32, (i / 35) as f32);
+                    Aabb::from_points(&[p, p + Vec3::splat(0.5)])
+                })
+                .collect();
+            let bvh = Bvh4::build(&b);
+            let mut ranges: Vec<_> = (0..bvh.leaf_count()).map(|k| bvh.leaf(k)).collect();
+            ranges.sort_by_key(|r| r.start);
+            let mut next = 0;
+            for r in ranges {
+                assert!(
+                    r.start == next && r.end > r.start && r.len() <= 4,
+                    "n {n} {r:?}"
+                );
+                next = r.end;
+            }
+            assert_eq!(next as usize, n);
+            assert!(bvh.leaf(bvh.leaf_count()).is_empty());
+            // A ray along +x through the first row: every leaf on it is visited once.
+            let o = Vec3::new(-1.0, 0.25, 0.25);
+            let mut seen = vec![0; bvh.leaf_count()];
+            bvh.any_leaf(o, Vec3::X, f32::INFINITY, |k, _| {
+                seen[k as usize] += 1;
+                false
+            });
+            let on_row = |k: usize| {
+                bvh.leaf(k).any(|i| {
+                    let bx = b[bvh.order()[i as usize] as usize];
+                    bx.min.y <= 0.25 && bx.min.z <= 0.25
+                })
+            };
+            for (k, &s) in seen.iter().enumerate() {
+                assert!(s <= 1 && (s == 1 || !on_row(k)), "n {n} leaf {k} seen {s}");
+            }
+            // The closest walk shrinks the bound to the first box's face.
+            let bound = bvh.closest_leaf(o, Vec3::X, f32::INFINITY, |k, t| {
+                for i in bvh.leaf(k as usize) {
+                    let hit = b[bvh.order()[i as usize] as usize].min.x + 1.0;
+                    if on_row(k as usize) && hit < *t {
+                        *t = hit;
+                    }
+                }
+            });
+            assert_eq!(bound, if n == 0 { f32::INFINITY } else { 1.0 }, "n {n}");
+        }
     }
 
     #[test]

@@ -32,6 +32,7 @@ mod aabb;
 mod bvh;
 mod bvh4;
 mod grid;
+mod traverse;
 
 pub use aabb::{Aabb, RayBoxTest};
 pub use bvh::{Bvh, BINS, MAX_LEAF};
@@ -97,6 +98,15 @@ impl Accel {
             Imp::Bvh(_) => AccelKind::Bvh,
             Imp::Grid(_) => AccelKind::Grid,
             Imp::BruteForce(_) => AccelKind::BruteForce,
+        }
+    }
+
+    /// The 4-wide BVH when this is [`AccelKind::Bvh`], for leaf-level queries
+    /// ([`Bvh4::closest_leaf`], [`Bvh4::any_leaf`]).
+    pub fn bvh4(&self) -> Option<&Bvh4> {
+        match &self.imp {
+            Imp::Bvh(b) => Some(b),
+            _ => None,
         }
     }
 

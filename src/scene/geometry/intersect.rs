@@ -22,6 +22,14 @@ impl TriSoa {
         }
     }
 
+    /// The point with barycentric weights `w` (of vertices 0, 1, 2), summed in the order
+    /// `(w0 v0 + w1 v1) + w2 v2` per coordinate.
+    #[inline(always)]
+    pub(crate) fn point(&self, w: Vec3A) -> Vec3 {
+        let sum = |c: Vec3A| c.x + c.y + c.z;
+        Vec3::new(sum(self.x * w), sum(self.y * w), sum(self.z * w))
+    }
+
     /// The three vertices.
     pub(crate) fn vertices(&self) -> [Vec3; 3] {
         [0, 1, 2].map(|i| Vec3::new(self.x[i], self.y[i], self.z[i]))
@@ -43,6 +51,14 @@ pub(crate) struct TriRay {
 }
 
 impl TriRay {
+    /// A placeholder for calls that never reach a triangle.
+    pub(crate) const DUMMY: Self = Self {
+        origin: Vec3::ZERO,
+        rx: Vec3::X,
+        ry: Vec3::Y,
+        rz: Vec3::Z,
+    };
+
     #[inline]
     pub(crate) fn new(origin: Vec3, dir: Vec3) -> Self {
         let kz = dir.abs().max_position();

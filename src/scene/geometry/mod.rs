@@ -45,7 +45,9 @@
 mod build;
 mod error;
 mod intersect;
+mod leaves;
 mod offset;
+mod packet;
 mod sample;
 
 pub use crate::scene::accel::AccelKind;
@@ -56,7 +58,7 @@ pub use sample::ShapeSampling;
 use crate::scene::accel::{Aabb, Accel};
 use crate::scene::description::ShapeDesc;
 use build::{Prim, PrimId, ShapeData};
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec3A};
 use intersect::{hit_disk, hit_sphere, TriRay};
 use std::f32::consts::PI;
 use std::path::Path;
@@ -115,6 +117,10 @@ pub struct Geometry {
     prims: Vec<Prim>,
     ids: Vec<PrimId>,
     accel: Accel,
+    /// The BVH's leaves with packed triangles (empty for the other structures).
+    leaves: Vec<leaves::Leaf>,
+    /// Per stored primitive: a triangle's unit front normal ([`Hit::ng`]), else zero.
+    face_ng: Vec<Vec3>,
     shapes: Vec<ShapeData>,
     bounds: Aabb,
     shape_sampling: ShapeSampling,
@@ -148,11 +154,22 @@ impl Geometry {
             .collect();
         let scene = bounds.iter().fold(Aabb::EMPTY, |b, p| b.union(*p));
         let accel = Accel::build(accel, &bounds);
-        let order = accel.order();
+        let mut order = accel.order().to_vec();
+        // With the BVH, each leaf stores its triangles first (queries go leaf by leaf).
+        let leaves = match accel.bvh4() {
+            Some(bvh) => leaves::pack(bvh, &built.prims, &mut order),
+            None => Vec::new(),
+        };
+        let ids: Vec<PrimId> = order.iter().map(|&i| built.ids[i as usize]).collect();
         Ok(Self {
             prims: order.iter().map(|&i| built.prims[i as usize]).collect(),
-            ids: order.iter().map(|&i| built.ids[i as usize]).collect(),
+            face_ng: ids
+                .iter()
+                .map(|id| face_normal(&built.shapes, id))
+                .collect(),
+            ids,
             accel,
+            leaves,
             shapes: built.shapes,
             bounds: scene,
             shape_sampling: ShapeSampling::default(),
@@ -189,8 +206,12 @@ impl Geometry {
     }
 
     /// The nearest hit with `0 < t < t_max`.
-    #[inline]
+    #[inline(never)]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        if let Some(bvh) = self.accel.bvh4() {
+            let (t, rec) = self.closest_packed(bvh, ray, t_max)?;
+            return Some(self.make_hit(ray, t, rec));
+        }
         let tri = TriRay::new(ray.origin, ray.dir);
         let mut rec = HitRecord {
             index: 0,
@@ -206,8 +227,11 @@ impl Geometry {
     }
 
     /// True when anything is hit with `0 < t < t_max`.
-    #[inline]
+    #[inline(never)]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        if let Some(bvh) = self.accel.bvh4() {
+            return self.occluded_packed(bvh, ray, t_max);
+        }
         let tri = TriRay::new(ray.origin, ray.dir);
         self.accel.any(ray.origin, ray.dir, t_max, |i, bound| {
             self.hit_prim(&tri, ray, i, bound).is_some()
@@ -231,6 +255,16 @@ impl Geometry {
         }
     }
 
+    /// Intersects stored primitive `i` without a prepared triangle ray: spheres and disks
+    /// (and, should a BVH leaf ever hold more than four triangles, the extra ones).
+    #[inline(always)]
+    fn hit_other(&self, ray: &Ray, i: u32, t_max: f32) -> Option<(f32, f32, f32)> {
+        match &self.prims[i as usize] {
+            Prim::Tri(_) => self.hit_prim(&TriRay::new(ray.origin, ray.dir), ray, i, t_max),
+            _ => self.hit_prim(&TriRay::DUMMY, ray, i, t_max),
+        }
+    }
+
     /// Fills in the surface data of a hit found by the search.
     fn make_hit(&self, ray: &Ray, t: f32, rec: HitRecord) -> Hit {
         let id = self.ids[rec.index as usize];
@@ -245,15 +279,16 @@ impl Geometry {
         };
         match &self.shapes[id.shape as usize] {
             ShapeData::Mesh(m) => {
-                let idx = m.indices[id.prim as usize];
-                let [a, b, c] = idx.map(|v| m.positions[v as usize]);
                 let b0 = 1.0 - rec.b1 - rec.b2;
-                hit.p = a * b0 + b * rec.b1 + c * rec.b2;
+                if let Prim::Tri(tri) = &self.prims[rec.index as usize] {
+                    hit.p = tri.point(Vec3A::new(b0, rec.b1, rec.b2));
+                }
                 let sign = if m.flip { -1.0 } else { 1.0 };
-                hit.ng = sign * (b - a).cross(c - a).normalize_or(Vec3::Z);
+                hit.ng = self.face_ng[rec.index as usize];
                 hit.ns = if m.normals.is_empty() {
                     hit.ng
                 } else {
+                    let idx = m.indices[id.prim as usize];
                     let [na, nb, nc] = idx.map(|v| m.normals[v as usize]);
                     sign * (na * b0 + nb * rec.b1 + nc * rec.b2).normalize_or(hit.ng * sign)
                 };
@@ -283,6 +318,18 @@ impl Geometry {
             }
         }
         hit
+    }
+}
+
+/// The unit front normal of a triangle (zero for other primitives), as hits report it.
+fn face_normal(shapes: &[ShapeData], id: &PrimId) -> Vec3 {
+    match &shapes[id.shape as usize] {
+        ShapeData::Mesh(m) => {
+            let [a, b, c] = m.indices[id.prim as usize].map(|v| m.positions[v as usize]);
+            let sign = if m.flip { -1.0 } else { 1.0 };
+            sign * (b - a).cross(c - a).normalize_or(Vec3::Z)
+        }
+        _ => Vec3::ZERO,
     }
 }
 
