@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release --example convergence -- [--quick] [--out docs/] [--max-spp N]
 //!     [--no-render] [--strategies bsdf,light,balance,power]
-//!     [--samplers independent,stratified,sobol] [--note TEXT]
+//!     [--samplers independent,stratified,sobol] [--scenes cornell-box,veach-mis] [--note TEXT]
 //! ```
 //!
 //! Measures the f32 warps against f64 references, the resolution of a 2D distribution
@@ -12,7 +12,8 @@
 //! and its PNG plots (and the render results as CSV) into `convergence/` beside it. With
 //! `--no-render`, or when the renderer is missing, the rendering section is rebuilt from the
 //! CSV of an earlier run if there is one. New renders are merged into that CSV (replacing
-//! the same scene, strategy, sampler and spp), so `--strategies`/`--samplers` can add lines
+//! the same scene, strategy, sampler and spp), so `--strategies`/`--samplers`/`--scenes` can add
+//! or redo lines
 //! to an earlier study.
 //!
 //! Run time on the project's busy 2-core machine: `--quick` (renders to 4 spp) about 15 s;
@@ -48,6 +49,7 @@ struct Options {
     note: String,
     strategies: Option<Vec<String>>,
     samplers: Option<Vec<String>>,
+    scenes: Option<Vec<String>>,
 }
 
 /// A comma-separated list, each entry one of `allowed`.
@@ -64,7 +66,8 @@ fn list(v: Option<String>, flag: &str, allowed: &[&str]) -> Result<Option<Vec<St
 }
 
 const USAGE: &str = "usage: convergence [--quick] [--out DIR] [--max-spp N] [--no-render] \
-[--strategies bsdf,light,balance,power] [--samplers independent,stratified,sobol] [--note TEXT]";
+[--strategies bsdf,light,balance,power] [--samplers independent,stratified,sobol] \
+[--scenes cornell-box,veach-mis] [--note TEXT]";
 
 fn parse() -> Result<Options, String> {
     let mut o = Options {
@@ -75,6 +78,7 @@ fn parse() -> Result<Options, String> {
         note: String::new(),
         strategies: None,
         samplers: None,
+        scenes: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -92,6 +96,7 @@ fn parse() -> Result<Options, String> {
             }
             "--strategies" => o.strategies = list(it.next(), &a, &render_study::STRATEGIES)?,
             "--samplers" => o.samplers = list(it.next(), &a, &render_study::SAMPLERS)?,
+            "--scenes" => o.scenes = list(it.next(), &a, &render_study::SCENES)?,
             "-h" | "--help" => return Err(USAGE.into()),
             other => return Err(format!("unknown argument {other}\n{USAGE}")),
         }
@@ -172,12 +177,11 @@ fn render_half(o: &Options, dir: &Path) -> Result<Vec<render_study::RenderPoint>
         };
         ok(&o.strategies, st) && ok(&o.samplers, sa)
     };
-    let (points, skipped) = render_study::run(
-        backend.as_ref(),
-        &render_study::scenes(root),
-        max_spp,
-        &wanted,
-    );
+    let mut scenes = render_study::scenes(root);
+    if let Some(keep) = &o.scenes {
+        scenes.retain(|s| keep.iter().any(|k| k == s.name));
+    }
+    let (points, skipped) = render_study::run(backend.as_ref(), &scenes, max_spp, &wanted);
     for s in &skipped {
         eprintln!("skipped: {s}");
     }

@@ -137,51 +137,53 @@ with `independent` (`examples/convergence/renderer.rs` checks this before each s
 So there is no data for: ";
 
 /// After the rendering figures.
-pub const RENDER_FINDINGS: &str = "**What the rendering figures show** (run to 64 spp; the \
-renders ran beside other jobs on the 2 cores, so equal work took anywhere from 1× to 2× \
-the time from one render to the next. Compare relMSE at equal spp for accuracy, and \
-read the efficiencies as good to about a factor 2).\n\n\
+pub const RENDER_FINDINGS: &str = "**What the rendering figures show** (run to 1024 spp on \
+an otherwise idle machine, 38 minutes in all. Even so, this virtual machine's timings jitter: \
+renders doing the same work differ by up to 1.5× in time, e.g. the Cornell box at 64 spp took \
+5.4 s with light sampling and 8.2 s with MIS (power), whose extra BSDF work is small. So \
+compare relMSE at equal spp for accuracy, and read efficiencies as good to about ±30%).\n\n\
 - *Every strategy converges, and the independent sampler converges at the 1/N rate.* \
   Each independent-sampler line runs parallel to the dashed relMSE ∝ 1/time guide, and its \
-  efficiency stays roughly constant from 1 to 64 spp, as it should for an unbiased \
-  estimator. The strategies differ only in the constant: the variance of one sample per \
-  pixel, times its cost.\n\
+  efficiency stays roughly constant from 1 to 1024 spp (Cornell box, light sampling: \
+  37–43), as it should for an unbiased estimator. The strategies differ only in the \
+  constant: the variance of one sample per pixel, times its cost.\n\
 - *Cornell box: light sampling is what matters.* The light is a small patch on the \
   ceiling, which a diffuse BSDF sample rarely hits. BSDF sampling alone is about 70× worse \
-  in relMSE at equal spp (0.34 against 4.6·10⁻³ at 64 spp) and 20–70× worse in \
+  in relMSE at equal spp (0.0216 against 3.07·10⁻⁴ at 1024 spp) and 25–45× worse in \
   efficiency. Light sampling alone and MIS with the power heuristic give the same image \
-  error: on diffuse surfaces the power heuristic gives nearly all the weight to the light \
-  sample. The balance heuristic is a few per cent worse. Their efficiencies differ by up \
-  to 2× only because the renders ran at different moments. A relMSE of 10⁻³ costs about \
-  300 spp with light sampling or MIS and the independent sampler, against about 22 000 \
-  with BSDF sampling alone.\n\
+  error (3.07·10⁻⁴ both): on diffuse surfaces the power heuristic gives nearly all the \
+  weight to the light sample. The balance heuristic is 3% worse. A relMSE of 10⁻³ costs \
+  about 310 spp (27 s here) with light sampling or MIS and the independent sampler, \
+  against about 22 000 spp (11 minutes) with BSDF sampling alone.\n\
 - *Veach's plates: only MIS is good everywhere.* The scene has four glossy plates, from \
   sharp to rough, and four sphere lights of equal power, from small to large. For a sharp \
   plate and a large light, BSDF sampling finds the highlight and light sampling wastes its \
   samples on a lobe that is nearly zero. For a rough plate and a small light, it is the \
-  other way round. The image-wide numbers show the sum of both failures: at 64 spp with \
-  the independent sampler, light sampling alone (relMSE 4.2·10⁻²) is 5× worse than MIS \
-  (8.0·10⁻³ balance, 8.2·10⁻³ power), and BSDF sampling alone (1.7) 200× worse. MIS keeps \
-  the better strategy's sample wherever one is good, and is 3–4× more efficient than \
-  light sampling and about 90× more than BSDF sampling. Balance and power are within the \
+  other way round. The image-wide numbers show the sum of both failures: at 1024 spp with \
+  the independent sampler, light sampling alone (relMSE 2.75·10⁻³) is 5× worse than MIS \
+  (5.3·10⁻⁴ balance, 5.5·10⁻⁴ power), and BSDF sampling alone (0.10) 190× worse. MIS keeps \
+  the better strategy's sample wherever one is good, and is about 5× more efficient than \
+  light sampling and about 100× more than BSDF sampling. Balance and power are within the \
   noise of each other here.\n\
 - *Samplers: stratified and Sobol pay off where the integrand is smooth in few \
-  dimensions.* With MIS or light sampling, they cut relMSE at 64 spp by about 1.7× on \
-  the Cornell box and 2.8× (stratified) to 3.9× (Sobol) on Veach's plates. Their lines are \
-  steeper than 1/N, and their efficiency grows with spp (MIS on the plates: from 7–9 \
-  at 1 spp to about 30 at 64 spp with Sobol). The gain comes from the first bounces' \
-  light and BSDF samples, which are low-dimensional and smooth. BSDF sampling alone gains \
-  nothing: its error comes from rarely hitting a light, which no sample placement fixes. \
-  A relMSE of 10⁻³ on the plates costs about 520 spp with MIS and the independent \
-  sampler, about 130 with Sobol, 1 800–2 700 with light sampling, and 10⁵ with BSDF \
-  sampling.\n\
+  dimensions.* With MIS or light sampling, at 1024 spp they cut relMSE by 2.0× on the \
+  Cornell box (1.54·10⁻⁴ against 3.07·10⁻⁴) and 3.7–4.4× on Veach's plates with MIS \
+  (1.24·10⁻⁴ Sobol, 1.41·10⁻⁴ stratified, against 5.3·10⁻⁴). Their lines are steeper than \
+  1/N, and their efficiency grows with spp. With MIS on the plates and Sobol it grows from \
+  31–39 at 1 spp to 119–142 at 1024; on the Cornell box, from about 33 to 79. The gain \
+  comes from the first bounces' light and BSDF samples, which are low-dimensional and \
+  smooth. Sobol is the cheaper of the two: stratified costs 10–60% more time per render \
+  here, and Sobol about the same as independent. BSDF sampling alone gains little (1.2–1.6×): \
+  its error comes from rarely hitting a light, which no sample placement fixes. A relMSE of \
+  10⁻³ on the plates costs about 540 spp with MIS and the independent sampler, about 130 \
+  with Sobol, 1 900–2 800 with light sampling, and 9·10⁴–10⁵ with BSDF sampling.\n\
 - *What accuracy costs.* With the independent sampler, relMSE ∝ 1/N: halving the RMS \
   error costs 4× the samples and 4× the time, whatever the strategy. A better strategy \
   moves the whole line down, by a factor (5–200× here) that would otherwise cost that \
   many times more samples. A better sampler also makes the line steeper, so its advantage \
-  grows with the sample count. The last two columns of each table turn this into samples \
-  and seconds for relMSE = 10⁻³ (extrapolated at 1/N from 64 spp, so they understate the \
-  stratified and Sobol gains).\n\n";
+  grows with the sample count, until the references' own noise (about 1/16 of a \
+  1024-spp render's) sets a floor. The last two columns of each table turn this into \
+  samples and seconds for relMSE = 10⁻³ (extrapolated at 1/N from 1024 spp).\n\n";
 
 /// When the rendering figures are not in.
 pub const RENDER_PENDING: &str = "**Not in yet: the rendering figures will appear here.** \

@@ -23,6 +23,9 @@ pub struct SceneSpec {
     pub reference: PathBuf,
 }
 
+/// Names of the study's scenes (for `--scenes`).
+pub const SCENES: [&str; 2] = ["cornell-box", "veach-mis"];
+
 /// The two scenes of the study, paths relative to the crate root.
 pub fn scenes(root: &std::path::Path) -> Vec<SceneSpec> {
     vec![
@@ -282,6 +285,11 @@ mod tests {
     fn ladder() {
         assert_eq!(spp_ladder(1024), vec![1, 4, 16, 64, 256, 1024]);
         assert_eq!(spp_ladder(20), vec![1, 4, 16]);
+        let names: Vec<&str> = scenes(std::path::Path::new("."))
+            .iter()
+            .map(|s| s.name)
+            .collect();
+        assert_eq!(names, SCENES);
     }
 
     #[test]

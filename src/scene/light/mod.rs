@@ -1,14 +1,18 @@
 //! Lights: area emitters on shapes (front side only), point lights, a constant environment
-//! and an environment map, chosen for next-event estimation by power.
+//! and an environment map, chosen for next-event estimation by power, or, with a few lights
+//! that all have a position, by their estimated contribution at the shading point
+//! (`choice.rs`).
 
+mod choice;
 mod envmap;
 mod rect;
+
+use choice::{LightChoice, LightPlace};
 
 pub use envmap::EnvMap;
 use rect::AreaRect;
 
 use crate::integrator::{is_positive, LightSample, SurfacePoint};
-use crate::sampling::distribution::AliasTable;
 use crate::scene::description::{EmitterDesc, SceneDescription};
 use crate::scene::render::geo::{Geometry, Hit, ShapeSampling};
 use glam::{Vec2, Vec3};
@@ -57,8 +61,8 @@ impl std::error::Error for LightError {}
 #[derive(Debug, Clone)]
 pub struct Lights {
     lights: Vec<Light>,
-    /// Chooses a light by power; `None` when no light emits.
-    picker: Option<AliasTable>,
+    /// Chooses a light; `None` when no light emits.
+    picker: Option<LightChoice>,
     shape_light: Vec<Option<u32>>,
     /// Per shape: its emitted radiance if it is an area light (one load per hit).
     shape_radiance: Vec<Option<Vec3>>,
@@ -102,6 +106,26 @@ fn sample_shape_light(
     Some(LightSample {
         wi,
         dist,
+        radiance,
+        pdf: s.pdf * pick,
+        delta: false,
+    })
+}
+
+/// A direction toward rectangle light `r` sampled by area from `from`, its density times
+/// the light's choice probability `pick`.
+#[inline(always)]
+fn rect_light_sample(
+    r: &AreaRect,
+    radiance: Vec3,
+    from: Vec3,
+    u: Vec2,
+    pick: f32,
+) -> Option<LightSample> {
+    let s = r.sample(from, u)?;
+    Some(LightSample {
+        wi: s.wi,
+        dist: s.dist,
         radiance,
         pdf: s.pdf * pick,
         delta: false,
@@ -176,7 +200,20 @@ impl Lights {
             })
             .collect();
         let single = lights.len() == 1;
-        let picker = AliasTable::new(&power).ok();
+        let places: Vec<Option<LightPlace>> = lights
+            .iter()
+            .map(|l| match *l {
+                Light::Area { shape, .. } => geo
+                    .shape_bounding_sphere(shape)
+                    .map(|(center, radius)| LightPlace { center, radius }),
+                Light::Point { position, .. } => Some(LightPlace {
+                    center: position,
+                    radius: 0.0,
+                }),
+                Light::Constant { .. } | Light::EnvMap(_) => None,
+            })
+            .collect();
+        let picker = LightChoice::new(&power, &places);
         let only_rect = match (single, picker.is_some(), rects.first(), lights.first()) {
             (true, true, Some(Some(r)), Some(&Light::Area { radiance, .. })) => {
                 Some((*r, radiance))
@@ -211,10 +248,10 @@ impl Lights {
         &self.lights
     }
 
-    /// Probability of choosing light `i`.
+    /// Probability of choosing light `i` at shading point `p`.
     #[inline]
-    fn pmf(&self, i: u32) -> f32 {
-        self.picker.as_ref().map_or(0.0, |t| t.pmf(i as usize))
+    fn pmf(&self, p: Vec3, i: u32) -> f32 {
+        self.picker.as_ref().map_or(0.0, |t| t.pmf(p, i as usize))
     }
 
     /// Whether [`Lights::sample`] reads its `u_pick` argument: there are several lights to
@@ -250,7 +287,8 @@ impl Lights {
         }
     }
 
-    /// Chooses a light by power and samples a direction toward it from `from`.
+    /// Chooses a light (by power, or by its estimated contribution at `from`: see the
+    /// module docs) and samples a direction toward it from `from`.
     #[inline]
     pub fn sample(
         &self,
@@ -262,14 +300,7 @@ impl Lights {
         // A lone rectangle light (the Cornell box) inline; everything else out of line.
         if let Some((r, radiance)) = &self.only_rect {
             if geo.shape_sampling() == ShapeSampling::Area {
-                let s = r.sample(from.p, u)?;
-                return Some(LightSample {
-                    wi: s.wi,
-                    dist: s.dist,
-                    radiance: *radiance,
-                    pdf: s.pdf,
-                    delta: false,
-                });
+                return rect_light_sample(r, *radiance, from.p, u, 1.0);
             }
         }
         self.sample_chosen(geo, from, u_pick, u)
@@ -287,19 +318,12 @@ impl Lights {
         let (i, pick) = if self.single {
             (0, 1.0)
         } else {
-            picker.sample_with_pmf(u_pick.x)
+            picker.sample(from.p, u_pick.x)
         };
         match self.lights[i] {
             Light::Area { shape, radiance } => match &self.rects[i] {
                 Some(r) if geo.shape_sampling() == ShapeSampling::Area => {
-                    let s = r.sample(from.p, u)?;
-                    Some(LightSample {
-                        wi: s.wi,
-                        dist: s.dist,
-                        radiance,
-                        pdf: s.pdf * pick,
-                        delta: false,
-                    })
+                    rect_light_sample(r, radiance, from.p, u, pick)
                 }
                 _ => sample_shape_light(geo, shape, radiance, from.p, (u_pick.y, u), pick),
             },
@@ -361,15 +385,15 @@ impl Lights {
             shape: hit.shape,
             prim: hit.prim,
         };
-        geo.shape_pdf(hit.shape, from.p, &h) * self.pmf(*i)
+        geo.shape_pdf(hit.shape, from.p, &h) * self.pmf(from.p, *i)
     }
 
     /// The same for the environment along `dir`.
-    pub fn pdf_environment(&self, _from: &SurfacePoint, dir: Vec3) -> f32 {
+    pub fn pdf_environment(&self, from: &SurfacePoint, dir: Vec3) -> f32 {
         match self.env {
             Some(i) => match &self.lights[i as usize] {
-                Light::EnvMap(m) => self.pmf(i) * m.pdf(dir),
-                _ => self.pmf(i) / (4.0 * PI),
+                Light::EnvMap(m) => self.pmf(from.p, i) * m.pdf(dir),
+                _ => self.pmf(from.p, i) / (4.0 * PI),
             },
             None => 0.0,
         }

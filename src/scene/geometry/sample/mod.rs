@@ -82,6 +82,30 @@ impl Geometry {
         }
     }
 
+    /// A sphere bounding shape `shape` (centre, radius); `None` for an index out of range
+    /// or a mesh without vertices.
+    pub(crate) fn shape_bounding_sphere(&self, shape: u32) -> Option<(Vec3, f32)> {
+        match self.shapes.get(shape as usize)? {
+            ShapeData::Mesh(m) => {
+                let first = *m.positions.first()?;
+                let (lo, hi) = m
+                    .positions
+                    .iter()
+                    .fold((first, first), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+                Some((0.5 * (lo + hi), 0.5 * (hi - lo).length()))
+            }
+            &ShapeData::Sphere { center, radius, .. } => Some((center, radius)),
+            // The disk is the image of the unit disk: c + cos φ·a + sin φ·b, so its points
+            // lie within √(|a|² + |b|²) of c (Cauchy–Schwarz).
+            ShapeData::Disk(d) => Some((
+                d.to_world.translation.into(),
+                (d.to_world.matrix3.x_axis.length_squared()
+                    + d.to_world.matrix3.y_axis.length_squared())
+                .sqrt(),
+            )),
+        }
+    }
+
     /// Whether [`Geometry::sample_shape`] reads `u_pick` for shape `shape`: only triangle
     /// meshes and cubes do (to choose a triangle); rectangles, spheres and disks ignore it.
     pub(crate) fn shape_reads_pick(&self, shape: u32) -> bool {
