@@ -138,7 +138,8 @@ So there is no data for: ";
 
 /// After the rendering figures.
 pub const RENDER_FINDINGS: &str = "**What the rendering figures show** (run to 1024 spp on \
-an otherwise idle machine, 38 minutes in all. Even so, this virtual machine's timings jitter: \
+an otherwise idle machine: the Cornell box in 21 minutes; veach-mis in 17, re-run after \
+the per-shading-point light choice went in. Even so, this virtual machine's timings jitter: \
 renders doing the same work differ by up to 1.5× in time, e.g. the Cornell box at 64 spp took \
 5.4 s with light sampling and 8.2 s with MIS (power), whose extra BSDF work is small. So \
 compare relMSE at equal spp for accuracy, and read efficiencies as good to about ±30%).\n\n\
@@ -160,23 +161,23 @@ compare relMSE at equal spp for accuracy, and read efficiencies as good to about
   plate and a large light, BSDF sampling finds the highlight and light sampling wastes its \
   samples on a lobe that is nearly zero. For a rough plate and a small light, it is the \
   other way round. The image-wide numbers show the sum of both failures: at 1024 spp with \
-  the independent sampler, light sampling alone (relMSE 2.75·10⁻³) is 5× worse than MIS \
-  (5.3·10⁻⁴ balance, 5.5·10⁻⁴ power), and BSDF sampling alone (0.10) 190× worse. MIS keeps \
-  the better strategy's sample wherever one is good, and is about 5× more efficient than \
-  light sampling and about 100× more than BSDF sampling. Balance and power are within the \
-  noise of each other here.\n\
+  the independent sampler, light sampling alone (relMSE 1.68·10⁻³) is 5× worse than MIS \
+  (3.15·10⁻⁴ balance, 3.25·10⁻⁴ power), and BSDF sampling alone (0.10) 320× worse. MIS \
+  keeps the better strategy's sample wherever one is good, and is about 5× more efficient \
+  than light sampling and about 160× more than BSDF sampling. Balance and power are within \
+  the noise of each other here.\n\
 - *Samplers: stratified and Sobol pay off where the integrand is smooth in few \
   dimensions.* With MIS or light sampling, at 1024 spp they cut relMSE by 2.0× on the \
-  Cornell box (1.54·10⁻⁴ against 3.07·10⁻⁴) and 3.7–4.4× on Veach's plates with MIS \
-  (1.24·10⁻⁴ Sobol, 1.41·10⁻⁴ stratified, against 5.3·10⁻⁴). Their lines are steeper than \
+  Cornell box (1.54·10⁻⁴ against 3.07·10⁻⁴) and 3.1–3.4× on Veach's plates with MIS \
+  (9.6·10⁻⁵ Sobol, 1.02·10⁻⁴ stratified, against 3.2·10⁻⁴). Their lines are steeper than \
   1/N, and their efficiency grows with spp. With MIS on the plates and Sobol it grows from \
-  31–39 at 1 spp to 119–142 at 1024; on the Cornell box, from about 33 to 79. The gain \
+  42–48 at 1 spp to 157–180 at 1024; on the Cornell box, from about 33 to 79. The gain \
   comes from the first bounces' light and BSDF samples, which are low-dimensional and \
   smooth. Sobol is the cheaper of the two: stratified costs 10–60% more time per render \
   here, and Sobol about the same as independent. BSDF sampling alone gains little (1.2–1.6×): \
   its error comes from rarely hitting a light, which no sample placement fixes. A relMSE of \
-  10⁻³ on the plates costs about 540 spp with MIS and the independent sampler, about 130 \
-  with Sobol, 1 900–2 800 with light sampling, and 9·10⁴–10⁵ with BSDF sampling.\n\
+  10⁻³ on the plates costs about 330 spp with MIS and the independent sampler, about 100 \
+  with Sobol, 1 100–1 700 with light sampling, and 9·10⁴–10⁵ with BSDF sampling.\n\
 - *What accuracy costs.* With the independent sampler, relMSE ∝ 1/N: halving the RMS \
   error costs 4× the samples and 4× the time, whatever the strategy. A better strategy \
   moves the whole line down, by a factor (5–200× here) that would otherwise cost that \
