@@ -86,57 +86,59 @@ impl LightChoice {
         (sum.is_finite() && sum > 0.0).then_some(sum)
     }
 
+    /// The power distribution (the whole choice, or the spatial choice's fallback).
+    fn power(&self) -> &AliasTable {
+        match self {
+            Self::Power(t) | Self::Spatial { power: t, .. } => t,
+        }
+    }
+
+    /// At `p`: the spatial part of each light's probability, `(1 − ε)·w_i(p)/Σw`, and the
+    /// power floors `ε·Φ_i/ΣΦ` to add to it; `None` for the power choice (always, or at a
+    /// point where the weights are not finite). Sampling and [`LightChoice::pmf`] both go
+    /// through here, so they agree bit for bit.
+    #[inline]
+    fn spatial_at(&self, p: Vec3) -> Option<([f32; MAX_SPATIAL], &[f32])> {
+        let Self::Spatial { lights, floor, .. } = self else {
+            return None;
+        };
+        let mut w = [0.0; MAX_SPATIAL];
+        let scale = (1.0 - DEFENSIVE) / Self::weights(lights, p, &mut w)?;
+        for x in &mut w {
+            *x *= scale;
+        }
+        Some((w, floor))
+    }
+
     /// A light chosen at shading point `p` with `u ∈ [0, 1)`, and its probability.
     #[inline]
     pub(crate) fn sample(&self, p: Vec3, u: f32) -> (usize, f32) {
-        match self {
-            Self::Power(t) => t.sample_with_pmf(u),
-            Self::Spatial {
-                lights,
-                floor,
-                power,
-            } => {
-                let mut w = [0.0; MAX_SPATIAL];
-                let Some(sum) = Self::weights(lights, p, &mut w) else {
-                    return power.sample_with_pmf(u);
-                };
-                let scale = (1.0 - DEFENSIVE) / sum;
-                let mut last = (0, 0.0);
-                let mut cdf = 0.0;
-                for (i, (&wi, &fi)) in w.iter().zip(floor).enumerate() {
-                    let pi = wi * scale + fi;
-                    if pi > 0.0 {
-                        cdf += pi;
-                        last = (i, pi);
-                        if u < cdf {
-                            break;
-                        }
-                    }
+        let Some((w, floor)) = self.spatial_at(p) else {
+            return self.power().sample_with_pmf(u);
+        };
+        let mut last = (0, 0.0);
+        let mut cdf = 0.0;
+        for (i, (&wi, &fi)) in w.iter().zip(floor).enumerate() {
+            let pi = wi + fi;
+            if pi > 0.0 {
+                cdf += pi;
+                last = (i, pi);
+                if u < cdf {
+                    break;
                 }
-                // Rounding can leave the sum of probabilities just under `u`: the last
-                // light with a nonzero probability takes that sliver.
-                last
             }
         }
+        // Rounding can leave the sum of probabilities just under `u`: the last light with a
+        // nonzero probability takes that sliver.
+        last
     }
 
     /// The probability that [`LightChoice::sample`] at `p` returns light `i`.
     #[inline]
     pub(crate) fn pmf(&self, p: Vec3, i: usize) -> f32 {
-        match self {
-            Self::Power(t) => t.pmf(i),
-            Self::Spatial {
-                lights,
-                floor,
-                power,
-            } => {
-                let mut w = [0.0; MAX_SPATIAL];
-                match (Self::weights(lights, p, &mut w), floor.get(i)) {
-                    (Some(sum), Some(&fi)) => w[i] * ((1.0 - DEFENSIVE) / sum) + fi,
-                    (None, Some(_)) => power.pmf(i),
-                    _ => 0.0,
-                }
-            }
+        match self.spatial_at(p) {
+            Some((w, floor)) => floor.get(i).map_or(0.0, |&fi| w[i] + fi),
+            None => self.power().pmf(i),
         }
     }
 }
