@@ -34,6 +34,7 @@ pub enum ShapeSampling {
     Area,
 }
 use crate::sampling::warp::{UniformDiskConcentric, Warp};
+use crate::scene::accel::Aabb;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -87,12 +88,8 @@ impl Geometry {
     pub(crate) fn shape_bounding_sphere(&self, shape: u32) -> Option<(Vec3, f32)> {
         match self.shapes.get(shape as usize)? {
             ShapeData::Mesh(m) => {
-                let first = *m.positions.first()?;
-                let (lo, hi) = m
-                    .positions
-                    .iter()
-                    .fold((first, first), |(lo, hi), &v| (lo.min(v), hi.max(v)));
-                Some((0.5 * (lo + hi), 0.5 * (hi - lo).length()))
+                let b = Aabb::from_points(&m.positions);
+                (!b.is_empty()).then(|| (b.center(), 0.5 * b.extent().length()))
             }
             &ShapeData::Sphere { center, radius, .. } => Some((center, radius)),
             // The disk is the image of the unit disk: c + cos φ·a + sin φ·b, so its points
@@ -163,5 +160,40 @@ impl Geometry {
             None => None,
         };
         pdf.unwrap_or(0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::accel::AccelKind;
+    use crate::scene::description::{ShapeDesc, ShapeKind};
+    use crate::scene::geometry::Geometry;
+    use glam::{Mat4, Vec3};
+
+    #[test]
+    fn bounding_spheres_hold_their_shapes() {
+        let mut rect = ShapeDesc::new(ShapeKind::Rectangle);
+        rect.to_world = Mat4::from_translation(Vec3::new(0.0, 0.0, -2.0))
+            * Mat4::from_scale(Vec3::new(3.0, 1.0, 1.0));
+        let sphere = ShapeDesc::new(ShapeKind::Sphere {
+            center: Vec3::new(1.0, 2.0, 3.0),
+            radius: 0.5,
+        });
+        let mut disk = ShapeDesc::new(ShapeKind::Disk);
+        disk.to_world =
+            Mat4::from_translation(Vec3::X) * Mat4::from_scale(Vec3::new(2.0, 1.0, 1.0));
+        let geo = Geometry::new(&[rect, sphere, disk], None, AccelKind::Bvh).unwrap();
+        let expect = [
+            (Vec3::new(0.0, 0.0, -2.0), 10f32.sqrt()), // corners (±3, ±1)
+            (Vec3::new(1.0, 2.0, 3.0), 0.5),
+            (Vec3::X, 5f32.sqrt()), // √(2² + 1²) bounds the ellipse's semi-axes 2 and 1
+        ];
+        for (i, (c, r)) in expect.into_iter().enumerate() {
+            let (centre, radius) = geo.shape_bounding_sphere(i as u32).unwrap();
+            assert!(centre.is_finite() && radius.is_finite(), "shape {i}");
+            assert!((centre - c).length() < 1e-5, "shape {i}: {centre}");
+            assert!((radius - r).abs() < 1e-5, "shape {i}: {radius}");
+        }
+        assert!(geo.shape_bounding_sphere(3).is_none());
     }
 }
