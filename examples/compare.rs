@@ -13,10 +13,14 @@
 
 use mcrt::glam::Vec3;
 use mcrt::scene::film::{compare_blocks, read_exr};
+use std::fmt::Write as _;
+use std::io::{ErrorKind, Write as _};
 use std::path::Path;
 use std::process::ExitCode;
 
-fn run() -> Result<(), String> {
+/// The report, printed by `main`.
+fn run() -> Result<String, String> {
+    let mut out = String::new();
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.len() < 2 {
         return Err("usage: compare image.exr reference.exr [variance.exr [s]]".into());
@@ -47,7 +51,10 @@ fn run() -> Result<(), String> {
         })
         .sum::<f64>()
         / img.len() as f64;
-    println!("relMSE {rel_mse:.3e}  (mean of (img − ref)² / (ref² + 0.01))");
+    let _ = writeln!(
+        out,
+        "relMSE {rel_mse:.3e}  (mean of (img − ref)² / (ref² + 0.01))"
+    );
     for b in [16, 32] {
         let r = compare_blocks(
             &img,
@@ -60,7 +67,8 @@ fn run() -> Result<(), String> {
             0.05,
             0.01,
         );
-        println!(
+        let _ = writeln!(
+            out,
             "{b}×{b}: {} blocks, worst block {:.2}%, mean ratio ({:.4}, {:.4}, {:.4}), worst |z| {:.2} (critical {:.2}), non-finite pixels {}",
             r.blocks,
             100.0 * r.worst_relative,
@@ -72,12 +80,19 @@ fn run() -> Result<(), String> {
             r.non_finite
         );
     }
-    Ok(())
+    Ok(out)
 }
 
 fn main() -> ExitCode {
     match run() {
-        Ok(()) => ExitCode::SUCCESS,
+        // A reader that stops early (`compare … | head -1`) is not an error.
+        Ok(report) => match std::io::stdout().lock().write_all(report.as_bytes()) {
+            Err(e) if e.kind() != ErrorKind::BrokenPipe => {
+                eprintln!("error: cannot write the report: {e}");
+                ExitCode::FAILURE
+            }
+            _ => ExitCode::SUCCESS,
+        },
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE
