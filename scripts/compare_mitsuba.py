@@ -24,27 +24,30 @@ Example:
 from __future__ import annotations
 
 import argparse
-import glob
 import json
 import os
 import platform
-import re
-import resource
-import shlex
-import shutil
 import subprocess
 import sys
 import tempfile
-import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parent.parent
+from contenders import (
+    REPO,
+    MitsubaContender,
+    OursContender,
+    Skip,
+    build_renderer,
+    fail,
+    import_mitsuba,
+    read_exr,
+)
+
 DEFAULT_SCENES = ["tests/data/cornell-box.xml", "tests/data/veach-mis.xml"]
 DEFAULT_BINARY = "target/release/examples/render"
 MITSUBA_VARIANTS = ["scalar_rgb", "llvm_ad_rgb"]
 BASELINE = "mitsuba llvm_ad_rgb"
-WARMUP_SEED = 1_000_003
 
 
 @dataclass
@@ -90,205 +93,6 @@ def mean(xs: list[float]) -> float:
     return sum(xs) / len(xs) if xs else float("nan")
 
 
-def fail(msg: str) -> None:
-    """Print an error and exit with status 2."""
-    print(f"compare_mitsuba: error: {msg}", file=sys.stderr)
-    sys.exit(2)
-
-
-# ---------------------------------------------------------------- Mitsuba
-
-
-def find_libllvm() -> str | None:
-    """Locate a libLLVM (16 or newer) for Dr.Jit's LLVM backend, if one is installed."""
-    patterns = [
-        "/usr/lib/x86_64-linux-gnu/libLLVM.so.*",
-        "/usr/lib/x86_64-linux-gnu/libLLVM-*.so",
-        "/usr/lib/aarch64-linux-gnu/libLLVM.so.*",
-        "/usr/lib/llvm-*/lib/libLLVM*.so*",
-    ]
-    for pattern in patterns:
-        for path in sorted(glob.glob(pattern), reverse=True):
-            m = re.search(r"LLVM[.-](?:so\.)?(\d+)", os.path.basename(path))
-            if m and int(m.group(1)) >= 16:
-                return path
-    return None
-
-
-def import_mitsuba(variants: list[str]):
-    """Import mitsuba (and numpy), with a clear message if they are missing."""
-    if "llvm_ad_rgb" in variants and "DRJIT_LIBLLVM_PATH" not in os.environ:
-        lib = find_libllvm()
-        if lib:
-            os.environ["DRJIT_LIBLLVM_PATH"] = lib
-    try:
-        import drjit as dr
-        import mitsuba as mi
-        import numpy as np  # noqa: F401  (needed by mi.Bitmap -> array)
-    except ImportError as e:
-        fail(
-            f"cannot import {e.name}: install the requirements with "
-            "'pip install -r scripts/requirements.txt' (see scripts/README.md); "
-            "mitsuba is needed even with --skip-mitsuba, to read the EXR images"
-        )
-    missing = [v for v in variants if v not in mi.variants()]
-    if missing:
-        fail(f"this mitsuba build lacks the variant(s) {missing}")
-    return mi, dr
-
-
-def check_variant(mi, variant: str) -> None:
-    """Select a Mitsuba variant; explain the libLLVM requirement if it fails."""
-    try:
-        mi.set_variant(variant)
-        if variant.startswith("llvm"):
-            mi.Float(1.0) + 1.0  # forces the LLVM backend to initialise
-    except Exception as e:  # noqa: BLE001 (drjit raises several types)
-        hint = ""
-        if variant.startswith("llvm"):
-            hint = (
-                " -- the LLVM variants need libLLVM 16+ (e.g. Debian's libllvm19); set "
-                "DRJIT_LIBLLVM_PATH to its libLLVM.so"
-            )
-        fail(f"mitsuba variant {variant} unavailable: {e}{hint}")
-
-
-class Skip(Exception):
-    """A contender that cannot run this configuration (e.g. a sampler the build lacks)."""
-
-
-@dataclass
-class Sample:
-    """One timed render: the image, render seconds, process wall and CPU seconds."""
-
-    img: object
-    render_s: float
-    wall_s: float
-    cpu_s: float
-
-
-class MitsubaContender:
-    """One Mitsuba variant, rendering in this process."""
-
-    def __init__(self, mi, dr, variant: str, defines: dict[str, str]):
-        self.mi, self.dr, self.variant, self.defines = mi, dr, variant, defines
-        self.name, self.sampler = f"mitsuba {variant}", "independent"
-        self.scene = None
-
-    def setup(self, scene_path: Path) -> float:
-        """Load the scene; return the loading time in seconds."""
-        check_variant(self.mi, self.variant)
-        self.mi.set_log_level(self.mi.LogLevel.Warn)
-        t0 = time.perf_counter()
-        self.scene = self.mi.load_file(str(scene_path), **self.defines)
-        return time.perf_counter() - t0
-
-    def warmup(self, spp: int) -> float:
-        """Render once untimed (JIT variants compile here); return its seconds."""
-        self.mi.set_variant(self.variant)
-        # Scalar variants compile nothing: a few samples warm the caches. JIT variants may
-        # compile a kernel per sample count, so they warm up at the measured count.
-        warm_spp = spp if self.dr.is_jit_v(self.mi.Float) else min(spp, 4)
-        return self.render(warm_spp, WARMUP_SEED).render_s
-
-    def render(self, spp: int, seed: int) -> Sample:
-        """Render once, timed from mi.render until the image is evaluated."""
-        import numpy as np
-
-        self.mi.set_variant(self.variant)
-        c0, t0 = time.process_time(), time.perf_counter()
-        img = self.mi.render(self.scene, spp=spp, seed=seed)
-        self.dr.eval(img)
-        self.dr.sync_thread()
-        dt, cpu = time.perf_counter() - t0, time.process_time() - c0
-        return Sample(np.asarray(img, dtype=np.float64)[..., :3], dt, dt, cpu)
-
-
-TIME_RE = re.compile(r"\btime\s*[:=]?\s*([0-9]+(?:\.[0-9]*)?(?:[eE][-+]?\d+)?)\s*(ms|s)\b")
-
-
-def parse_render_time(stdout: str) -> float | None:
-    """Find the renderer's own render time ('time 1.234 s', last match), in seconds."""
-    matches = TIME_RE.findall(stdout)
-    if not matches:
-        return None
-    value, unit = matches[-1]
-    return float(value) / (1000.0 if unit == "ms" else 1.0)
-
-
-def children_cpu_s() -> float:
-    """CPU seconds (user + system) used so far by finished child processes."""
-    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return ru.ru_utime + ru.ru_stime
-
-
-class OursContender:
-    """mcrt's render example with one sampler, run as a child process."""
-
-    def __init__(self, binary: Path, sampler: str, extra: str, defines: dict[str, str],
-                 threads: int, tmp: str):
-        self.binary, self.sampler, self.threads, self.tmp = binary, sampler, threads, tmp
-        self.extra = shlex.split(extra)
-        for k, v in defines.items():
-            self.extra += ["-D", f"{k}={v}"]
-        self.name = f"mcrt {extra}".strip()
-        self.scene_path = None
-        self.note = ""
-
-    def setup(self, scene_path: Path) -> float:
-        """Run a 1-spp render (warms the page cache, checks the sampler); return its wall s."""
-        self.scene_path = scene_path
-        try:
-            _, self.warm_s, _ = self._run(1, WARMUP_SEED)
-        except RuntimeError as e:
-            raise Skip(f"mcrt --sampler {self.sampler} on {scene_path.name}: {e}") from e
-        return self.warm_s
-
-    def warmup(self, spp: int) -> float:
-        """Nothing to compile: the 1-spp run of setup() was the warm-up; return its wall s."""
-        return self.warm_s
-
-    def render(self, spp: int, seed: int) -> Sample:
-        """Render once; the render time is the one the binary prints."""
-        stdout, wall, cpu = self._run(spp, seed)
-        own = parse_render_time(stdout)
-        if own is None:
-            self.note = "(no render time printed: wall time used)"
-        return Sample(read_exr(self._out()), own if own is not None else wall, wall, cpu)
-
-    def _out(self) -> Path:
-        tag = re.sub(r"[^A-Za-z0-9]+", "_", " ".join(self.extra))[:80]
-        return Path(self.tmp) / f"{self.scene_path.stem}-{self.sampler}{tag}.exr"
-
-    def _run(self, spp: int, seed: int) -> tuple[str, float, float]:
-        """Run the binary; return (stdout, wall s, CPU s) or raise RuntimeError."""
-        cmd = [str(self.binary), str(self.scene_path), "--spp", str(spp),
-               "--seed", str(seed), "-o", str(self._out())]
-        if self.sampler != "independent":
-            cmd += ["--sampler", self.sampler]
-        if self.threads:
-            cmd += ["--threads", str(self.threads)]
-        cmd += self.extra
-        c0, t0 = children_cpu_s(), time.perf_counter()
-        p = subprocess.run(cmd, capture_output=True, text=True)
-        wall, cpu = time.perf_counter() - t0, children_cpu_s() - c0
-        if p.returncode != 0:
-            msg = (p.stderr.strip() or p.stdout.strip()).splitlines()
-            raise RuntimeError(f"'{' '.join(cmd)}' failed: {msg[-1] if msg else p.returncode}")
-        return p.stdout, wall, cpu
-
-
-def build_renderer(binary: Path) -> None:
-    """Build the render example in release mode (not timed)."""
-    cmd = ["cargo", "build", "--release", "--example", "render"]
-    print("building:", " ".join(cmd), file=sys.stderr)
-    if shutil.which("cargo") is None:
-        fail("cargo not found; build the renderer yourself and pass --no-build")
-    if subprocess.run(cmd, cwd=REPO).returncode != 0:
-        fail("cargo build failed (is examples/render.rs in this checkout?)")
-    if not binary.exists():
-        fail(f"the build did not produce {binary}")
-
 
 def measure_scene(contenders, scene_path, ref, spps, seeds) -> list[Result]:
     """Measure every contender on one scene; renders of one seed run back to back."""
@@ -325,19 +129,6 @@ def measure_scene(contenders, scene_path, ref, spps, seeds) -> list[Result]:
 
 
 # ---------------------------------------------------------------- images
-
-
-def read_exr(path: Path):
-    """Read an RGB EXR as a float64 array HxWx3 (with Mitsuba's Bitmap class)."""
-    import mitsuba as mi
-    import numpy as np
-
-    if not mi.variant():
-        mi.set_variant("scalar_rgb")
-    bmp = mi.Bitmap(str(path)).convert(
-        mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False
-    )
-    return np.asarray(bmp, dtype=np.float64)
 
 
 def relmse(img, ref) -> float:
