@@ -196,29 +196,17 @@ impl Warp for SphericalRectangle {
     type Point = Vec3;
 
     fn sample(&self, u: Vec2) -> Vec3 {
-        let dir = match &self.urena {
-            Some(urena) => urena.sample_offset(u.as_dvec2()).normalize().as_vec3(),
-            None => self
-                .planar
-                .direction_to(self.planar.sample_area(u.as_dvec2())),
-        };
-        debug_assert!(dir.is_finite());
-        dir
+        let exact = self
+            .urena
+            .as_ref()
+            .map(|r| |u| r.sample_offset(u).normalize());
+        self.planar.sample_with(u, exact)
     }
 
     /// 1/Ω per steradian on directions hitting the shape (area fallback: d²/(A|cos θ′|)).
     fn pdf(&self, w: Vec3) -> f32 {
-        let dir = w.as_dvec3().normalize_or_zero();
-        match self.urena {
-            Some(_) => {
-                if self.planar.hit(dir).is_some() {
-                    (1.0 / self.omega()) as f32
-                } else {
-                    0.0
-                }
-            }
-            None => self.planar.area_pdf(dir) as f32,
-        }
+        self.planar
+            .pdf_with(w, self.urena.as_ref().map(|_| self.omega()))
     }
 }
 

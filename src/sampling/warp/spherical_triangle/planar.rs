@@ -2,7 +2,7 @@
 //! inside test, uniform area sampling, and the area → solid angle conversion. Shared by the
 //! spherical triangle and rectangle warps.
 
-use glam::{DVec2, DVec3, Vec3};
+use glam::{DVec2, DVec3, Vec2, Vec3};
 
 use crate::sampling::SamplingError;
 
@@ -150,6 +150,31 @@ impl Planar {
     /// The unit direction from the origin to `p`, in `f32`.
     pub(crate) fn direction_to(&self, p: DVec3) -> Vec3 {
         (p - self.origin).normalize().as_vec3()
+    }
+
+    /// A direction from the exact solid-angle sampler when there is one (it maps `u` to a
+    /// unit direction), else toward a point uniform in area: the `sample` of the spherical
+    /// triangle and rectangle warps.
+    pub(crate) fn sample_with(&self, u: Vec2, exact: Option<impl FnOnce(DVec2) -> DVec3>) -> Vec3 {
+        let u = u.as_dvec2();
+        let dir = match exact {
+            Some(sample) => sample(u).as_vec3(),
+            None => self.direction_to(self.sample_area(u)),
+        };
+        debug_assert!(dir.is_finite());
+        dir
+    }
+
+    /// The density of [`Planar::sample_with`] per steradian at `w`: 1/Ω on directions that
+    /// hit the shape when sampling is exact (`omega` = Ω), else the area fallback's
+    /// d²/(A |cos θ'|).
+    pub(crate) fn pdf_with(&self, w: Vec3, omega: Option<f64>) -> f32 {
+        let dir = w.as_dvec3().normalize_or_zero();
+        match omega {
+            Some(omega) if self.hit(dir).is_some() => (1.0 / omega) as f32,
+            Some(_) => 0.0,
+            None => self.area_pdf(dir) as f32,
+        }
     }
 }
 
