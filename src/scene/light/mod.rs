@@ -13,6 +13,7 @@ pub use envmap::EnvMap;
 use rect::AreaRect;
 
 use crate::integrator::{is_positive, LightSample, SurfacePoint};
+use crate::sampling::warp::RectangleFrame;
 use crate::scene::description::{EmitterDesc, SceneDescription};
 use crate::scene::render::geo::{Geometry, Hit, ShapeSampling};
 use glam::{Vec2, Vec3};
@@ -75,6 +76,9 @@ pub struct Lights {
     single: bool,
     /// The scene's only light, an emitting rectangle (its choice probability is 1).
     only_rect: Option<(AreaRect, Vec3)>,
+    /// That rectangle's frame for solid-angle sampling, built from the same corner and
+    /// edges as the geometry's own (so the same warp and the same bits).
+    only_rect_frame: Option<Box<RectangleFrame>>,
     /// [`Lights::sample`] reads `u_pick`: several lights, or a light on a triangle mesh.
     reads_pick: bool,
 }
@@ -130,6 +134,45 @@ fn rect_light_sample(
         pdf: s.pdf * pick,
         delta: false,
     })
+}
+
+/// A direction toward the rectangle of `frame` (unit front normal `n`) sampled by solid angle
+/// from `from`, exactly as [`Geometry::sample_shape`] and [`sample_shape_light`] do for a
+/// rectangle light chosen with probability 1, without the shape lookup, the per-call front
+/// normal and the `Option` chain. The outer `None`: the warp cannot be built from `from`
+/// (the geometry then samples by area; the caller takes that path).
+#[inline]
+fn rect_solid_angle_sample(
+    frame: &RectangleFrame,
+    n: Vec3,
+    radiance: Vec3,
+    from: Vec3,
+    u: Vec2,
+) -> Option<Option<LightSample>> {
+    let sr = frame.seen_from(from).ok()?;
+    let Some((p, pdf)) = sr.sample_point(u) else {
+        return Some(None);
+    };
+    // The checks of the shape sample, then those of the light sample (in that order).
+    if !(pdf.is_finite() && pdf > 0.0) {
+        return Some(None);
+    }
+    let d = p - from;
+    let dist = d.length();
+    if !is_positive(dist) {
+        return Some(None);
+    }
+    let wi = d / dist;
+    if n.dot(wi) >= 0.0 || !is_positive(pdf) || !pdf.is_finite() {
+        return Some(None);
+    }
+    Some(Some(LightSample {
+        wi,
+        dist,
+        radiance,
+        pdf: pdf * 1.0,
+        delta: false,
+    }))
 }
 
 impl Lights {
@@ -220,6 +263,13 @@ impl Lights {
             }
             _ => None,
         };
+        let only_rect_frame = match (&only_rect, lights.first()) {
+            (Some(_), Some(&Light::Area { shape, .. })) => geo
+                .parallelogram(shape)
+                .and_then(|([corner, ex, ey], _, _)| RectangleFrame::new(corner, ex, ey).ok())
+                .map(Box::new),
+            _ => None,
+        };
         let on_mesh =
             |l: &Light| matches!(*l, Light::Area { shape, .. } if geo.shape_reads_pick(shape));
         let shape_radiance = shape_light
@@ -233,6 +283,7 @@ impl Lights {
             shape_radiance,
             picker,
             only_rect,
+            only_rect_frame,
             reads_pick: !single || lights.iter().any(on_mesh),
             single,
             rects,
@@ -299,8 +350,17 @@ impl Lights {
     ) -> Option<LightSample> {
         // A lone rectangle light (the Cornell box) inline; everything else out of line.
         if let Some((r, radiance)) = &self.only_rect {
-            if geo.shape_sampling() == ShapeSampling::Area {
-                return rect_light_sample(r, *radiance, from.p, u, 1.0);
+            match geo.shape_sampling() {
+                ShapeSampling::Area => return rect_light_sample(r, *radiance, from.p, u, 1.0),
+                ShapeSampling::SolidAngle => {
+                    if let Some(f) = &self.only_rect_frame {
+                        if let Some(ls) =
+                            rect_solid_angle_sample(f, r.normal(), *radiance, from.p, u)
+                        {
+                            return ls;
+                        }
+                    }
+                }
             }
         }
         self.sample_chosen(geo, from, u_pick, u)

@@ -41,6 +41,12 @@ impl AreaRect {
         })
     }
 
+    /// The unit normal of the front (emitting) side.
+    #[inline]
+    pub(super) fn normal(&self) -> Vec3 {
+        self.n
+    }
+
     /// A point uniform by area (`u` ↦ corner + u.x·ex + u.y·ey, as the geometry's area
     /// sampling of a rectangle), seen from `from`: `p_ω = d² / (A · cos θ')`, θ' between
     /// the front normal and the way back. `None` when the point is on or behind the
