@@ -17,7 +17,13 @@ pub(super) struct AreaRect {
     n: Vec3,
     /// Area density 1/A.
     inv_area: f32,
+    /// A bound on the magnitude of the rectangle's coordinates: `|corner|∞ + |ex| + |ey|`.
+    reach: f32,
 }
+
+/// Relative margin of [`AreaRect::surely_behind`]: about a thousand times the `f32` rounding of the
+/// quantities it bounds.
+const BEHIND_MARGIN: f32 = 1e-4;
 
 /// A direction toward a point of the rectangle: unit `wi`, distance, and the density per
 /// unit solid angle at the shading point.
@@ -38,6 +44,7 @@ impl AreaRect {
             ey,
             n,
             inv_area: 1.0 / area,
+            reach: corner.abs().max_element() + ex.length() + ey.length(),
         })
     }
 
@@ -45,6 +52,18 @@ impl AreaRect {
     #[inline]
     pub(super) fn normal(&self) -> Vec3 {
         self.n
+    }
+
+    /// Whether `from` lies behind the emitting side's plane by clearly more than rounding:
+    /// then every point of the rectangle is seen from behind, and every way of sampling it
+    /// (by area here, by solid angle through the geometry) rejects the sample. The margin,
+    /// [`BEHIND_MARGIN`] times `1 + |from|∞ + reach`, exceeds the rounding of the sampled
+    /// point, of the normal and of the dot products by orders of magnitude, so a point
+    /// reported here would be rejected by the full computation too.
+    #[inline]
+    pub(super) fn surely_behind(&self, from: Vec3) -> bool {
+        let h = (from - self.corner).dot(self.n);
+        h < -BEHIND_MARGIN * (1.0 + from.abs().max_element() + self.reach)
     }
 
     /// A point uniform by area (`u` ↦ corner + u.x·ex + u.y·ey, as the geometry's area
