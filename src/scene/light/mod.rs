@@ -136,45 +136,6 @@ fn rect_light_sample(
     })
 }
 
-/// A direction toward the rectangle of `frame` (unit front normal `n`) sampled by solid angle
-/// from `from`, exactly as [`Geometry::sample_shape`] and [`sample_shape_light`] do for a
-/// rectangle light chosen with probability 1, without the shape lookup, the per-call front
-/// normal and the `Option` chain. The outer `None`: the warp cannot be built from `from`
-/// (the geometry then samples by area; the caller takes that path).
-#[inline]
-fn rect_solid_angle_sample(
-    frame: &RectangleFrame,
-    n: Vec3,
-    radiance: Vec3,
-    from: Vec3,
-    u: Vec2,
-) -> Option<Option<LightSample>> {
-    let sr = frame.seen_from(from).ok()?;
-    let Some((p, pdf)) = sr.sample_point(u) else {
-        return Some(None);
-    };
-    // The checks of the shape sample, then those of the light sample (in that order).
-    if !(pdf.is_finite() && pdf > 0.0) {
-        return Some(None);
-    }
-    let d = p - from;
-    let dist = d.length();
-    if !is_positive(dist) {
-        return Some(None);
-    }
-    let wi = d / dist;
-    if n.dot(wi) >= 0.0 || !is_positive(pdf) || !pdf.is_finite() {
-        return Some(None);
-    }
-    Some(Some(LightSample {
-        wi,
-        dist,
-        radiance,
-        pdf: pdf * 1.0,
-        delta: false,
-    }))
-}
-
 impl Lights {
     /// The lights of a scene; `radius` bounds the scene (for the power of environment
     /// lights).
@@ -379,7 +340,7 @@ impl Lights {
                     }
                     if let Some(f) = &self.only_rect_frame {
                         if let Some(ls) =
-                            rect_solid_angle_sample(f, r.normal(), *radiance, from.p, u)
+                            rect::solid_angle_sample(f, r.normal(), *radiance, from.p, u)
                         {
                             return ls;
                         }
