@@ -7,7 +7,7 @@ use crate::sampling::mis::{balance_heuristic, power_heuristic};
 /// `f32` in the usual case (both products finite, `f > 0`, `n_g, pdf_g ≥ 0`), where it agrees with
 /// [`power_heuristic`] / [`balance_heuristic`] to `f32` rounding; every other input (zero,
 /// infinite, NaN, negative) goes to those functions and their documented edge cases.
-#[inline]
+#[inline(always)]
 fn two<const POWER: bool>(n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32) -> f32 {
     let (f, g) = (n_f * pdf_f, n_g * pdf_g);
     // `n_g, pdf_g ≥ 0` separately: a negative input times 0 would pass as `g = −0`.

@@ -22,8 +22,14 @@ pub(crate) fn combine(h: u64, word: u64) -> u64 {
 /// A key for (seed, pixel): what every value of one pixel shares.
 #[inline]
 pub(crate) fn pixel_key(seed: u64, pixel: [u32; 2]) -> u64 {
+    pixel_key_of_mixed(mix64(seed), pixel)
+}
+
+/// [`pixel_key`] from `mix64(seed)`, which a sampler computes once at construction.
+#[inline]
+pub(crate) fn pixel_key_of_mixed(mixed_seed: u64, pixel: [u32; 2]) -> u64 {
     let p = u64::from(pixel[0]) | (u64::from(pixel[1]) << 32);
-    combine(mix64(seed), p)
+    combine(mixed_seed, p)
 }
 
 /// The 24 high bits of `bits` as an `f32` in `[0, 1)` with spacing 2⁻²⁴ (never 1.0).

@@ -4,7 +4,7 @@ use glam::Vec2;
 use rand_core::RngCore;
 use rand_pcg::Pcg32;
 
-use super::hash::{combine, mix64, pixel_key, unit_f32};
+use super::hash::{combine, mix64, pixel_key_of_mixed, unit_f32};
 use super::{check_spp, Sampler};
 use crate::sampling::SamplingError;
 
@@ -30,6 +30,8 @@ use crate::sampling::SamplingError;
 pub struct IndependentSampler {
     spp: u32,
     seed: u64,
+    /// `mix64(seed)`, the part of every pixel key that depends on the seed alone.
+    mixed_seed: u64,
     rng: Pcg32,
 }
 
@@ -39,6 +41,7 @@ impl IndependentSampler {
         Ok(Self {
             spp: check_spp(spp)?,
             seed,
+            mixed_seed: mix64(seed),
             rng: Pcg32::new(mix64(seed), 0),
         })
     }
@@ -52,7 +55,10 @@ impl IndependentSampler {
 impl Sampler for IndependentSampler {
     #[inline]
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
-        let key = combine(pixel_key(self.seed, pixel), u64::from(sample_index));
+        let key = combine(
+            pixel_key_of_mixed(self.mixed_seed, pixel),
+            u64::from(sample_index),
+        );
         self.rng = Pcg32::new(key, mix64(key ^ 0x5851_f42d_4c95_7f2d));
     }
 

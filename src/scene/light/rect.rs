@@ -1,7 +1,8 @@
 //! A rectangle light sampled uniformly by area, with everything that does not depend on the
 //! shading point computed once per scene.
 
-use crate::integrator::is_positive;
+use crate::integrator::{is_positive, LightSample};
+use crate::sampling::warp::RectangleFrame;
 use glam::{Vec2, Vec3};
 
 /// The rectangle `corner + s·ex + t·ey`, s, t ∈ [0, 1], of an area light, with its unit
@@ -17,7 +18,13 @@ pub(super) struct AreaRect {
     n: Vec3,
     /// Area density 1/A.
     inv_area: f32,
+    /// A bound on the magnitude of the rectangle's coordinates: `|corner|∞ + |ex| + |ey|`.
+    reach: f32,
 }
+
+/// Relative margin of [`AreaRect::surely_behind`]: about a thousand times the `f32` rounding of the
+/// quantities it bounds.
+const BEHIND_MARGIN: f32 = 1e-4;
 
 /// A direction toward a point of the rectangle: unit `wi`, distance, and the density per
 /// unit solid angle at the shading point.
@@ -38,7 +45,26 @@ impl AreaRect {
             ey,
             n,
             inv_area: 1.0 / area,
+            reach: corner.abs().max_element() + ex.length() + ey.length(),
         })
+    }
+
+    /// The unit normal of the front (emitting) side.
+    #[inline]
+    pub(super) fn normal(&self) -> Vec3 {
+        self.n
+    }
+
+    /// Whether `from` lies behind the emitting side's plane by clearly more than rounding:
+    /// then every point of the rectangle is seen from behind, and every way of sampling it
+    /// (by area here, by solid angle through the geometry) rejects the sample. The margin,
+    /// [`BEHIND_MARGIN`] times `1 + |from|∞ + reach`, exceeds the rounding of the sampled
+    /// point, of the normal and of the dot products by orders of magnitude, so a point
+    /// reported here would be rejected by the full computation too.
+    #[inline]
+    pub(super) fn surely_behind(&self, from: Vec3) -> bool {
+        let h = (from - self.corner).dot(self.n);
+        h < -BEHIND_MARGIN * (1.0 + from.abs().max_element() + self.reach)
     }
 
     /// A point uniform by area (`u` ↦ corner + u.x·ex + u.y·ey, as the geometry's area
@@ -60,6 +86,45 @@ impl AreaRect {
         let pdf = dist2 * self.inv_area / cos;
         (pdf.is_finite() && pdf > 0.0).then_some(RectSample { wi, dist, pdf })
     }
+}
+
+/// A direction toward the rectangle of `frame` (unit front normal `n`) sampled by solid angle
+/// from `from`, exactly as `Geometry::sample_shape` and `sample_shape_light` do for a
+/// rectangle light chosen with probability 1, without the shape lookup, the per-call front
+/// normal and the `Option` chain. The outer `None`: the warp cannot be built from `from`
+/// (the geometry then samples by area; the caller takes that path).
+#[inline]
+pub(super) fn solid_angle_sample(
+    frame: &RectangleFrame,
+    n: Vec3,
+    radiance: Vec3,
+    from: Vec3,
+    u: Vec2,
+) -> Option<Option<LightSample>> {
+    let sr = frame.seen_from(from).ok()?;
+    let Some((p, pdf)) = sr.sample_point(u) else {
+        return Some(None);
+    };
+    // The checks of the shape sample, then those of the light sample (in that order).
+    if !(pdf.is_finite() && pdf > 0.0) {
+        return Some(None);
+    }
+    let d = p - from;
+    let dist = d.length();
+    if !is_positive(dist) {
+        return Some(None);
+    }
+    let wi = d / dist;
+    if n.dot(wi) >= 0.0 || !is_positive(pdf) || !pdf.is_finite() {
+        return Some(None);
+    }
+    Some(Some(LightSample {
+        wi,
+        dist,
+        radiance,
+        pdf: pdf * 1.0,
+        delta: false,
+    }))
 }
 
 #[cfg(test)]
@@ -140,18 +205,74 @@ mod tests {
         assert!(checked > 100, "{checked}");
     }
 
-    /// With solid-angle sampling the rectangle is not used: the sample is the geometry's.
+    /// Shading points over the whole Cornell box, on the ceiling (behind the light), in and
+    /// next to the light's plane, and on the light.
+    fn box_points() -> Vec<Vec3> {
+        let mut v = Vec::new();
+        for i in 0..6 {
+            for j in 0..7 {
+                for k in 0..6 {
+                    let y = [0.0, 0.4, 0.98, 0.99, 0.990001, 0.995, 1.0][j];
+                    v.push(Vec3::new(-1.0 + 0.4 * i as f32, y, -1.0 + 0.4 * k as f32));
+                }
+            }
+        }
+        v.extend([Vec3::new(0.0, 0.99, 0.0), Vec3::new(0.1, 0.99, -0.05)]);
+        v
+    }
+
+    /// With solid-angle sampling the light's own path (a frame built once, points clearly
+    /// behind skipped) gives exactly the geometry's sample, bit for bit, everywhere.
     #[test]
-    fn solid_angle_sampling_bypasses_the_rectangle() {
+    fn solid_angle_sampling_is_the_geometrys_bit_for_bit() {
         let (geo, lights) = cornell(ShapeSampling::SolidAngle);
-        let sp = point(Vec3::new(0.1, 0.2, 0.3));
-        let u = Vec2::new(0.3, 0.7);
         let Light::Area { shape, radiance } = lights.lights()[0] else {
             panic!("the Cornell box's light is an area light");
         };
-        let got = lights.sample(&geo, &sp, Vec2::new(0.5, 0.5), u).unwrap();
-        let want = sample_shape_light(&geo, shape, radiance, sp.p, (0.5, u), 1.0).unwrap();
-        assert_eq!(got, want);
+        let (mut some, mut none) = (0, 0);
+        for from in box_points() {
+            let sp = point(from);
+            for k in 0..25 {
+                let u = Vec2::new((k % 5) as f32 / 5.0 + 0.07, (k / 5) as f32 / 5.0 + 0.11);
+                let got = lights.sample(&geo, &sp, Vec2::new(0.5, 0.5), u);
+                let want = sample_shape_light(&geo, shape, radiance, from, (0.5, u), 1.0);
+                assert_eq!(got, want, "from {from} u {u}");
+                if let Some(s) = got {
+                    assert!(s.pdf.is_finite() && s.pdf > 0.0 && s.wi.is_finite());
+                    some += 1;
+                } else {
+                    none += 1;
+                }
+            }
+        }
+        assert!(some > 1000 && none > 500, "{some} samples, {none} rejected");
+    }
+
+    /// A point reported clearly behind the light gets no sample from any strategy; points
+    /// in front or in the plane are never reported.
+    #[test]
+    fn surely_behind_only_where_every_sample_is_rejected() {
+        let (geo, lights) = cornell(ShapeSampling::SolidAngle);
+        let (r, radiance) = lights.only_rect.unwrap();
+        let Light::Area { shape, .. } = lights.lights()[0] else {
+            panic!("the Cornell box's light is an area light");
+        };
+        let mut behind = 0;
+        for from in box_points() {
+            let in_front_or_plane = from.y <= 0.990001;
+            if !r.surely_behind(from) {
+                continue;
+            }
+            assert!(!in_front_or_plane, "{from}");
+            behind += 1;
+            for k in 0..25 {
+                let u = Vec2::new((k % 5) as f32 / 5.0 + 0.07, (k / 5) as f32 / 5.0 + 0.11);
+                assert!(r.sample(from, u).is_none(), "{from} {u}");
+                let slow = sample_shape_light(&geo, shape, radiance, from, (0.5, u), 1.0);
+                assert!(slow.is_none(), "{from} {u}");
+            }
+        }
+        assert!(behind >= 72, "{behind} points behind");
     }
 
     /// `u_pick` is read only with several lights or a light on a triangle mesh.

@@ -52,16 +52,31 @@ fn pass_size(spp: u32) -> u32 {
     spp.div_ceil(16).clamp(1, 64)
 }
 
-/// Renders one tile for sample indices `s0..s1`.
+/// Renders one tile for sample indices `s0..s1` with the sampler's concrete type, so that
+/// its calls inline into the path loop (no per-call dispatch on [`AnySampler`]).
 fn render_tile<S: Scene>(
     scene: &S,
     p: &LoopParams<'_>,
+    tile: (u32, u32, u32, u32),
+    samples: (u32, u32),
+) -> TileResult {
+    match p.sampler {
+        AnySampler::Independent(s) => render_tile_with(scene, p, s.clone(), tile, samples),
+        AnySampler::Stratified(s) => render_tile_with(scene, p, s.clone(), tile, samples),
+        AnySampler::Sobol(s) => render_tile_with(scene, p, s.clone(), tile, samples),
+    }
+}
+
+/// [`render_tile`] for one sampler type.
+fn render_tile_with<S: Scene, R: Sampler>(
+    scene: &S,
+    p: &LoopParams<'_>,
+    mut rng: R,
     (x0, y0, x1, y1): (u32, u32, u32, u32),
     (s0, s1): (u32, u32),
 ) -> TileResult {
     let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
     let mut rays = 0u64;
-    let mut rng = p.sampler.clone();
     for y in y0..y1 {
         for x in x0..x1 {
             let index = (y * p.width + x) as usize;

@@ -40,7 +40,7 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
         self.geo.intersect(&Ray { origin, dir }, t_max).map(surface)
     }
 
-    #[inline]
+    #[inline(always)]
     fn trace(&self, from: &SurfacePoint, dir: Vec3) -> Option<SurfacePoint> {
         let origin = offset_origin(from.p, from.ng, dir);
         self.geo
@@ -48,7 +48,7 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
             .map(surface)
     }
 
-    #[inline]
+    #[inline(always)]
     fn occluded(&self, from: &SurfacePoint, dir: Vec3, dist: f32) -> bool {
         let origin = offset_origin(from.p, from.ng, dir);
         let t_max = if dist.is_finite() {

@@ -5,7 +5,7 @@ use glam::Vec2;
 
 mod burley;
 
-use super::hash::{combine, pixel_key};
+use super::hash::{combine, mix64, pixel_key_of_mixed};
 use super::{check_spp, Sampler};
 use crate::sampling::SamplingError;
 
@@ -57,6 +57,8 @@ const BLOCK_BITS: u32 = 16;
 pub struct SobolSampler {
     spp: u32,
     seed: u64,
+    /// `mix64(seed)`, the part of every pixel key that depends on the seed alone.
+    mixed_seed: u64,
     /// The sample index modulo 2¹⁶ with its 32 bits reversed (what the scramble works on).
     index_rev: u32,
     /// The scramble seed of the next dimension.
@@ -70,6 +72,7 @@ impl SobolSampler {
         Ok(Self {
             spp: check_spp(spp)?,
             seed,
+            mixed_seed: mix64(seed),
             index_rev: 0,
             next_seed: 0,
         })
@@ -93,11 +96,11 @@ impl SobolSampler {
 /// ratio, odd, so the first 2³² dimensions of a pixel sample get distinct seeds.
 const DIMENSION_STEP: u32 = 0x9e37_79b9;
 
-/// The scramble seed of dimension 0 of (seed, pixel, index block): a 64-bit hash folded to 32
-/// bits.
+/// The scramble seed of dimension 0 of (seed, pixel, index block), from `mix64(seed)`: a
+/// 64-bit hash folded to 32 bits.
 #[inline]
-fn first_seed(seed: u64, pixel: [u32; 2], block: u32) -> u32 {
-    let k = pixel_key(seed, pixel);
+fn first_seed(mixed_seed: u64, pixel: [u32; 2], block: u32) -> u32 {
+    let k = pixel_key_of_mixed(mixed_seed, pixel);
     let k = if block == 0 {
         k
     } else {
@@ -110,7 +113,7 @@ impl Sampler for SobolSampler {
     #[inline]
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
         self.index_rev = (sample_index & ((1 << BLOCK_BITS) - 1)).reverse_bits();
-        self.next_seed = first_seed(self.seed, pixel, sample_index >> BLOCK_BITS);
+        self.next_seed = first_seed(self.mixed_seed, pixel, sample_index >> BLOCK_BITS);
     }
 
     #[inline]
@@ -169,7 +172,7 @@ mod tests {
             ([5, 5], 70_000),
         ] {
             s.start_pixel_sample(pixel, i);
-            let (i, mut seed) = (i & 0xffff, first_seed(9, pixel, i >> 16));
+            let (i, mut seed) = (i & 0xffff, first_seed(mix64(9), pixel, i >> 16));
             for d in 0..40u32 {
                 if d % 3 == 2 {
                     assert_eq!(s.next_1d(), sobol_burley::sample(i, 0, seed), "dim {d}");
