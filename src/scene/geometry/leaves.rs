@@ -195,3 +195,110 @@ impl Geometry {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{AccelKind, Geometry, Hit, Ray};
+    use crate::scene::description::{ShapeDesc, ShapeKind};
+    use glam::Vec3;
+    use rand_core::{RngCore, SeedableRng};
+
+    fn uniform(rng: &mut rand_pcg::Pcg32) -> f32 {
+        (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0
+    }
+
+    fn random_ray(rng: &mut rand_pcg::Pcg32, spread: f32) -> Ray {
+        let mut v = || Vec3::new(uniform(rng), uniform(rng), uniform(rng));
+        Ray {
+            origin: v() * spread,
+            dir: v().normalize_or(Vec3::Z),
+        }
+    }
+
+    /// On the Cornell box every wall and box face becomes a quad, and hits through the
+    /// quads land on the same triangle at the same point (barycentrics mapped back) as the
+    /// brute-force triangle tests find, away from the diagonals and borders.
+    #[test]
+    fn cornell_box_quads_map_back_to_the_same_triangles() {
+        let shapes = crate::scene::cornell_box::cornell_box().shapes;
+        let bvh = Geometry::new(&shapes, None, AccelKind::Bvh).unwrap();
+        let brute = Geometry::new(&shapes, None, AccelKind::BruteForce).unwrap();
+        let quads: usize = bvh.packed.leaves.iter().map(|l| usize::from(l.quads)).sum();
+        assert_eq!((quads, bvh.packed.tris.len()), (18, 0));
+        assert_eq!(bvh.primitive_count(), brute.primitive_count());
+        let mut rng = rand_pcg::Pcg32::seed_from_u64(3);
+        let (mut same, mut n) = (0, 0);
+        for _ in 0..20_000 {
+            let ray = random_ray(&mut rng, 0.95);
+            let w = |h: &Hit| {
+                let w = [1.0 - h.uv.x - h.uv.y, h.uv.x, h.uv.y];
+                w.into_iter().fold(f32::INFINITY, f32::min)
+            };
+            let (a, b) = match (
+                bvh.intersect(&ray, f32::INFINITY),
+                brute.intersect(&ray, f32::INFINITY),
+            ) {
+                (Some(a), Some(b)) => (a, b),
+                (None, None) => continue, // out through the open front
+                // In the slack band of a quad's border (the ray then leaves by the front).
+                (Some(a), None) if w(&a) < 1e-4 => continue,
+                (a, b) => panic!("{a:?} vs {b:?} for {ray:?}"),
+            };
+            assert!(a.t.is_finite() && a.p.is_finite() && a.uv.is_finite());
+            n += 1;
+            assert!(w(&a) >= 0.0, "barycentrics outside the triangle: {a:?}");
+            let tie = a.shape != b.shape && (a.t - b.t).abs() <= 1e-5 * b.t;
+            if w(&b) < 1e-4 || tie || (w(&a) < 1e-4 && a.t < b.t) {
+                continue; // near an edge or a diagonal, or coplanar faces (box on the floor)
+            }
+            assert_eq!((a.shape, a.prim), (b.shape, b.prim), "{ray:?}");
+            assert!(a.p.distance(b.p) < 1e-5, "{a:?} vs {b:?}");
+            assert!((a.uv - b.uv).abs().max_element() < 1e-4, "{a:?} vs {b:?}");
+            assert_eq!((a.ng, a.ns), (b.ng, b.ns));
+            same += 1;
+        }
+        assert!(same > n * 9 / 10, "{same} of {n}");
+    }
+
+    /// Meshes without parallelograms keep triangle packets, and their hits stay bit for
+    /// bit those of the one-triangle test.
+    #[test]
+    fn scenes_without_quads_are_unchanged() {
+        let mut rng = rand_pcg::Pcg32::seed_from_u64(4);
+        let positions: Vec<Vec3> = (0..300)
+            .map(|_| Vec3::new(uniform(&mut rng), uniform(&mut rng), uniform(&mut rng)))
+            .collect();
+        let indices = (0..100).map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect();
+        let soup = ShapeDesc::new(ShapeKind::Mesh {
+            positions,
+            normals: vec![],
+            indices,
+        });
+        let ball = ShapeDesc::new(ShapeKind::Sphere {
+            center: Vec3::new(0.2, 0.1, -0.3),
+            radius: 0.3,
+        });
+        let shapes = [soup, ball];
+        let bvh = Geometry::new(&shapes, None, AccelKind::Bvh).unwrap();
+        let brute = Geometry::new(&shapes, None, AccelKind::BruteForce).unwrap();
+        assert!(bvh.packed.quads.is_empty() && !bvh.packed.tris.is_empty());
+        let mut hits = 0;
+        for _ in 0..5000 {
+            let ray = random_ray(&mut rng, 2.0);
+            let (a, b) = (
+                bvh.intersect(&ray, f32::INFINITY),
+                brute.intersect(&ray, f32::INFINITY),
+            );
+            if let (Some(a), Some(b)) = (a, b) {
+                assert!(a.t.is_finite());
+                if a.t == b.t && (a.shape, a.prim) != (b.shape, b.prim) {
+                    continue; // a tie between two primitives
+                }
+            }
+            assert_eq!(a, b, "{ray:?}");
+            assert_eq!(bvh.occluded(&ray, 1.0), brute.occluded(&ray, 1.0));
+            hits += usize::from(a.is_some());
+        }
+        assert!(hits > 500, "{hits}");
+    }
+}
