@@ -147,22 +147,8 @@ impl Geometry {
                     });
                 }
             }
-            if let (true, Some(tri)) = (leaf.tris > 0, &tri) {
-                if let Some(h) = tri.closest(&p.tris[leaf.tri as usize], *bound) {
-                    *bound = h.t;
-                    found = Some(Found::Prim(HitRecord {
-                        index: leaf.first + 2 * u32::from(leaf.quads) + h.lane,
-                        b1: h.b1,
-                        b2: h.b2,
-                    }));
-                }
-            }
-            let rest = leaf.first + 2 * u32::from(leaf.quads) + u32::from(leaf.tris);
-            for i in rest..leaf.end {
-                if let Some((t, b1, b2)) = self.hit_other(ray, i, *bound) {
-                    *bound = t;
-                    found = Some(Found::Prim(HitRecord { index: i, b1, b2 }));
-                }
+            if leaf.tris > 0 || leaf.first + 2 * u32::from(leaf.quads) < leaf.end {
+                self.closest_rest(leaf, ray, tri.as_ref(), bound, &mut found);
             }
         });
         let rec = match found? {
@@ -180,6 +166,46 @@ impl Geometry {
         Some((t, rec))
     }
 
+    /// The nearest hit among a leaf's triangles, spheres and disks (out of line, so that
+    /// leaves of quads alone stay cheap).
+    #[inline(never)]
+    fn closest_rest(
+        &self,
+        leaf: &Leaf,
+        ray: &Ray,
+        tri: Option<&TriRay4>,
+        bound: &mut f32,
+        found: &mut Option<Found>,
+    ) {
+        let first = leaf.first + 2 * u32::from(leaf.quads);
+        if let (true, Some(tri)) = (leaf.tris > 0, tri) {
+            if let Some(h) = tri.closest(&self.packed.tris[leaf.tri as usize], *bound) {
+                *bound = h.t;
+                *found = Some(Found::Prim(HitRecord {
+                    index: first + h.lane,
+                    b1: h.b1,
+                    b2: h.b2,
+                }));
+            }
+        }
+        for i in first + u32::from(leaf.tris)..leaf.end {
+            if let Some((t, b1, b2)) = self.hit_other(ray, i, *bound) {
+                *bound = t;
+                *found = Some(Found::Prim(HitRecord { index: i, b1, b2 }));
+            }
+        }
+    }
+
+    /// True when a leaf's triangles, spheres or disks are hit with `0 < t < t_max`.
+    #[inline(never)]
+    fn any_rest(&self, leaf: &Leaf, ray: &Ray, tri: Option<&TriRay4>, t_max: f32) -> bool {
+        let first = leaf.first + 2 * u32::from(leaf.quads);
+        let tris = &self.packed.tris;
+        (leaf.tris > 0 && tri.is_some_and(|r| r.any(&tris[leaf.tri as usize], t_max)))
+            || (first + u32::from(leaf.tris)..leaf.end)
+                .any(|i| self.hit_other(ray, i, t_max).is_some())
+    }
+
     /// True when anything is hit with `0 < t < t_max`, through the BVH's packed leaves.
     #[inline(always)]
     pub(super) fn occluded_packed(&self, bvh: &Bvh4, ray: &Ray, t_max: f32) -> bool {
@@ -188,10 +214,9 @@ impl Geometry {
         let tri = (!p.tris.is_empty()).then(|| TriRay4::new(ray.origin, ray.dir));
         bvh.any_leaf(ray.origin, ray.dir, t_max, |k, bound| {
             let leaf = &p.leaves[k as usize];
-            let rest = leaf.first + 2 * u32::from(leaf.quads) + u32::from(leaf.tris);
+            let more = leaf.tris > 0 || leaf.first + 2 * u32::from(leaf.quads) < leaf.end;
             (leaf.quads > 0 && quad.any(&p.quads[leaf.quad as usize], bound))
-                || (leaf.tris > 0 && tri.is_some_and(|r| r.any(&p.tris[leaf.tri as usize], bound)))
-                || (rest..leaf.end).any(|i| self.hit_other(ray, i, bound).is_some())
+                || (more && self.any_rest(leaf, ray, tri.as_ref(), bound))
         })
     }
 }
