@@ -196,14 +196,11 @@ impl Geometry {
         }
     }
 
-    /// True when a leaf's triangles, spheres or disks are hit with `0 < t < t_max`.
+    /// True when a leaf's triangle packet is hit with `0 < t < t_max` (out of line: the
+    /// any-hit visitor stays small).
     #[inline(never)]
-    fn any_rest(&self, leaf: &Leaf, ray: &Ray, tri: Option<&TriRay4>, t_max: f32) -> bool {
-        let first = leaf.first + 2 * u32::from(leaf.quads);
-        let tris = &self.packed.tris;
-        (leaf.tris > 0 && tri.is_some_and(|r| r.any(&tris[leaf.tri as usize], t_max)))
-            || (first + u32::from(leaf.tris)..leaf.end)
-                .any(|i| self.hit_other(ray, i, t_max).is_some())
+    fn any_tris(&self, leaf: &Leaf, tri: Option<&TriRay4>, t_max: f32) -> bool {
+        tri.is_some_and(|r| r.any(&self.packed.tris[leaf.tri as usize], t_max))
     }
 
     /// True when anything is hit with `0 < t < t_max`, through the BVH's packed leaves.
@@ -214,9 +211,10 @@ impl Geometry {
         let tri = (!p.tris.is_empty()).then(|| TriRay4::new(ray.origin, ray.dir));
         bvh.any_leaf(ray.origin, ray.dir, t_max, |k, bound| {
             let leaf = &p.leaves[k as usize];
-            let more = leaf.tris > 0 || leaf.first + 2 * u32::from(leaf.quads) < leaf.end;
+            let rest = leaf.first + 2 * u32::from(leaf.quads) + u32::from(leaf.tris);
             (leaf.quads > 0 && quad.any(&p.quads[leaf.quad as usize], bound))
-                || (more && self.any_rest(leaf, ray, tri.as_ref(), bound))
+                || (leaf.tris > 0 && self.any_tris(leaf, tri.as_ref(), bound))
+                || (rest..leaf.end).any(|i| self.hit_other(ray, i, bound).is_some())
         })
     }
 }
