@@ -9,7 +9,7 @@
 
 use super::build::Prim;
 use super::packet::{TriPacket, TriRay4};
-use super::pair::{Quad, Unit};
+use super::pair::{Quad, Unit, WeightMaps};
 use super::quad::{QuadPacket, QuadRay4};
 use super::{Geometry, HitRecord, Ray};
 use crate::scene::accel::Bvh4;
@@ -33,7 +33,7 @@ pub(super) struct Leaf {
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct QuadSlots {
     slot: [u32; 4],
-    roles: [[[u8; 2]; 2]; 4],
+    maps: [WeightMaps; 4],
 }
 
 /// The packed leaves of a BVH.
@@ -72,7 +72,7 @@ pub(super) fn pack(bvh: &Bvh4, units: &[Unit], prims: &[Prim]) -> (Vec<u32>, Pac
                     quad,
                 } => {
                     q_slots.slot[quads.len()] = slots.len() as u32;
-                    q_slots.roles[quads.len()] = quad.roles;
+                    q_slots.maps[quads.len()] = quad.maps();
                     quads.push(quad);
                     slots.extend([first, second]);
                 }
@@ -155,9 +155,10 @@ impl Geometry {
             Found::Prim(r) => r,
             Found::Quad { packet, lane, u, v } => {
                 let s = &p.quad_slots[packet as usize];
-                let (k, b1, b2) = Quad::barycentrics(s.roles[lane as usize], u, v);
+                let lane = lane as usize & 3;
+                let (k, b1, b2) = Quad::barycentrics(&s.maps[lane], u, v);
                 HitRecord {
-                    index: s.slot[lane as usize] + k,
+                    index: s.slot[lane] + k,
                     b1,
                     b2,
                 }

@@ -2,7 +2,10 @@
 //!
 //! [`Geometry::new`] turns the scene's [`ShapeDesc`]s into primitives: meshes, rectangles and
 //! cubes become triangles (two per rectangle or cube face, as in Mitsuba 3), spheres and
-//! disks stay analytic. An acceleration structure ([`AccelKind`]) sits on top.
+//! disks stay analytic. An acceleration structure ([`AccelKind`]) sits on top. With the BVH,
+//! two triangles of a mesh that form a planar parallelogram (every rectangle and cube face)
+//! are stored and intersected as one quad; hits still report the triangle and its
+//! barycentrics (`docs/geometry.md`, "Quads").
 //!
 //! # Conventions
 //! - [`Ray::dir`] need not be unit length; every `t` is in units of its length. The renderer
@@ -273,6 +276,7 @@ impl Geometry {
     }
 
     /// Fills in the surface data of a hit found by the search.
+    #[inline(always)]
     fn make_hit(&self, ray: &Ray, t: f32, rec: HitRecord) -> Hit {
         let id = self.ids[rec.index as usize];
         let mut hit = Hit {

@@ -25,7 +25,7 @@ pub(crate) struct Quad {
     pub(crate) corner: Vec3,
     pub(crate) e1: Vec3,
     pub(crate) e2: Vec3,
-    /// `roles[k][j]`: which weight of [`Quad::barycentrics`]'s list belongs to vertex
+    /// `roles[k][j]`: which weight of [`Quad::maps`]' list belongs to vertex
     /// `j + 1` of triangle `k` (0 = the corner of that half, 1 = `corner + e1`,
     /// 2 = `corner + e2`).
     pub(crate) roles: [[u8; 2]; 2],
@@ -75,19 +75,27 @@ impl Quad {
         })
     }
 
+    /// The barycentric weights of vertices 1 and 2 of each triangle as affine functions of
+    /// the parameters: `maps()[k][j] = [α, β, γ]`, weight `α + β u + γ v`.
+    pub(crate) fn maps(&self) -> WeightMaps {
+        // Per role: (1 − u − v, u, v) on the first triangle, (u + v − 1, 1 − v, 1 − u) on
+        // the second.
+        const ROLE: [[[f32; 3]; 3]; 2] = [
+            [[1.0, -1.0, -1.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            [[-1.0, 1.0, 1.0], [1.0, 0.0, -1.0], [1.0, -1.0, 0.0]],
+        ];
+        [0, 1].map(|k| self.roles[k].map(|r| ROLE[k][usize::from(r)]))
+    }
+
     /// Which triangle (0 or 1) holds parameters `(u, v)` and the barycentric weights of its
-    /// vertices 1 and 2 there. `u`, `v` are clamped into `[0, 1]` first, so the weights lie
-    /// in the triangle.
+    /// vertices 1 and 2 there ([`Quad::maps`]). `u`, `v` are clamped into `[0, 1]` first,
+    /// so the weights lie in the triangle.
     #[inline]
-    pub(crate) fn barycentrics(roles: [[u8; 2]; 2], u: f32, v: f32) -> (u32, f32, f32) {
+    pub(crate) fn barycentrics(maps: &WeightMaps, u: f32, v: f32) -> (u32, f32, f32) {
         let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
-        let (k, w) = if u + v <= 1.0 {
-            (0, [1.0 - u - v, u, v])
-        } else {
-            (1, [u + v - 1.0, 1.0 - v, 1.0 - u])
-        };
-        let r = roles[k];
-        (k as u32, w[r[0] as usize], w[r[1] as usize])
+        let k = usize::from(u + v > 1.0);
+        let w = |c: [f32; 3]| (c[0] + c[1] * u + c[2] * v).max(0.0);
+        (k as u32, w(maps[k][0]), w(maps[k][1]))
     }
 
     /// The four corners.
@@ -97,6 +105,9 @@ impl Quad {
         [c, c + self.e1, c + self.e2, c + self.e1 + self.e2]
     }
 }
+
+/// Weights of a quad's triangles' vertices 1 and 2 as affine maps of `(u, v)`.
+pub(crate) type WeightMaps = [[[f32; 3]; 2]; 2];
 
 /// A primitive as the BVH sees it: one input primitive, or two triangles as a quad.
 #[derive(Debug, Clone, Copy)]
@@ -209,13 +220,13 @@ mod tests {
             let q = Quad::from_pair(t1, t2).unwrap();
             assert_eq!((q.corner, q.e1 + q.e2), (B, D - B), "rot {rot}");
             // The fourth corner has weight 1 on the second triangle's vertex D.
-            let (k, b1, b2) = Quad::barycentrics(q.roles, 1.0, 1.0);
+            let (k, b1, b2) = Quad::barycentrics(&q.maps(), 1.0, 1.0);
             let w = [1.0 - b1 - b2, b1, b2];
             assert_eq!((k, w[t2.iter().position(|&p| p == D).unwrap()]), (1, 1.0));
             // A point maps back to the same position through either triangle.
             for (u, v) in [(0.3, 0.2), (0.7, 0.6), (0.5, 0.5)] {
                 let p = q.corner + u * q.e1 + v * q.e2;
-                let (k, b1, b2) = Quad::barycentrics(q.roles, u, v);
+                let (k, b1, b2) = Quad::barycentrics(&q.maps(), u, v);
                 let t = if k == 0 { t1 } else { t2 };
                 let back = (1.0 - b1 - b2) * t[0] + b1 * t[1] + b2 * t[2];
                 assert!(back.is_finite() && back.distance(p) < 1e-6, "{u} {v} {k}");
@@ -250,7 +261,7 @@ mod tests {
             (0.5, -1e-5),
             (1.0 + 1e-5, 1.0 + 1e-5),
         ] {
-            let (_, b1, b2) = Quad::barycentrics(q.roles, u, v);
+            let (_, b1, b2) = Quad::barycentrics(&q.maps(), u, v);
             let b0 = 1.0 - b1 - b2;
             assert!(b1.is_finite() && b2.is_finite());
             assert!(
