@@ -6,13 +6,15 @@
 //! precomputed dual vectors, `u = a*·r`, `v = b*·r` (`a*·e1 = b*·e2 = 1`,
 //! `a*·e2 = b*·e1 = 0`), and accepts `u, v ∈ [−SLACK, 1 + SLACK]`. Working relative to the
 //! ray origin keeps `t` accurate for rays starting close to the plane, and exact up to the
-//! final roundings for axis-aligned planes (as the triangle test is). Unlike the triangle test, which is watertight
-//! by construction, this one is not exact at edges: it is leak-free *by slack*. Rounding
-//! moves `u`, `v` of a hit exactly on an edge by far less than [`SLACK`] for rays whose
-//! length to the hit is up to about a hundred times the quad's edges (tested on a cube's
-//! shared edges and corners), so a ray through an edge shared with another quad or
-//! triangle is caught by one side or both; the price is that every quad reaches
-//! `SLACK` times its edge lengths past its true border.
+//! final roundings for axis-aligned planes (as the triangle test is).
+//!
+//! Unlike the triangle test, which is watertight by construction, this one is not exact at
+//! edges: it is leak-free *by slack*. Rounding moves `u`, `v` of a hit exactly on an edge;
+//! for rays whose length to the hit is up to a hundred times the quad's edges, a quarter of
+//! [`SLACK`] already covers that (tested on a cube's shared edges and corners; a sixteenth of
+//! it leaks there), so a ray through an edge shared with another quad or a triangle is
+//! caught by one side or both. The price: every quad reaches `SLACK` times its edge lengths
+//! past its true border.
 
 use super::pair::Quad;
 use glam::{DVec3, Vec3, Vec4};
