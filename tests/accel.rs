@@ -4,7 +4,12 @@
 //!
 //! For every ray: the same nearest `t` (relative 1e-4), the same shape and primitive (unless
 //! two primitives tie at the same `t`, e.g. on a shared edge), and the same occlusion answer
-//! for a random `t_max`.
+//! for a random `t_max`. The BVH tests triangle pairs forming parallelograms as one quad,
+//! which reaches a relative 2⁻¹⁴ of its edges past its border (so that rays cannot leak
+//! between faces): there, and only there (a barycentric weight of the hit within 10⁻⁴ of
+//! 0), the BVH may hit where brute force misses or finds something farther. And for rays
+//! starting exactly on a surface, whether that surface is hit again at `t ≈ 0` (below
+//! 10⁻⁵) depends on rounding, which differs between the quad and the triangle test.
 //!
 //! Throughput and build time are measured in `benches/accel.rs` (`cargo bench --bench accel`).
 
@@ -33,6 +38,36 @@ struct Stats {
     rays: usize,
     hits: usize,
     ties: usize,
+    /// BVH hits in a quad's slack band (see [`slack_hit`]).
+    slack: usize,
+}
+
+/// A triangle hit within 10⁻⁴ (in barycentric weight) of the triangle's border: where a
+/// BVH quad's slack may reach.
+fn on_border(shapes: &[ShapeDesc], h: &Hit) -> bool {
+    let triangles = !matches!(
+        shapes[h.shape as usize].kind,
+        ShapeKind::Sphere { .. } | ShapeKind::Disk
+    );
+    let w = [1.0 - h.uv.x - h.uv.y, h.uv.x, h.uv.y];
+    triangles && w.iter().any(|&w| w.is_finite() && w < 1e-4)
+}
+
+/// `a` (the BVH's answer) may hit in a quad's slack band where brute force (`b`) misses or
+/// hits something farther; either may hit the surface the ray starts on where the other
+/// does not.
+fn slack_hit(shapes: &[ShapeDesc], a: &Option<Hit>, b: &Option<Hit>) -> bool {
+    fn first<'h>(x: &'h Option<Hit>, y: &Option<Hit>) -> Option<&'h Hit> {
+        match (x, y) {
+            (Some(x), None) => Some(x),
+            (Some(x), Some(y)) if x.t < y.t => Some(x),
+            _ => None,
+        }
+    }
+    let self_hit = |x: Option<&Hit>| x.is_some_and(|h| h.t < 1e-5);
+    first(a, b).is_some_and(|h| on_border(shapes, h))
+        || self_hit(first(a, b))
+        || self_hit(first(b, a))
 }
 
 fn same_hit(a: &Option<Hit>, b: &Option<Hit>, what: &str, ray: &Ray, stats: &mut Stats) {
@@ -73,16 +108,16 @@ fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
         rays: 0,
         hits: 0,
         ties: 0,
+        slack: 0,
     };
     for ray in rays {
         let want = brute.intersect(ray, f32::INFINITY);
-        same_hit(
-            &bvh.intersect(ray, f32::INFINITY),
-            &want,
-            "bvh",
-            ray,
-            &mut stats,
-        );
+        let got = bvh.intersect(ray, f32::INFINITY);
+        if slack_hit(shapes, &got, &want) {
+            stats.slack += 1;
+        } else {
+            same_hit(&got, &want, "bvh", ray, &mut stats);
+        }
         same_hit(
             &grid.intersect(ray, f32::INFINITY),
             &want,
@@ -92,9 +127,16 @@ fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
         );
         let t_max = r.random_range(0.0f32..4.0);
         let occ = brute.occluded(ray, t_max);
-        assert_eq!(
-            bvh.occluded(ray, t_max),
-            occ,
+        let bvh_occ = bvh.occluded(ray, t_max);
+        let slack = || {
+            slack_hit(
+                shapes,
+                &bvh.intersect(ray, t_max),
+                &brute.intersect(ray, t_max),
+            )
+        };
+        assert!(
+            bvh_occ == occ || slack(),
             "bvh occlusion {ray:?} t_max {t_max}"
         );
         assert_eq!(
@@ -111,6 +153,14 @@ fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
         stats.rays += 1;
     }
     stats.hits /= 2;
+    // Rare on random rays; rays running inside the Cornell box's face planes meet the other
+    // faces exactly at their borders, so up to a tenth there.
+    assert!(
+        stats.slack <= stats.rays / 10,
+        "{} slack hits of {}",
+        stats.slack,
+        stats.rays
+    );
     stats
 }
 

@@ -7,7 +7,8 @@
 //! Leaves are numbered; a child code is a node index, `LEAF | leaf index` or [`EMPTY`], and
 //! [`Bvh4::leaf`] gives a leaf's range of stored primitives. Queries either call back per
 //! primitive ([`Bvh4::closest`], [`Bvh4::any`]) or per leaf ([`Bvh4::closest_leaf`],
-//! [`Bvh4::any_leaf`], which `Geometry` uses to test a leaf's triangles as one SIMD packet).
+//! [`Bvh4::any_leaf`], which `Geometry` uses to test a leaf's quads and triangles as SIMD
+//! packets).
 //! Traversal is in `traverse.rs`.
 
 use super::aabb::Aabb;

@@ -19,7 +19,9 @@ use std::cell::RefCell;
 /// `1 + 2γ₃` (see [`RayBoxTest`]).
 const SLAB_GROW: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
-/// Array stack sizes: small trees (up to 5 levels of 4-wide nodes) and the rest.
+/// Array stack sizes: tiny trees (up to 2 levels of 4-wide nodes), small ones (up to 5)
+/// and the rest.
+const TINY: usize = 8;
 const SMALL: usize = 16;
 const LARGE: usize = 48;
 
@@ -47,7 +49,10 @@ impl Bvh4 {
             inv: [0, 1, 2].map(|a| Vec4::splat(rb.inv_dir[a])),
         };
         let levels = 3 * self.depth;
-        if levels <= SMALL {
+        if levels <= TINY {
+            let mut stack = ArrayStack::<TINY>::new();
+            self.traverse::<ORDERED>(&mut stack, &ray, t_max, visit)
+        } else if levels <= SMALL {
             let mut stack = ArrayStack::<SMALL>::new();
             self.traverse::<ORDERED>(&mut stack, &ray, t_max, visit)
         } else if levels <= LARGE {

@@ -2,7 +2,10 @@
 //!
 //! [`Geometry::new`] turns the scene's [`ShapeDesc`]s into primitives: meshes, rectangles and
 //! cubes become triangles (two per rectangle or cube face, as in Mitsuba 3), spheres and
-//! disks stay analytic. An acceleration structure ([`AccelKind`]) sits on top.
+//! disks stay analytic. An acceleration structure ([`AccelKind`]) sits on top. With the BVH,
+//! two triangles of a mesh that form a planar parallelogram (every rectangle and cube face)
+//! are stored and intersected as one quad; hits still report the triangle and its
+//! barycentrics (`docs/geometry.md`, "Quads").
 //!
 //! # Conventions
 //! - [`Ray::dir`] need not be unit length; every `t` is in units of its length. The renderer
@@ -48,6 +51,8 @@ mod intersect;
 mod leaves;
 mod offset;
 mod packet;
+mod pair;
+mod quad;
 mod sample;
 
 pub use crate::scene::accel::AccelKind;
@@ -60,6 +65,7 @@ use crate::scene::description::ShapeDesc;
 use build::{Prim, PrimId, ShapeData};
 use glam::{Vec2, Vec3, Vec3A};
 use intersect::{hit_disk, hit_sphere, TriRay};
+use pair::Unit;
 use std::f32::consts::PI;
 use std::path::Path;
 
@@ -117,8 +123,8 @@ pub struct Geometry {
     prims: Vec<Prim>,
     ids: Vec<PrimId>,
     accel: Accel,
-    /// The BVH's leaves with packed triangles (empty for the other structures).
-    leaves: Vec<leaves::Leaf>,
+    /// The BVH's leaves with packed quads and triangles (empty for the other structures).
+    packed: leaves::Packed,
     /// Per stored primitive: a triangle's unit front normal ([`Hit::ng`]), else zero.
     face_ng: Vec<Vec3>,
     shapes: Vec<ShapeData>,
@@ -147,18 +153,22 @@ impl Geometry {
         accel: AccelKind,
     ) -> Result<Self, GeometryError> {
         let built = build::build(shapes, base_dir)?;
-        let bounds: Vec<Aabb> = built
-            .prims
+        // With the BVH, triangle pairs forming parallelograms become one quad unit.
+        let units = if accel == AccelKind::Bvh {
+            pair::units(&built)
+        } else {
+            (0..built.prims.len() as u32).map(Unit::One).collect()
+        };
+        let bounds: Vec<Aabb> = units
             .iter()
-            .map(|p| prim_bounds(p, &built.shapes))
+            .map(|u| unit_bounds(u, &built.prims, &built.shapes))
             .collect();
         let scene = bounds.iter().fold(Aabb::EMPTY, |b, p| b.union(*p));
         let accel = Accel::build(accel, &bounds);
-        let mut order = accel.order().to_vec();
-        // With the BVH, each leaf stores its triangles first (queries go leaf by leaf).
-        let leaves = match accel.bvh4() {
-            Some(bvh) => leaves::pack(bvh, &built.prims, &mut order),
-            None => Vec::new(),
+        // Slots: the input primitives in stored order (units are single for other kinds).
+        let (order, packed) = match accel.bvh4() {
+            Some(bvh) => leaves::pack(bvh, &units, &built.prims),
+            None => (accel.order().to_vec(), leaves::Packed::default()),
         };
         let ids: Vec<PrimId> = order.iter().map(|&i| built.ids[i as usize]).collect();
         Ok(Self {
@@ -169,7 +179,7 @@ impl Geometry {
                 .collect(),
             ids,
             accel,
-            leaves,
+            packed,
             shapes: built.shapes,
             bounds: scene,
             shape_sampling: ShapeSampling::default(),
@@ -266,6 +276,7 @@ impl Geometry {
     }
 
     /// Fills in the surface data of a hit found by the search.
+    #[inline(always)]
     fn make_hit(&self, ray: &Ray, t: f32, rec: HitRecord) -> Hit {
         let id = self.ids[rec.index as usize];
         let mut hit = Hit {
@@ -330,6 +341,15 @@ fn face_normal(shapes: &[ShapeData], id: &PrimId) -> Vec3 {
             sign * (b - a).cross(c - a).normalize_or(Vec3::Z)
         }
         _ => Vec3::ZERO,
+    }
+}
+
+/// The bounds of a BVH unit: one primitive, or both triangles of a quad.
+fn unit_bounds(u: &Unit, prims: &[Prim], shapes: &[ShapeData]) -> Aabb {
+    match *u {
+        Unit::One(i) => prim_bounds(&prims[i as usize], shapes),
+        Unit::Pair { first, second, .. } => prim_bounds(&prims[first as usize], shapes)
+            .union(prim_bounds(&prims[second as usize], shapes)),
     }
 }
 

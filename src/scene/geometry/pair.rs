@@ -1,0 +1,273 @@
+//! Finding pairs of mesh triangles that form a planar parallelogram, so that the BVH can
+//! store them as one quad primitive ([`super::quad::QuadPacket`]).
+//!
+//! Two triangles of one mesh pair up when they share an edge (the same two vertex
+//! positions, bit for bit) and the fourth vertex lies within 10⁻⁶ of the shorter
+//! parallelogram edge of `a + c − b` (`b` the first triangle's vertex off the shared edge
+//! `a c`). That also makes them coplanar. Pairing is greedy in triangle order, so it is
+//! deterministic; triangles left over stay triangles.
+
+use super::build::{Built, Prim, ShapeData};
+use glam::Vec3;
+use std::collections::HashMap;
+
+/// Relative tolerance on the fourth vertex, in units of the shorter parallelogram edge.
+const TOLERANCE: f64 = 1e-6;
+/// Smallest accepted `|e1 × e2| / (|e1| |e2|)` (sine of the corner angle): slivers stay
+/// triangles.
+const MIN_SINE: f64 = 1e-4;
+
+/// A parallelogram `corner + u e1 + v e2`, `(u, v) ∈ [0, 1]²`, made of two triangles: the
+/// first covers `u + v ≤ 1` (its vertices are `corner`, `corner + e1`, `corner + e2`), the
+/// second the rest (its vertices are `corner + e1`, `corner + e2` and the fourth corner).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Quad {
+    pub(crate) corner: Vec3,
+    pub(crate) e1: Vec3,
+    pub(crate) e2: Vec3,
+    /// `roles[k][j]`: which weight of [`Quad::maps`]' list belongs to vertex
+    /// `j + 1` of triangle `k` (0 = the corner of that half, 1 = `corner + e1`,
+    /// 2 = `corner + e2`).
+    pub(crate) roles: [[u8; 2]; 2],
+}
+
+impl Quad {
+    /// The parallelogram formed by triangles `t1` and `t2` (vertices in their stored order),
+    /// if they form one (see the module docs).
+    pub(crate) fn from_pair(t1: [Vec3; 3], t2: [Vec3; 3]) -> Option<Self> {
+        let shared = |p: Vec3| t2.contains(&p);
+        let off1: Vec<usize> = (0..3).filter(|&i| !shared(t1[i])).collect();
+        let off2: Vec<usize> = (0..3).filter(|&i| !t1.contains(&t2[i])).collect();
+        let (&[k], &[l]) = (off1.as_slice(), off2.as_slice()) else {
+            return None;
+        };
+        let (b, d) = (t1[k], t2[l]);
+        let (a, c) = (t1[(k + 1) % 3], t1[(k + 2) % 3]);
+        if a == c {
+            return None;
+        }
+        let [a64, b64, c64, d64] = [a, b, c, d].map(|p| p.as_dvec3());
+        let (e1, e2) = (a64 - b64, c64 - b64);
+        let (l1, l2) = (e1.length(), e2.length());
+        let gap = (d64 - (a64 + c64 - b64)).length();
+        let sine = e1.cross(e2).length() / (l1 * l2);
+        if !(gap <= TOLERANCE * l1.min(l2) && sine >= MIN_SINE) {
+            return None;
+        }
+        let role = |p: Vec3, corner: Vec3| -> u8 {
+            if p == a {
+                1
+            } else if p == c {
+                2
+            } else {
+                debug_assert_eq!(p, corner);
+                0
+            }
+        };
+        Some(Self {
+            corner: b,
+            e1: a - b,
+            e2: c - b,
+            roles: [
+                [role(t1[1], b), role(t1[2], b)],
+                [role(t2[1], d), role(t2[2], d)],
+            ],
+        })
+    }
+
+    /// The barycentric weights of vertices 1 and 2 of each triangle as affine functions of
+    /// the parameters: `maps()[k][j] = [α, β, γ]`, weight `α + β u + γ v`.
+    pub(crate) fn maps(&self) -> WeightMaps {
+        // Per role: (1 − u − v, u, v) on the first triangle, (u + v − 1, 1 − v, 1 − u) on
+        // the second.
+        const ROLE: [[[f32; 3]; 3]; 2] = [
+            [[1.0, -1.0, -1.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            [[-1.0, 1.0, 1.0], [1.0, 0.0, -1.0], [1.0, -1.0, 0.0]],
+        ];
+        [0, 1].map(|k| self.roles[k].map(|r| ROLE[k][usize::from(r)]))
+    }
+
+    /// Which triangle (0 or 1) holds parameters `(u, v)` and the barycentric weights of its
+    /// vertices 1 and 2 there ([`Quad::maps`]). `u`, `v` are clamped into `[0, 1]` first,
+    /// so the weights lie in the triangle.
+    #[inline]
+    pub(crate) fn barycentrics(maps: &WeightMaps, u: f32, v: f32) -> (u32, f32, f32) {
+        let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
+        let k = usize::from(u + v > 1.0);
+        let w = |c: [f32; 3]| (c[0] + c[1] * u + c[2] * v).max(0.0);
+        (k as u32, w(maps[k][0]), w(maps[k][1]))
+    }
+
+    /// The four corners.
+    #[cfg(test)]
+    pub(crate) fn corners(&self) -> [Vec3; 4] {
+        let c = self.corner;
+        [c, c + self.e1, c + self.e2, c + self.e1 + self.e2]
+    }
+}
+
+/// Weights of a quad's triangles' vertices 1 and 2 as affine maps of `(u, v)`.
+pub(crate) type WeightMaps = [[[f32; 3]; 2]; 2];
+
+/// A primitive as the BVH sees it: one input primitive, or two triangles as a quad.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Unit {
+    One(u32),
+    /// Input primitives `first` (the triangle with `u + v ≤ 1`) and `second`.
+    Pair {
+        first: u32,
+        second: u32,
+        quad: Quad,
+    },
+}
+
+/// Pairs up the triangles of every mesh in `built`; every primitive appears in exactly one
+/// unit, in input order of the unit's first primitive.
+pub(crate) fn units(built: &Built) -> Vec<Unit> {
+    let n = built.prims.len();
+    let mut partner: Vec<Option<(u32, Quad)>> = vec![None; n];
+    let mut taken = vec![false; n];
+    let mut start = 0;
+    while start < n {
+        let shape = built.ids[start].shape;
+        let end = (start..n)
+            .find(|&i| built.ids[i].shape != shape)
+            .unwrap_or(n);
+        if matches!(built.shapes[shape as usize], ShapeData::Mesh(_)) {
+            pair_range(&built.prims, start..end, &mut partner, &mut taken);
+        }
+        start = end;
+    }
+    (0..n)
+        .filter_map(|i| match partner[i] {
+            Some((j, quad)) => Some(Unit::Pair {
+                first: i as u32,
+                second: j,
+                quad,
+            }),
+            None if taken[i] => None,
+            None => Some(Unit::One(i as u32)),
+        })
+        .collect()
+}
+
+/// Greedy pairing of the triangles `range` of one mesh through a map from edges (vertex
+/// positions' bits) to the triangles that have them.
+fn pair_range(
+    prims: &[Prim],
+    range: std::ops::Range<usize>,
+    partner: &mut [Option<(u32, Quad)>],
+    taken: &mut [bool],
+) {
+    let tri = |i: usize| match &prims[i] {
+        Prim::Tri(t) => Some(t.vertices()),
+        _ => None,
+    };
+    let key = |p: Vec3| p.to_array().map(f32::to_bits);
+    let edge = |p: Vec3, q: Vec3| {
+        let (a, b) = (key(p), key(q));
+        if a <= b {
+            (a, b)
+        } else {
+            (b, a)
+        }
+    };
+    let mut edges: HashMap<_, Vec<u32>> = HashMap::new();
+    for i in range.clone() {
+        if let Some(t) = tri(i) {
+            for k in 0..3 {
+                edges
+                    .entry(edge(t[k], t[(k + 1) % 3]))
+                    .or_default()
+                    .push(i as u32);
+            }
+        }
+    }
+    for i in range {
+        let Some(t) = tri(i) else { continue };
+        if taken[i] {
+            continue;
+        }
+        let found = (0..3).find_map(|k| {
+            edges[&edge(t[k], t[(k + 1) % 3])]
+                .iter()
+                .map(|&j| j as usize)
+                .filter(|&j| j != i && !taken[j])
+                .find_map(|j| Some((j, Quad::from_pair(t, tri(j)?)?)))
+        });
+        if let Some((j, quad)) = found {
+            taken[i] = true;
+            taken[j] = true;
+            partner[i] = Some((j as u32, quad));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const B: Vec3 = Vec3::new(0.0, 0.0, 0.0);
+    const A: Vec3 = Vec3::new(2.0, 0.0, 0.0);
+    const C: Vec3 = Vec3::new(0.5, 1.0, 0.0);
+    const D: Vec3 = Vec3::new(2.5, 1.0, 0.0);
+
+    #[test]
+    fn parallelogram_pairs_in_any_vertex_order() {
+        let t1 = [B, A, C];
+        for rot in 0..3 {
+            let t2 = [[A, D, C], [D, C, A], [C, A, D]][rot];
+            let q = Quad::from_pair(t1, t2).unwrap();
+            assert_eq!((q.corner, q.e1 + q.e2), (B, D - B), "rot {rot}");
+            // The fourth corner has weight 1 on the second triangle's vertex D.
+            let (k, b1, b2) = Quad::barycentrics(&q.maps(), 1.0, 1.0);
+            let w = [1.0 - b1 - b2, b1, b2];
+            assert_eq!((k, w[t2.iter().position(|&p| p == D).unwrap()]), (1, 1.0));
+            // A point maps back to the same position through either triangle.
+            for (u, v) in [(0.3, 0.2), (0.7, 0.6), (0.5, 0.5)] {
+                let p = q.corner + u * q.e1 + v * q.e2;
+                let (k, b1, b2) = Quad::barycentrics(&q.maps(), u, v);
+                let t = if k == 0 { t1 } else { t2 };
+                let back = (1.0 - b1 - b2) * t[0] + b1 * t[1] + b2 * t[2];
+                assert!(back.is_finite() && back.distance(p) < 1e-6, "{u} {v} {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn rejects_non_parallelograms_non_planar_and_unshared() {
+        let t1 = [B, A, C];
+        // Fourth vertex off by 1e-4 in the plane, or out of it.
+        assert!(Quad::from_pair(t1, [A, D + Vec3::X * 1e-4, C]).is_none());
+        assert!(Quad::from_pair(t1, [A, D + Vec3::Z * 1e-4, C]).is_none());
+        // A trapezoid, a triangle sharing only a vertex, the same triangle twice.
+        assert!(Quad::from_pair(t1, [A, D * 1.5, C]).is_none());
+        assert!(Quad::from_pair(t1, [A, D, Vec3::Y * 7.0]).is_none());
+        assert!(Quad::from_pair(t1, t1).is_none());
+        // A sliver parallelogram (corner angle ~1e-6 rad) stays two triangles.
+        let c = Vec3::new(1.0, 1e-6, 0.0);
+        assert!(Quad::from_pair([B, A, c], [A, A + c, c]).is_none());
+        // Within tolerance: an error of 4.8e-7 (edges 2 and 1.1) is accepted.
+        let near = D + Vec3::X * 5e-7;
+        assert!(near != D && Quad::from_pair(t1, [A, near, C]).is_some());
+    }
+
+    #[test]
+    fn barycentrics_are_clamped_into_the_triangle() {
+        let q = Quad::from_pair([B, A, C], [A, D, C]).unwrap();
+        for (u, v) in [
+            (-1e-5, 0.5),
+            (1.0 + 1e-5, 0.2),
+            (0.5, -1e-5),
+            (1.0 + 1e-5, 1.0 + 1e-5),
+        ] {
+            let (_, b1, b2) = Quad::barycentrics(&q.maps(), u, v);
+            let b0 = 1.0 - b1 - b2;
+            assert!(b1.is_finite() && b2.is_finite());
+            assert!(
+                b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0,
+                "{u} {v}: {b0} {b1} {b2}"
+            );
+        }
+    }
+}
