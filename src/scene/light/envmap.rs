@@ -26,7 +26,11 @@ mod tests;
 /// columns and rows: `width × (height − 1)` cells, shifted by half a texel in `u`). A cell's
 /// weight is the largest luminance among its four corner texels times the mean of `sin θ`
 /// over the cell, so the density is positive wherever the interpolated radiance is. The
-/// density per steradian is `p(ω) = p(u, v) / (2π² sin θ)`.
+/// density per steradian is `p(ω) = p(u, v) / (2π² max(sin θ, ε))`, `ε = f32::EPSILON`
+/// (it differs from `p(u, v) / (2π² sin θ)` only at the poles, which have no solid angle).
+///
+/// Reference: Pharr, Jakob & Humphreys, 2023, *Physically Based Rendering* (4th ed.),
+/// section 12.5, "Infinite Area Lights" (importance-sampled image lights).
 ///
 /// ```
 /// use mcrt::glam::{Mat4, Vec2, Vec3};
@@ -159,10 +163,10 @@ impl EnvMap {
     pub fn sample(&self, u: Vec2) -> Option<(Vec3, Vec3, f32)> {
         let (cell_uv, pdf_uv, _) = self.dist.sample(u);
         let uv = Vec2::new(wrap_unit(cell_uv.x + self.half_texel()), cell_uv.y);
-        let (st, ct) = (PI * uv.y).sin_cos();
         if !is_positive(pdf_uv) {
             return None;
         }
+        let (st, ct) = (PI * uv.y).sin_cos();
         let (sp, cp) = (2.0 * PI * uv.x).sin_cos();
         let local = Vec3::new(st * sp, ct, -st * cp);
         let dir = (self.to_world * local).normalize();
