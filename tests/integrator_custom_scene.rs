@@ -47,6 +47,9 @@ impl Bsdf for Lambert {
             eta: 1.0,
         })
     }
+    fn samples_component(&self) -> bool {
+        false
+    }
 }
 
 /// A unit sphere at the origin under uniform radiance 1.
@@ -115,6 +118,9 @@ impl Scene for Furnace {
             pdf: 1.0 / (4.0 * PI),
             delta: false,
         })
+    }
+    fn samples_light_choice(&self) -> bool {
+        false
     }
     fn light_pdf(&self, _from: &SurfacePoint, _hit: &SurfacePoint) -> f32 {
         0.0
@@ -216,4 +222,34 @@ fn max_depth_one_sees_only_emitters() {
         100,
     );
     assert_eq!(m, 0.0);
+}
+
+/// Counts the values drawn from an inner source.
+struct Counting(Lcg, u64);
+
+impl SampleSource for Counting {
+    fn next_1d(&mut self) -> f32 {
+        self.1 += 1;
+        self.0.next_1d()
+    }
+}
+
+#[test]
+fn direct_integrator_draws_only_what_is_read() {
+    // Neither the light choice (one light) nor the component (one lobe) is read: per hit,
+    // 2 values per light sample and 2 per BSDF sample; nothing for a ray that misses.
+    let scene = Furnace(Lambert(0.6));
+    let di = DirectIntegrator {
+        emitter_samples: 2,
+        bsdf_samples: 3,
+        strategy: Strategy::MisPower,
+    };
+    let o = Vec3::new(0.0, 0.0, 5.0);
+    let mut rng = Counting(Lcg(5), 0);
+    let hit = di.li(&scene, o, -Vec3::Z, f32::INFINITY, &mut rng);
+    assert!(hit.radiance.is_finite());
+    assert_eq!(rng.1, 2 * 2 + 3 * 2);
+    let mut rng = Counting(Lcg(5), 0);
+    di.li(&scene, o, Vec3::Z, f32::INFINITY, &mut rng);
+    assert_eq!(rng.1, 0);
 }

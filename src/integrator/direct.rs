@@ -2,11 +2,14 @@
 //! fixed number of light and BSDF samples (Mitsuba 3's `direct`).
 
 use super::{is_positive, Bsdf, PathResult, SampleSource, Scene, Strategy};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// Direct-lighting estimator with `emitter_samples` light samples and `bsdf_samples` BSDF
 /// samples at the first hit, combined by [`Strategy`] with the sample counts in the
-/// heuristic (Veach 1997, thesis, section 9.2: the multi-sample model).
+/// heuristic (Veach 1997, thesis, section 9.2: the multi-sample model). Like
+/// [`PathTracer`](super::PathTracer), it draws the light choice only when
+/// [`Scene::samples_light_choice`] and the BSDF component only when
+/// [`Bsdf::samples_component`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DirectIntegrator {
     /// Light samples per shading point.
@@ -71,8 +74,15 @@ impl DirectIntegrator {
         } else {
             n_l
         };
+        // Only the values the scene and the BSDF read are drawn (as in `PathTracer`).
+        let draw_pick = scene.samples_light_choice();
+        let draw_component = bsdf.samples_component();
         for _ in 0..n_delta {
-            let u_pick = rng.next_2d();
+            let u_pick = if draw_pick {
+                rng.next_2d()
+            } else {
+                Vec2::splat(0.5)
+            };
             let u = rng.next_2d();
             if !smooth {
                 continue;
@@ -99,7 +109,7 @@ impl DirectIntegrator {
             out.radiance += f * ls.radiance * (w / (ls.pdf * n_delta as f32));
         }
         for _ in 0..n_b {
-            let u1 = rng.next_1d();
+            let u1 = if draw_component { rng.next_1d() } else { 0.5 };
             let u2 = rng.next_2d();
             let Some(bs) = bsdf.sample(wo, u1, u2) else {
                 continue;

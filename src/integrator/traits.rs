@@ -75,8 +75,9 @@ pub trait Bsdf {
     fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample>;
 
     /// Whether [`Bsdf::sample`] reads `u1` (a choice among components, such as reflection
-    /// or refraction). When `false` [`PathTracer`](super::PathTracer) does not draw `u1`
-    /// from its sample source and passes `0.5`. The default, `true`, is always correct.
+    /// or refraction). When `false` [`PathTracer`](super::PathTracer) and
+    /// [`DirectIntegrator`](super::DirectIntegrator) do not draw `u1` from their sample
+    /// source and pass `0.5`. The default, `true`, is always correct.
     #[inline]
     fn samples_component(&self) -> bool {
         true
@@ -153,8 +154,9 @@ pub trait Scene {
     fn sample_light(&self, from: &SurfacePoint, u_pick: Vec2, u: Vec2) -> Option<LightSample>;
 
     /// Whether [`Scene::sample_light`] reads `u_pick` (there is a choice of light, or of a
-    /// part of one). When `false` [`PathTracer`](super::PathTracer) does not draw `u_pick`
-    /// from its sample source and passes `(0.5, 0.5)`. The default, `true`, is always
+    /// part of one). When `false` [`PathTracer`](super::PathTracer) and
+    /// [`DirectIntegrator`](super::DirectIntegrator) do not draw `u_pick` from their sample
+    /// source and pass `(0.5, 0.5)`. The default, `true`, is always
     /// correct.
     #[inline]
     fn samples_light_choice(&self) -> bool {
