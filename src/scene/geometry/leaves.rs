@@ -178,6 +178,19 @@ impl Geometry {
         bound: &mut f32,
         found: &mut Option<Found>,
     ) {
+        self.closest_rest_inline(leaf, ray, tri, bound, found);
+    }
+
+    /// The body of [`Geometry::closest_rest`], inlined where a leaf holds no quads.
+    #[inline(always)]
+    fn closest_rest_inline(
+        &self,
+        leaf: &Leaf,
+        ray: &Ray,
+        tri: Option<&TriRay4>,
+        bound: &mut f32,
+        found: &mut Option<Found>,
+    ) {
         let first = leaf.first + 2 * u32::from(leaf.quads);
         if let (true, Some(tri)) = (leaf.tris > 0, tri) {
             if let Some(h) = tri.closest(&self.packed.tris[leaf.tri as usize], *bound) {
@@ -201,20 +214,47 @@ impl Geometry {
     /// any-hit visitor stays small).
     #[inline(never)]
     fn any_tris(&self, leaf: &Leaf, tri: Option<&TriRay4>, t_max: f32) -> bool {
+        self.any_tris_inline(leaf, tri, t_max)
+    }
+
+    /// The body of [`Geometry::any_tris`], inlined where the scene has no quads.
+    #[inline(always)]
+    fn any_tris_inline(&self, leaf: &Leaf, tri: Option<&TriRay4>, t_max: f32) -> bool {
         tri.is_some_and(|r| r.any(&self.packed.tris[leaf.tri as usize], t_max))
     }
 
     /// True when anything is hit with `0 < t < t_max`, through the BVH's packed leaves.
     #[inline(always)]
     pub(super) fn occluded_packed(&self, bvh: &Bvh4, ray: &Ray, t_max: f32) -> bool {
+        if self.packed.quads.is_empty() {
+            self.occluded_leaves::<false>(bvh, ray, t_max)
+        } else {
+            self.occluded_leaves::<true>(bvh, ray, t_max)
+        }
+    }
+
+    /// [`Geometry::occluded_packed`] for a scene with (`QUADS`) or without quad packets (then
+    /// the triangle packet test is inline).
+    #[inline(always)]
+    fn occluded_leaves<const QUADS: bool>(&self, bvh: &Bvh4, ray: &Ray, t_max: f32) -> bool {
         let p = &self.packed;
-        let quad = QuadRay4::new(ray.origin, ray.dir);
+        let quad = QUADS.then(|| QuadRay4::new(ray.origin, ray.dir));
         let tri = (!p.tris.is_empty()).then(|| TriRay4::new(ray.origin, ray.dir));
         bvh.any_leaf(ray.origin, ray.dir, t_max, |k, bound| {
             let leaf = &p.leaves[k as usize];
             let rest = leaf.first + 2 * u32::from(leaf.quads) + u32::from(leaf.tris);
-            (leaf.quads > 0 && quad.any(&p.quads[leaf.quad as usize], bound))
-                || (leaf.tris > 0 && self.any_tris(leaf, tri.as_ref(), bound))
+            let tris = || {
+                if QUADS {
+                    self.any_tris(leaf, tri.as_ref(), bound)
+                } else {
+                    self.any_tris_inline(leaf, tri.as_ref(), bound)
+                }
+            };
+            (leaf.quads > 0
+                && quad
+                    .as_ref()
+                    .is_some_and(|q| q.any(&p.quads[leaf.quad as usize], bound)))
+                || (leaf.tris > 0 && tris())
                 || (rest..leaf.end).any(|i| self.hit_other(ray, i, bound).is_some())
         })
     }
