@@ -257,7 +257,7 @@ pub(crate) fn mesh(
 
 /// Mitsuba's cube: [−1,1]³, 4 vertices and 2 triangles per face, counter-clockwise seen
 /// from outside.
-fn cube() -> (Vec<Vec3>, Vec<[u32; 3]>) {
+pub(super) fn cube() -> (Vec<Vec3>, Vec<[u32; 3]>) {
     let mut pos = Vec::with_capacity(24);
     let mut idx = Vec::with_capacity(12);
     for a in 0..3 {

@@ -120,20 +120,11 @@ fn cube_quads() -> Vec<Quad> {
     let m = glam::Affine3A::from_cols_array(&[
         0.28491, 0.0, -0.0939491, 0.0, 0.61, 0.0, 0.0939491, 0.0, 0.28491, -0.33, -0.4, -0.28,
     ]);
-    let mut out = Vec::new();
-    for a in 0..3 {
-        let (n, u, v) = (
-            Vec3::AXES[a],
-            Vec3::AXES[(a + 1) % 3],
-            Vec3::AXES[(a + 2) % 3],
-        );
-        for s in [-1.0f32, 1.0] {
-            let p = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-                .map(|(x, y)| m.transform_point3(n * s + u * x + v * y));
-            out.push(Quad::from_pair([p[0], p[1], p[2]], [p[0], p[2], p[3]]).unwrap());
-        }
-    }
-    out
+    let (pos, idx) = crate::scene::geometry::build::cube();
+    let world = |t: [u32; 3]| t.map(|v| m.transform_point3(pos[v as usize]));
+    idx.chunks(2)
+        .map(|face| Quad::from_pair(world(face[0]), world(face[1])).unwrap())
+        .collect()
 }
 
 #[test]

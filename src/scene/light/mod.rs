@@ -213,19 +213,16 @@ impl Lights {
         u_pick: Vec2,
         u: Vec2,
     ) -> Option<LightSample> {
+        // (By area, `sample` has taken the lone rectangle already.)
         if let Some((r, radiance)) = &self.only_rect {
-            match geo.shape_sampling() {
-                ShapeSampling::Area => return rect_light_sample(r, *radiance, from.p, u, 1.0),
-                ShapeSampling::SolidAngle => {
-                    if r.surely_behind(from.p) {
-                        return None;
-                    }
-                    if let Some(f) = &self.only_rect_frame {
-                        if let Some(ls) =
-                            rect::solid_angle_sample(f, r.normal(), *radiance, from.p, u)
-                        {
-                            return ls;
-                        }
+            if geo.shape_sampling() == ShapeSampling::SolidAngle {
+                if r.surely_behind(from.p) {
+                    return None;
+                }
+                if let Some(f) = &self.only_rect_frame {
+                    if let Some(ls) = rect::solid_angle_sample(f, r.normal(), *radiance, from.p, u)
+                    {
+                        return ls;
                     }
                 }
             }
