@@ -5,6 +5,7 @@
 //!     [-o out.exr] [--threads N] [--seed S] [--variance]
 //!     [--strategy bsdf|light|balance|power] [--sampler independent|stratified|sobol]
 //!     [--accel bvh|grid] [--light-sampling solid-angle|area]
+//!     [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]
 //! ```
 //!
 //! Writes a linear float EXR and an sRGB PNG beside it (and `<name>-variance.exr` with
@@ -12,7 +13,7 @@
 
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrt::integrator::Strategy;
-use mcrt::scene::description::{SamplerKind, SceneDescription};
+use mcrt::scene::description::{IntegratorKind, SamplerKind, SceneDescription};
 use mcrt::scene::render::{AccelKind, RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -31,7 +32,7 @@ struct Args {
 const USAGE: &str = "usage: render [scene.xml] [--spp N] [-D name=value]... [-o out.exr] \
 [--threads N] [--seed S] [--variance] [--strategy bsdf|light|balance|power] \
 [--sampler independent|stratified|sobol] [--accel bvh|grid] \
-[--light-sampling solid-angle|area]";
+[--light-sampling solid-angle|area] [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]";
 
 fn parse_num<T: std::str::FromStr>(flag: &str, v: Option<String>) -> Result<T, String> {
     let v = v.ok_or_else(|| format!("{flag} needs a value"))?;
@@ -87,6 +88,21 @@ fn parse_args() -> Result<Args, String> {
                         ))
                     }
                 };
+            }
+            "--integrator" => {
+                let s = it.next().ok_or("--integrator needs a value")?;
+                a.opts.integrator = Some(IntegratorKind::parse(&s).ok_or_else(|| {
+                    format!("--integrator {s}: expected path, direct, bdpt or mlt")
+                })?);
+            }
+            "--bdpt-strategy" => {
+                let v = it.next().ok_or("--bdpt-strategy needs s,t")?;
+                let bad = || format!("--bdpt-strategy {v}: expected two integers s,t");
+                let (s, t) = v.split_once(',').ok_or_else(bad)?;
+                a.opts.bdpt_only = Some((
+                    s.trim().parse().map_err(|_| bad())?,
+                    t.trim().parse().map_err(|_| bad())?,
+                ));
             }
             "--accel" => {
                 let s = it.next().ok_or("--accel needs a value")?;
@@ -151,8 +167,14 @@ fn run() -> Result<(), String> {
     let renderer = Renderer::new(&desc, &args.opts).map_err(|e| e.to_string())?;
     let (w, h) = renderer.size();
     println!(
-        "{name}: {w}×{h}, {} spp ({}), strategy {}, effects: {}",
+        "{name}: {w}×{h}, integrator {}, {} {} ({}), strategy {}, effects: {}",
+        renderer.integrator().name(),
         renderer.spp(),
+        if renderer.integrator().name() == "mlt" {
+            "mutations per pixel"
+        } else {
+            "spp"
+        },
         match renderer.sampler() {
             mcrt::sampling::sampler::AnySampler::Independent(_) => "independent",
             mcrt::sampling::sampler::AnySampler::Stratified(_) => "stratified",
@@ -188,6 +210,24 @@ fn run() -> Result<(), String> {
         result.samples,
         result.rays
     );
+    if let Some(st) = &result.strategies {
+        let lens: Vec<String> = st
+            .length_shares()
+            .iter()
+            .map(|(l, f)| format!("{l}: {:.1}%", 100.0 * f))
+            .collect();
+        println!(
+            "share of the image by path length (segments): {}",
+            lens.join(", ")
+        );
+        let strat: Vec<String> = st
+            .shares()
+            .iter()
+            .filter(|x| x.2 >= 0.001)
+            .map(|(s, t, f)| format!("({s},{t}) {:.1}%", 100.0 * f))
+            .collect();
+        println!("by strategy (s,t), above 0.1%: {}", strat.join(", "));
+    }
     result.write_exr(&out).map_err(|e| e.to_string())?;
     let png = out.with_extension("png");
     result.write_png(&png).map_err(|e| e.to_string())?;

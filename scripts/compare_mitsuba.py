@@ -2,14 +2,16 @@
 """Render scenes with Mitsuba 3 and with mcrt side by side, and compare speed and error.
 
 For every scene, sample count and renderer (Mitsuba's `scalar_rgb` and `llvm_ad_rgb`
-variants, and mcrt's `render` example with each requested sampler) the script measures
+variants, each with the samplers `independent`, `ldsampler` and `multijitter`, and mcrt's
+`render` example with each requested configuration and sampler) the script measures
 
 * the render time, without scene loading and without Mitsuba's JIT compilation: a warm-up
   render comes first and its time is reported separately;
 * samples per second (spp x width x height / render time);
 * relMSE against the reference image,
   mean((img - ref)^2 / (ref^2 + 0.01)) over all pixels and channels;
-* efficiency = 1 / (relMSE x render time), and its ratio to Mitsuba's `llvm_ad_rgb`.
+* efficiency = 1 / (relMSE x render time), and its ratio to the most efficient Mitsuba
+  contender (variant and sampler) at the same scene and sample count.
 
 Each configuration is rendered `--repeats` times with different seeds; the table shows the
 mean render time, the mean relMSE and the efficiency computed from those two means.
@@ -19,6 +21,9 @@ Example:
 
     python3 scripts/compare_mitsuba.py --quick
     python3 scripts/compare_mitsuba.py --json out/peer.json --markdown out/peer.md
+    python3 scripts/compare_mitsuba.py tests/data/cornell-box-caustic.xml --no-build \
+        --variants llvm_ad_rgb --samplers independent \
+        --ours-args "" "--integrator bdpt" "--integrator bdpt --sampler sobol"
 """
 
 from __future__ import annotations
@@ -47,7 +52,10 @@ from contenders import (
 DEFAULT_SCENES = ["tests/data/cornell-box.xml", "tests/data/veach-mis.xml"]
 DEFAULT_BINARY = "target/release/examples/render"
 MITSUBA_VARIANTS = ["scalar_rgb", "llvm_ad_rgb"]
-BASELINE = "mitsuba llvm_ad_rgb"
+MITSUBA_SAMPLERS = ["independent", "ldsampler", "multijitter"]
+# The ratio columns divide by the most efficient result whose "renderer sampler" starts with
+# this (at the same scene and spp): by default the best of all Mitsuba variants and samplers.
+BASELINE = "mitsuba"
 
 
 @dataclass
@@ -87,6 +95,23 @@ class Result:
         """1 / (relMSE x CPU time): less sensitive to other processes on the machine."""
         return 1.0 / (self.mean_relmse() * mean(self.cpu_s))
 
+    def label(self) -> str:
+        """'renderer sampler', e.g. 'mitsuba llvm_ad_rgb ldsampler'."""
+        return f"{self.renderer} {self.sampler}"
+
+
+def best_of(results: list[Result], prefix: str) -> dict[tuple[str, int], Result]:
+    """Per (scene, spp), the most efficient result whose label starts with `prefix`."""
+    best: dict[tuple[str, int], Result] = {}
+    for r in results:
+        eff = r.efficiency()
+        if not r.label().startswith(prefix) or eff != eff:
+            continue
+        k = (r.scene, r.spp)
+        if k not in best or eff > best[k].efficiency():
+            best[k] = r
+    return best
+
 
 def mean(xs: list[float]) -> float:
     """Arithmetic mean; NaN for an empty list."""
@@ -124,6 +149,11 @@ def measure_scene(contenders, scene_path, ref, spps, seeds) -> list[Result]:
             if r.wall_s != r.render_s:  # a child process: loading, writing the image
                 r.setup_s = mean(r.wall_s) - r.mean_time()
             log_result(r)
+        for prefix in ("mitsuba", "mcrt"):
+            b = best_of(list(rs.values()), prefix).get((scene_path.stem, spp))
+            if b:
+                print(f"  best {prefix} at {spp} spp: {b.label()} (eff {fmt(b.efficiency())})",
+                      file=sys.stderr)
         results += rs.values()
     return results
 
@@ -142,13 +172,24 @@ def relmse(img, ref) -> float:
     return float(np.mean((img - ref) ** 2 / (ref**2 + 0.01)))
 
 
-def reference_for(scene: str, defines: dict[str, str]) -> tuple[Path, Path]:
-    """Split 'scene.xml[:ref.exr]'. By default the reference is <stem>.exr beside the scene,
-    or <stem>-direct.exr with -D max_depth=2 (direct lighting only)."""
+def resolve(path: str) -> Path:
+    """A path as given if it exists from here or is absolute, else relative to the repo."""
+    p = Path(path)
+    return p if p.is_absolute() or p.exists() else REPO / p
+
+
+def reference_for(scene: str, defines: dict[str, str],
+                  refs: dict[str, str] | None = None) -> tuple[Path, Path]:
+    """Split 'scene.xml[:ref.exr]'. Without ':ref.exr' the reference is the one --ref gives
+    for the scene (by its path as given, its file name or its stem), else <stem>.exr beside
+    the scene, or <stem>-direct.exr with -D max_depth=2 (direct lighting only)."""
     path, _, ref = scene.partition(":")
-    scene_path = (REPO / path) if not os.path.isabs(path) else Path(path)
+    scene_path = resolve(path)
+    refs = refs or {}
+    ref = ref or next((refs[k] for k in (path, scene_path.name, scene_path.stem) if k in refs),
+                      "")
     direct = "-direct" if defines.get("max_depth") == "2" else ""
-    ref_path = Path(ref) if ref else scene_path.with_name(f"{scene_path.stem}{direct}.exr")
+    ref_path = resolve(ref) if ref else scene_path.with_name(f"{scene_path.stem}{direct}.exr")
     for p in (scene_path, ref_path):
         if not p.exists():
             fail(f"{p} does not exist")
@@ -163,17 +204,20 @@ def fmt(x: float, digits: int = 3) -> str:
     return "–" if x != x else f"{x:.{digits}g}"
 
 
-def markdown_table(results: list[Result]) -> str:
-    """The comparison as a Markdown table, grouped by scene and spp."""
-    base = {(r.scene, r.spp): r for r in results if r.renderer == BASELINE}
+def markdown_table(results: list[Result], baseline: str = BASELINE) -> str:
+    """The comparison as a Markdown table, grouped by scene and spp; the ratio columns divide
+    by the best result whose label starts with `baseline` (marked 'baseline')."""
+    base = best_of(results, baseline)
+    vs = "best Mitsuba" if baseline == "mitsuba" else baseline
     lines = [
         "| scene | spp | renderer | sampler | load / overhead (s) | warm-up (s) | "
-        "render (s) | CPU (s) | M samples/s | relMSE | efficiency (1/s) | vs llvm_ad_rgb | "
-        "vs llvm_ad_rgb, CPU |",
+        f"render (s) | CPU (s) | M samples/s | relMSE | efficiency (1/s) | vs {vs} | "
+        f"vs {vs}, CPU |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in sorted(results, key=lambda r: (r.scene, r.spp)):
         b = base.get((r.scene, r.spp))
+        note = " ".join(x for x in ("(baseline)" if r is b else "", r.note) if x)
         ratio = r.efficiency() / b.efficiency() if b else float("nan")
         cpu_ratio = r.cpu_efficiency() / b.cpu_efficiency() if b else float("nan")
         lines.append(
@@ -181,7 +225,28 @@ def markdown_table(results: list[Result]) -> str:
             f"{fmt(r.warmup_s, 3)} | {fmt(r.mean_time(), 3)} | {fmt(mean(r.cpu_s), 3)} | "
             f"{fmt(r.samples_per_s() / 1e6, 3)} | {fmt(r.mean_relmse(), 3)} | "
             f"{fmt(r.efficiency(), 3)} | {fmt(ratio, 3)} | "
-            f"{fmt(cpu_ratio, 3)}{' ' + r.note if r.note else ''} |"
+            f"{fmt(cpu_ratio, 3)}{' ' + note if note else ''} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def best_table(results: list[Result], baseline: str = BASELINE) -> str:
+    """Per scene and spp: the most efficient Mitsuba contender and the most efficient of ours,
+    and the ratio of their efficiencies (by render time and by CPU time)."""
+    mits, ours = best_of(results, baseline), best_of(results, "mcrt")
+    lines = [
+        "| scene | spp | best Mitsuba | efficiency (1/s) | best mcrt | efficiency (1/s) | "
+        "mcrt ÷ Mitsuba | by CPU time |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for k in sorted(set(mits) | set(ours)):
+        m, o = mits.get(k), ours.get(k)
+        ratio = o.efficiency() / m.efficiency() if m and o else float("nan")
+        cpu_ratio = o.cpu_efficiency() / m.cpu_efficiency() if m and o else float("nan")
+        lines.append(
+            f"| {k[0]} | {k[1]} | {m.label() if m else '–'} | "
+            f"{fmt(m.efficiency()) if m else '–'} | {o.label() if o else '–'} | "
+            f"{fmt(o.efficiency()) if o else '–'} | {fmt(ratio)} | {fmt(cpu_ratio)} |"
         )
     return "\n".join(lines) + "\n"
 
@@ -209,7 +274,7 @@ def machine_info(mi_version: str | None) -> dict:
 def log_result(r: Result) -> None:
     """Print one finished configuration to stderr (progress)."""
     print(
-        f"  {r.scene:12} {r.spp:5} spp  {r.renderer:22} {r.sampler:11} "
+        f"  {r.scene:12} {r.spp:5} spp  {r.renderer:28} {r.sampler:11} "
         f"time {fmt(r.mean_time())} s  relMSE {fmt(r.mean_relmse())}  "
         f"eff {fmt(r.efficiency())}",
         file=sys.stderr,
@@ -229,12 +294,27 @@ def parse_args(argv=None) -> argparse.Namespace:
                    help="scene parameter for both renderers (as the render example's -D)")
     p.add_argument("--spp", type=int, nargs="+", default=[64, 256], help="sample counts")
     p.add_argument("--repeats", type=int, default=2, help="seeds per configuration")
-    p.add_argument("--variants", nargs="+", default=MITSUBA_VARIANTS, help="Mitsuba variants")
+    p.add_argument("--ref", action="append", default=[], metavar="SCENE=EXR",
+                   help="reference image of a scene (named by its path as given, its file "
+                        "name or its stem); repeatable. Default: <stem>.exr beside the scene")
+    p.add_argument("--variants", nargs="+", default=MITSUBA_VARIANTS,
+                   help="Mitsuba variants (spaces or commas)")
+    p.add_argument("--mitsuba-samplers", nargs="+", default=MITSUBA_SAMPLERS,
+                   metavar="SAMPLER",
+                   help="Mitsuba samplers, each replacing the scene's <sampler type=...>, "
+                        "crossed with --variants (spaces or commas; default "
+                        f"{','.join(MITSUBA_SAMPLERS)}; the scene's own type loads it unchanged)")
     p.add_argument("--samplers", nargs="+", default=["independent", "sobol"],
-                   help="our samplers (one the renderer rejects is skipped with a message)")
+                   help="our samplers (spaces or commas; one the renderer rejects is skipped "
+                        "with a message)")
     p.add_argument("--ours-args", nargs="+", default=[""], metavar="ARGS",
                    help="extra arguments for our renderer, one configuration each "
-                        "(e.g. '' '--light-sampling area'); crossed with --samplers")
+                        "(e.g. '' '--integrator bdpt'); crossed with --samplers, except a "
+                        "configuration that names its own --sampler")
+    p.add_argument("--baseline", default=BASELINE, metavar="PREFIX",
+                   help="the ratio columns divide by the best result whose 'renderer "
+                        "sampler' starts with this (default 'mitsuba': the best Mitsuba "
+                        "variant and sampler; e.g. 'mitsuba llvm_ad_rgb independent')")
     p.add_argument("--renderer", type=Path, default=REPO / DEFAULT_BINARY,
                    help="our render binary")
     p.add_argument("--no-build", action="store_true", help="do not run cargo build first")
@@ -253,6 +333,14 @@ def parse_args(argv=None) -> argparse.Namespace:
             a.scenes = DEFAULT_SCENES[:1]
     if a.repeats < 1 or min(a.spp) < 1:
         p.error("--repeats and --spp must be positive")
+    for k in ("variants", "mitsuba_samplers", "samplers"):
+        setattr(a, k, [x for v in getattr(a, k) for x in v.split(",") if x])
+    a.refs = {}
+    for r in a.ref:
+        k, sep, v = r.partition("=")
+        if not sep or not k or not v:
+            p.error(f"--ref {r}: expected SCENE=EXR")
+        a.refs[k] = v
     a.defines = {}
     for d in a.define:
         k, sep, v = d.partition("=")
@@ -280,16 +368,23 @@ def main(argv=None) -> int:
     seeds = list(range(1, a.repeats + 1))
     results: list[Result] = []
     with tempfile.TemporaryDirectory(prefix="mcrt-peer-") as tmp:
-        contenders = [MitsubaContender(mi, dr, v, a.defines) for v in variants]
+        contenders = [MitsubaContender(mi, dr, v, a.defines, s)
+                      for v in variants for s in a.mitsuba_samplers]
         if not a.skip_ours:
-            contenders += [OursContender(a.renderer, s, x, a.defines, a.threads, tmp)
-                           for x in a.ours_args for s in a.samplers]
-        for scene in a.scenes:
-            scene_path, ref_path = reference_for(scene, a.defines)
+            seen = set()
+            for x in a.ours_args:
+                for s in a.samplers:
+                    c = OursContender(a.renderer, s, x, a.defines, a.threads, tmp)
+                    if c.key() not in seen:  # one that names its own --sampler comes once
+                        seen.add(c.key())
+                        contenders.append(c)
+        # Check every scene and reference before the first render.
+        scenes = [reference_for(scene, a.defines, a.refs) for scene in a.scenes]
+        for scene_path, ref_path in scenes:
             ref = read_exr(ref_path)
             print(f"{scene_path.name} (reference {ref_path.name}):", file=sys.stderr)
             results += measure_scene(contenders, scene_path, ref, a.spp, seeds)
-    table = markdown_table(results)
+    table = markdown_table(results, a.baseline) + "\n" + best_table(results, a.baseline)
     print(table)
     info = machine_info(mi.__version__)
     if a.markdown:

@@ -97,20 +97,63 @@ class Sample:
     cpu_s: float
 
 
-class MitsubaContender:
-    """One Mitsuba variant, rendering in this process."""
+SAMPLER_TAG_RE = re.compile(r"""(<sampler\b[^>]*?\btype\s*=\s*)(["'])([^"']*)\2""")
+SENSOR_OPEN_RE = re.compile(r"<sensor\b[^>]*?(?<!/)>")
 
-    def __init__(self, mi, dr, variant: str, defines: dict[str, str]):
+
+def scene_sampler(xml: str) -> str | None:
+    """The type of the first <sampler> element of a Mitsuba scene text, if any."""
+    m = SAMPLER_TAG_RE.search(xml)
+    return m.group(3) if m else None
+
+
+def with_sampler(xml: str, sampler: str) -> str:
+    """The scene text with every <sampler type="..."> changed to `sampler`; a scene without a
+    sampler element gets one in its first sensor. Raise Skip if there is no sensor either."""
+    out, n = SAMPLER_TAG_RE.subn(lambda m: f"{m.group(1)}{m.group(2)}{sampler}{m.group(2)}",
+                                 xml)
+    if n:
+        return out
+    out, n = SENSOR_OPEN_RE.subn(lambda m: f'{m.group(0)}<sampler type="{sampler}"/>', xml,
+                                 count=1)
+    if not n:
+        raise Skip(f"no <sampler> or <sensor> element to give the sampler {sampler}")
+    return out
+
+
+class MitsubaContender:
+    """One Mitsuba variant with one sampler, rendering in this process.
+
+    The sampler is the scene file's own when `sampler` names its type; otherwise the scene
+    text is loaded with its <sampler type="..."> changed (its parameters, sample_count and
+    seed, are common to Mitsuba's samplers; a scene whose sampler has others is skipped)."""
+
+    def __init__(self, mi, dr, variant: str, defines: dict[str, str],
+                 sampler: str = "independent"):
         self.mi, self.dr, self.variant, self.defines = mi, dr, variant, defines
-        self.name, self.sampler = f"mitsuba {variant}", "independent"
+        self.name, self.sampler = f"mitsuba {variant}", sampler
         self.scene = None
 
     def setup(self, scene_path: Path) -> float:
-        """Load the scene; return the loading time in seconds."""
+        """Load the scene with this contender's sampler; return the loading time in s."""
         check_variant(self.mi, self.variant)
         self.mi.set_log_level(self.mi.LogLevel.Warn)
+        xml = scene_path.read_text()
         t0 = time.perf_counter()
-        self.scene = self.mi.load_file(str(scene_path), **self.defines)
+        try:
+            if scene_sampler(xml) == self.sampler:
+                self.scene = self.mi.load_file(str(scene_path), **self.defines)
+            else:
+                # load_string resolves relative file names (meshes, textures) through the
+                # file resolver, which load_file would point at the scene's folder.
+                resolver = (self.mi.file_resolver() if hasattr(self.mi, "file_resolver")
+                            else self.mi.Thread.thread().file_resolver())
+                resolver.prepend(str(scene_path.resolve().parent))
+                self.scene = self.mi.load_string(with_sampler(xml, self.sampler),
+                                                 **self.defines)
+        except Exception as e:  # noqa: BLE001 (mitsuba raises RuntimeError and others)
+            raise Skip(f"{self.name} {self.sampler} on {scene_path.name}: "
+                       f"{str(e).strip().splitlines()[-1] if str(e).strip() else e!r}") from e
         return time.perf_counter() - t0
 
     def warmup(self, spp: int) -> float:
@@ -134,16 +177,29 @@ class MitsubaContender:
         return Sample(np.asarray(img, dtype=np.float64)[..., :3], dt, dt, cpu)
 
 
+TIME_LINE_RE = re.compile(
+    r"^time\s*[:=]?\s*([0-9]+(?:\.[0-9]*)?(?:[eE][-+]?\d+)?)\s*(ms|s)\b", re.MULTILINE)
 TIME_RE = re.compile(r"\btime\s*[:=]?\s*([0-9]+(?:\.[0-9]*)?(?:[eE][-+]?\d+)?)\s*(ms|s)\b")
+HEADER_RE = re.compile(r"integrator (\S+), \d+ [^(\n]*\((\w+)\)")
 
 
 def parse_render_time(stdout: str) -> float | None:
-    """Find the renderer's own render time ('time 1.234 s', last match), in seconds."""
-    matches = TIME_RE.findall(stdout)
+    """The renderer's own render time, in seconds: the first line that starts with
+    'time 1.234 s' (lines after it, such as BDPT's shares by path length and strategy, are
+    ignored); failing that, the last 'time X s' anywhere."""
+    m = TIME_LINE_RE.search(stdout)
+    matches = [m.groups()] if m else TIME_RE.findall(stdout)
     if not matches:
         return None
     value, unit = matches[-1]
     return float(value) / (1000.0 if unit == "ms" else 1.0)
+
+
+def parse_header(stdout: str) -> tuple[str, str] | None:
+    """(integrator, sampler) from the render example's first line, e.g.
+    'cornell-box: 256×256, integrator path, 64 spp (sobol), ...'; None if absent."""
+    m = HEADER_RE.search(stdout)
+    return (m.group(1), m.group(2)) if m else None
 
 
 def children_cpu_s() -> float:
@@ -152,26 +208,54 @@ def children_cpu_s() -> float:
     return ru.ru_utime + ru.ru_stime
 
 
+def split_sampler(args: list[str]) -> tuple[str | None, list[str]]:
+    """Take '--sampler X' out of an argument list: (X or None, the other arguments)."""
+    sampler, rest, it = None, [], iter(args)
+    for a in it:
+        if a == "--sampler":
+            sampler = next(it, None)
+        elif a.startswith("--sampler="):
+            sampler = a.split("=", 1)[1]
+        else:
+            rest.append(a)
+    return sampler, rest
+
+
 class OursContender:
-    """mcrt's render example with one sampler, run as a child process."""
+    """mcrt's render example with one sampler and extra arguments, run as a child process.
+
+    `extra` may itself hold '--sampler X'; then X is the sampler (`sampler` is ignored).
+    `independent` passes no --sampler: the scene file's sampler (independent in tests/data)
+    is used; the sampler the renderer reports on its first line is checked in setup()."""
 
     def __init__(self, binary: Path, sampler: str, extra: str, defines: dict[str, str],
                  threads: int, tmp: str):
-        self.binary, self.sampler, self.threads, self.tmp = binary, sampler, threads, tmp
-        self.extra = shlex.split(extra)
+        self.binary, self.threads, self.tmp = binary, threads, tmp
+        own, rest = split_sampler(shlex.split(extra))
+        self.sampler = own or sampler
+        self.sampler_args = [] if self.sampler == "independent" else [
+            "--sampler", self.sampler]
+        self.extra = rest
         for k, v in defines.items():
             self.extra += ["-D", f"{k}={v}"]
-        self.name = f"mcrt {extra}".strip()
+        self.name = f"mcrt {shlex.join(rest)}".strip()
         self.scene_path = None
         self.note = ""
+
+    def key(self) -> tuple[str, str]:
+        """What makes two contenders the same run."""
+        return (self.name, self.sampler)
 
     def setup(self, scene_path: Path) -> float:
         """Run a 1-spp render (warms the page cache, checks the sampler); return its wall s."""
         self.scene_path = scene_path
         try:
-            _, self.warm_s, _ = self._run(1, WARMUP_SEED)
+            stdout, self.warm_s, _ = self._run(1, WARMUP_SEED)
         except RuntimeError as e:
-            raise Skip(f"mcrt --sampler {self.sampler} on {scene_path.name}: {e}") from e
+            raise Skip(f"{self.name} --sampler {self.sampler} on {scene_path.name}: {e}") from e
+        header = parse_header(stdout)  # (integrator, sampler) the renderer says it ran
+        used = header[1] if header else self.sampler
+        self.note = "" if used == self.sampler else f"(renderer reports sampler {used})"
         return self.warm_s
 
     def warmup(self, spp: int) -> float:
@@ -194,8 +278,7 @@ class OursContender:
         """Run the binary; return (stdout, wall s, CPU s) or raise RuntimeError."""
         cmd = [str(self.binary), str(self.scene_path), "--spp", str(spp),
                "--seed", str(seed), "-o", str(self._out())]
-        if self.sampler != "independent":
-            cmd += ["--sampler", self.sampler]
+        cmd += self.sampler_args
         if self.threads:
             cmd += ["--threads", str(self.threads)]
         cmd += self.extra

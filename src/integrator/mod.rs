@@ -1,5 +1,6 @@
-//! Estimators of the light transport equation: a path tracer and a direct-lighting
-//! integrator, generic over a few small traits ([`Scene`], [`Bsdf`], [`SampleSource`]) so that
+//! Estimators of the light transport equation: a path tracer, a direct-lighting integrator,
+//! bidirectional path tracing and Metropolis light transport, generic over a few small
+//! traits ([`Scene`], [`Bsdf`], [`SampleSource`]) so that
 //! any renderer can use them with its own geometry, materials and lights.
 //!
 //! Conventions: BSDFs work in a z-up local [`Frame`] around the shading normal; `wo` points
@@ -13,14 +14,20 @@
 //! assert_eq!(pt.strategy.name(), "power");
 //! ```
 
+pub(crate) mod bdpt;
+mod bidirectional;
 mod direct;
 mod frame;
+mod mlt;
 mod path;
 mod strategy;
 mod traits;
 
+pub use bdpt::{Bdpt, BdptBuffers, Splat, StrategyStats};
+pub use bidirectional::{BidirectionalScene, CameraConnection, EmissionSample, EmitterKind};
 pub use direct::DirectIntegrator;
 pub use frame::Frame;
+pub use mlt::{brightness as mlt_brightness, Mlt, MltChain, MltPath, PrimarySamples};
 pub use path::{PathResult, PathTracer};
 pub use strategy::Strategy;
 pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, SampleSource, Scene, SurfacePoint};
@@ -31,17 +38,24 @@ pub fn is_positive(x: f32) -> bool {
     x > 0.0
 }
 
-/// Either estimator, chosen at run time from the scene's `integrator` element.
+/// An estimator, chosen at run time from the scene's `integrator` element.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Integrator {
     /// Path tracing.
     Path(PathTracer),
     /// Direct lighting.
     Direct(DirectIntegrator),
+    /// Bidirectional path tracing.
+    Bdpt(Bdpt),
+    /// Metropolis light transport.
+    Mlt(Mlt),
 }
 
 impl Integrator {
-    /// Estimates the radiance along one camera ray.
+    /// Estimates the radiance along one camera ray, for the per-ray estimators (path
+    /// tracing, direct lighting). [`Bdpt`] and [`Mlt`] are not per-ray estimators (they
+    /// splat onto the film and need a [`BidirectionalScene`]): for them this returns zero
+    /// radiance and no rays; call [`Bdpt::sample`] or [`Mlt::render`].
     #[inline]
     pub fn li<S: Scene, R: SampleSource>(
         &self,
@@ -54,6 +68,17 @@ impl Integrator {
         match self {
             Integrator::Path(p) => p.li(scene, origin, dir, t_max, rng),
             Integrator::Direct(d) => d.li(scene, origin, dir, t_max, rng),
+            Integrator::Bdpt(_) | Integrator::Mlt(_) => PathResult::default(),
+        }
+    }
+
+    /// The name of the integrator type (`path`, `direct`, `bdpt`, `mlt`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Integrator::Path(_) => "path",
+            Integrator::Direct(_) => "direct",
+            Integrator::Bdpt(_) => "bdpt",
+            Integrator::Mlt(_) => "mlt",
         }
     }
 
@@ -62,6 +87,8 @@ impl Integrator {
         match self {
             Integrator::Path(p) => p.strategy,
             Integrator::Direct(d) => d.strategy,
+            Integrator::Bdpt(b) => b.strategy,
+            Integrator::Mlt(m) => m.strategy,
         }
     }
 
@@ -70,6 +97,8 @@ impl Integrator {
         match self {
             Integrator::Path(p) => p.strategy = s,
             Integrator::Direct(d) => d.strategy = s,
+            Integrator::Bdpt(b) => b.strategy = s,
+            Integrator::Mlt(m) => m.strategy = s,
         }
     }
 }

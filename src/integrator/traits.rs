@@ -74,6 +74,19 @@ pub trait Bsdf {
     /// Samples `wi` given `wo`: `u1` picks a component, `u2` the direction.
     fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample>;
 
+    /// The adjoint BSDF for importance transport (light subpaths), times the cosine:
+    /// `f*(wo, wi)·|cos θ_i| = f(wi, wo)·|cos θ_i|`, with `wo` toward the light side (the
+    /// previous vertex of a light subpath) and `wi` toward the camera side (Veach 1997,
+    /// thesis, section 5.2). The default, [`Bsdf::eval`], is exact for every symmetric
+    /// BSDF (reflection; `f(wo, wi) = f(wi, wo)`). A BSDF with a non-delta transmission
+    /// that scales radiance by `1/η²` overrides it without that factor. Sampled delta
+    /// components need nothing here: the estimators undo the `1/η²` of a sample's weight
+    /// from [`BsdfSample::eta`].
+    #[inline]
+    fn eval_adjoint(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        self.eval(wo, wi)
+    }
+
     /// Whether [`Bsdf::sample`] reads `u1` (a choice among components, such as reflection
     /// or refraction). When `false` [`PathTracer`](super::PathTracer) and
     /// [`DirectIntegrator`](super::DirectIntegrator) do not draw `u1` from their sample
@@ -110,6 +123,13 @@ pub trait SampleSource {
         let x = self.next_1d();
         Vec2::new(x, self.next_1d())
     }
+    /// Switches to the sample stream `stream` (the bidirectional estimators draw the camera
+    /// subpath from stream 0, the light subpath from 1 and connections from 2). Sources
+    /// without streams ignore it (the default); Metropolis sampling keeps one stream per
+    /// role so that a path's primary sample coordinates keep their meaning when its length
+    /// changes (Hachisuka et al. 2014).
+    #[inline]
+    fn start_stream(&mut self, _stream: u32) {}
 }
 
 /// What the estimators need from a scene: ray casting, materials and lights.

@@ -76,6 +76,7 @@ impl std::error::Error for CameraError {}
 #[derive(Debug, Clone)]
 pub struct Camera {
     to_world: Affine3A,
+    to_camera: Affine3A,
     width: u32,
     height: u32,
     /// 1/w, 1/h.
@@ -123,6 +124,7 @@ impl Camera {
         let tan_x = if axis == FovAxis::Y { t * aspect } else { t };
         Ok(Self {
             to_world: Affine3A::from_mat4(m),
+            to_camera: Affine3A::from_mat4(m).inverse(),
             width: w,
             height: h,
             inv_res: Vec2::new(1.0 / w as f32, 1.0 / h as f32),
@@ -178,6 +180,75 @@ impl Camera {
     }
 }
 
+/// The camera as an endpoint of light subpaths (pinhole: a delta in position).
+///
+/// With the film position uniform over the image, the camera ray's direction has density
+/// `p(ω) = 1/(A cos³θ)` per steradian, `A = 4·tan(fov_x/2)·tan(fov_y/2)` the image's area
+/// on the plane one unit in front, `θ` the angle to the viewing axis; the importance that
+/// makes `∫ W L dω` the image's mean pixel value is the same function. Exact when
+/// `to_world` is a similarity (rotation, reflection, uniform scale, translation), which
+/// [`Camera::is_similarity`] tells.
+impl Camera {
+    /// Unit direction the camera looks along.
+    pub fn forward(&self) -> Vec3 {
+        self.to_world.transform_vector3(Vec3::Z).normalize_or_zero()
+    }
+
+    /// Whether `to_world`'s linear part preserves angles (orthogonal columns of one length).
+    pub fn is_similarity(&self) -> bool {
+        let m = self.to_world.matrix3;
+        let (x, y, z) = (
+            Vec3::from(m.x_axis),
+            Vec3::from(m.y_axis),
+            Vec3::from(m.z_axis),
+        );
+        let l = x.length();
+        let tol = 1e-4 * l * l;
+        (y.length() - l).abs() < 1e-4 * l
+            && (z.length() - l).abs() < 1e-4 * l
+            && x.dot(y).abs() < tol
+            && y.dot(z).abs() < tol
+            && x.dot(z).abs() < tol
+    }
+
+    /// The film position in pixels of the camera-space point `q`, if inside the image.
+    fn raster_of_local(&self, q: Vec3) -> Option<Vec2> {
+        if q.z.is_nan() || q.z <= 0.0 {
+            return None;
+        }
+        let s = Vec2::new(
+            0.5 * (1.0 - q.x / (q.z * self.tan_half.x)),
+            0.5 * (1.0 - q.y / (q.z * self.tan_half.y)),
+        );
+        let r = s * Vec2::new(self.width as f32, self.height as f32);
+        (s.x >= 0.0 && s.x < 1.0 && s.y >= 0.0 && s.y < 1.0 && r.is_finite()).then_some(r)
+    }
+
+    /// Density per steradian of the direction of [`Camera::generate_ray`] for a film
+    /// position uniform over the image (0 outside the field of view); also the importance
+    /// `W(ω)`.
+    pub fn direction_pdf(&self, dir: Vec3) -> f32 {
+        let q = self.to_camera.transform_vector3(dir);
+        let len = q.length();
+        if len.is_nan() || len <= 0.0 || self.raster_of_local(q).is_none() {
+            return 0.0;
+        }
+        let cos = q.z / len;
+        let area = 4.0 * self.tan_half.x * self.tan_half.y;
+        1.0 / (area * cos * cos * cos)
+    }
+
+    /// The film position of the world point `p` and its camera-space depth, if `p` is in
+    /// the field of view and between the clip planes.
+    pub fn raster_of(&self, p: Vec3) -> Option<Vec2> {
+        let q = self.to_camera.transform_point3(p);
+        if !(q.z >= self.near && q.z <= self.far) {
+            return None;
+        }
+        self.raster_of_local(q)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -225,6 +296,31 @@ mod tests {
         let mut s = sensor(45.0, FovAxis::X, 10, 10);
         s.near_clip = 2.0 * s.far_clip;
         assert!(Camera::new(&s).is_err());
+    }
+
+    #[test]
+    fn raster_of_inverts_generate_ray() {
+        let mut s = sensor(50.0, FovAxis::X, 64, 48);
+        s.to_world = glam::Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0))
+            * glam::Mat4::from_rotation_y(0.3);
+        let cam = Camera::new(&s).unwrap();
+        assert!(cam.is_similarity());
+        for film in [
+            Vec2::new(0.5, 0.5),
+            Vec2::new(10.25, 40.75),
+            Vec2::new(63.5, 1.0),
+        ] {
+            let ray = cam.generate_ray(film);
+            let back = cam.raster_of(ray.at(2.0)).expect("in view");
+            assert!(
+                back.is_finite() && (back - film).length() < 1e-3,
+                "{back} {film}"
+            );
+            let pdf = cam.direction_pdf(ray.dir);
+            assert!(pdf.is_finite() && pdf > 0.0);
+        }
+        assert_eq!(cam.direction_pdf(-cam.forward()), 0.0);
+        assert!(cam.raster_of(cam.position() - cam.forward()).is_none());
     }
 
     #[test]

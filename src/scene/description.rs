@@ -38,6 +38,146 @@ pub enum IntegratorDesc {
         /// BSDF samples per shading point (Mitsuba's default 1).
         bsdf_samples: u32,
     },
+    /// Bidirectional path tracing (Mitsuba 0.6's and pbrt-v4's `bdpt`).
+    Bdpt {
+        /// Longest path in segments: −1 unlimited, 1 emitters seen directly, 2 direct
+        /// lighting.
+        max_depth: i32,
+        /// Bounces after which Russian roulette applies on either subpath (default 5).
+        rr_depth: u32,
+    },
+    /// Metropolis light transport in primary sample space over bidirectional paths
+    /// (Mitsuba 0.6's `pssmlt` parameters under pbrt-v4's `mlt` names).
+    Mlt {
+        /// Longest path in segments (−1: unlimited is not allowed; default 5).
+        max_depth: i32,
+        /// Paths sampled to estimate the image's brightness and seed the chains
+        /// (default 100000).
+        bootstrap_samples: u32,
+        /// Independent Markov chains (default 1000).
+        chains: u32,
+        /// Mutations per pixel over all chains (default 100).
+        mutations_per_pixel: u32,
+        /// Probability of a large step, an independent new path (default 0.3).
+        large_step_prob: f32,
+        /// Standard deviation of a small step's perturbation of each primary sample
+        /// value (default 0.01).
+        sigma: f32,
+    },
+}
+
+/// The integrator types, for overriding a scene file's choice (`--integrator`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// `path`.
+    Path,
+    /// `direct`.
+    Direct,
+    /// `bdpt`.
+    Bdpt,
+    /// `mlt`.
+    Mlt,
+}
+
+impl IntegratorKind {
+    /// Parses `path`, `direct`, `bdpt` or `mlt`.
+    pub fn parse(s: &str) -> Option<Self> {
+        Some(match s {
+            "path" => Self::Path,
+            "direct" => Self::Direct,
+            "bdpt" => Self::Bdpt,
+            "mlt" => Self::Mlt,
+            _ => return None,
+        })
+    }
+
+    /// The name [`IntegratorKind::parse`] reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Path => "path",
+            Self::Direct => "direct",
+            Self::Bdpt => "bdpt",
+            Self::Mlt => "mlt",
+        }
+    }
+}
+
+impl IntegratorDesc {
+    /// Default values of the `mlt` parameters other than `max_depth` (pbrt-v4's).
+    pub const MLT_DEFAULTS: IntegratorDesc = IntegratorDesc::Mlt {
+        max_depth: 5,
+        bootstrap_samples: 100_000,
+        chains: 1000,
+        mutations_per_pixel: 100,
+        large_step_prob: 0.3,
+        sigma: 0.01,
+    };
+
+    /// Which integrator this is.
+    pub fn kind(&self) -> IntegratorKind {
+        match self {
+            Self::Path { .. } => IntegratorKind::Path,
+            Self::Direct { .. } => IntegratorKind::Direct,
+            Self::Bdpt { .. } => IntegratorKind::Bdpt,
+            Self::Mlt { .. } => IntegratorKind::Mlt,
+        }
+    }
+
+    /// `max_depth`, where the integrator has one.
+    pub fn max_depth(&self) -> Option<i32> {
+        match *self {
+            Self::Path { max_depth, .. }
+            | Self::Bdpt { max_depth, .. }
+            | Self::Mlt { max_depth, .. } => Some(max_depth),
+            Self::Direct { .. } => None,
+        }
+    }
+
+    /// This description as integrator `kind`, keeping `max_depth` and `rr_depth` where both
+    /// have them and taking the defaults for the rest (an unlimited depth becomes MLT's
+    /// default 5, since MLT needs a bound). Unchanged if it already is of that kind.
+    pub fn with_kind(&self, kind: IntegratorKind) -> IntegratorDesc {
+        if self.kind() == kind {
+            return *self;
+        }
+        let depth = self.max_depth().unwrap_or(-1);
+        let rr = match *self {
+            Self::Path { rr_depth, .. } | Self::Bdpt { rr_depth, .. } => rr_depth,
+            _ => 5,
+        };
+        match kind {
+            IntegratorKind::Path => Self::Path {
+                max_depth: depth,
+                rr_depth: rr,
+            },
+            IntegratorKind::Direct => Self::Direct {
+                emitter_samples: 1,
+                bsdf_samples: 1,
+            },
+            IntegratorKind::Bdpt => Self::Bdpt {
+                max_depth: depth,
+                rr_depth: rr,
+            },
+            IntegratorKind::Mlt => match Self::MLT_DEFAULTS {
+                Self::Mlt {
+                    bootstrap_samples,
+                    chains,
+                    mutations_per_pixel,
+                    large_step_prob,
+                    sigma,
+                    max_depth,
+                } => Self::Mlt {
+                    max_depth: if depth < 0 { max_depth } else { depth },
+                    bootstrap_samples,
+                    chains,
+                    mutations_per_pixel,
+                    large_step_prob,
+                    sigma,
+                },
+                d => d,
+            },
+        }
+    }
 }
 
 impl Default for IntegratorDesc {

@@ -60,7 +60,7 @@ use glam::Vec2;
 use super::SamplingError;
 
 mod any;
-mod hash;
+pub(crate) mod hash;
 mod independent;
 #[cfg(feature = "sobol")]
 mod sobol;

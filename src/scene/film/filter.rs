@@ -17,6 +17,12 @@ pub enum PixelFilter {
         radius: f32,
         /// Inverse CDF at `TABLE + 1` equally spaced probabilities, in `[−r, r]`.
         inv_cdf: Vec<f32>,
+        /// `−1/(2σ²)`, the exponent's factor.
+        a: f32,
+        /// `exp(−r²/2σ²)`, the shift that makes the density 0 at the radius.
+        bias: f32,
+        /// 1 / the integral of the shifted Gaussian over `[−r, r]` (one axis).
+        norm: f32,
     },
 }
 
@@ -56,6 +62,9 @@ impl PixelFilter {
         PixelFilter::Gaussian {
             radius: radius as f32,
             inv_cdf: inv,
+            a: a as f32,
+            bias: bias as f32,
+            norm: (1.0 / total) as f32,
         }
     }
 
@@ -72,6 +81,51 @@ impl PixelFilter {
                     inv_cdf[i] + (inv_cdf[i + 1] - inv_cdf[i]) * t
                 };
                 Vec2::new(one(u.x), one(u.y))
+            }
+        }
+    }
+}
+
+impl PixelFilter {
+    /// Spreads a contribution at film position `raster` over the pixels of a `width` ×
+    /// `height` film as the filter weighs it: `add(pixel index, weight)` for every pixel
+    /// whose filter covers `raster`, the weight the filter's density at the offset from the
+    /// pixel's centre (weights over all pixels sum to 1 away from the film's edges).
+    pub fn splat(&self, raster: Vec2, width: u32, height: u32, mut add: impl FnMut(usize, f32)) {
+        if !raster.is_finite() {
+            return;
+        }
+        match self {
+            PixelFilter::Box => {
+                let (x, y) = (raster.x.floor(), raster.y.floor());
+                if x >= 0.0 && y >= 0.0 && x < width as f32 && y < height as f32 {
+                    add(y as usize * width as usize + x as usize, 1.0);
+                }
+            }
+            &PixelFilter::Gaussian {
+                radius,
+                a,
+                bias,
+                norm,
+                ..
+            } => {
+                let density = |d: f32| ((a * d * d).exp() - bias).max(0.0) * norm;
+                let lo = |c: f32| (c - radius - 0.5).ceil().max(0.0) as u32;
+                let hi = |c: f32, n: u32| ((c + radius - 0.5).floor() as i64).min(n as i64 - 1);
+                let (x0, y0) = (lo(raster.x), lo(raster.y));
+                let (x1, y1) = (hi(raster.x, width), hi(raster.y, height));
+                for y in y0 as i64..=y1 {
+                    let wy = density(y as f32 + 0.5 - raster.y);
+                    if wy <= 0.0 {
+                        continue;
+                    }
+                    for x in x0 as i64..=x1 {
+                        let wx = density(x as f32 + 0.5 - raster.x);
+                        if wx > 0.0 {
+                            add(y as usize * width as usize + x as usize, wx * wy);
+                        }
+                    }
+                }
             }
         }
     }
@@ -100,5 +154,24 @@ mod tests {
         assert!((v.sqrt() - 0.4988).abs() < 0.004, "{}", v.sqrt());
         let b = PixelFilter::Box.sample(Vec2::new(0.0, 0.75));
         assert_eq!(b, Vec2::new(-0.5, 0.25));
+    }
+
+    #[test]
+    fn splat_weights_sum_to_one_inside_the_film() {
+        for f in [
+            PixelFilter::Box,
+            PixelFilter::from_desc(&FilterDesc::Gaussian { stddev: 0.5 }),
+        ] {
+            let mut total = 0.0f32;
+            f.splat(Vec2::new(10.3, 7.8), 20, 20, |i, w| {
+                assert!(w.is_finite() && w > 0.0 && i < 400);
+                total += w;
+            });
+            // The Gaussian's per-axis weights are a midpoint sum of its density: close to 1.
+            assert!(total.is_finite() && (total - 1.0).abs() < 0.02, "{total}");
+            let mut hits = 0;
+            f.splat(Vec2::new(-5.0, 3.0), 20, 20, |_, _| hits += 1);
+            assert_eq!(hits, 0);
+        }
     }
 }

@@ -27,6 +27,10 @@ pub struct Film {
     sum: Vec<[f64; 3]>,
     sum_sq: Vec<[f64; 3]>,
     count: Vec<u32>,
+    /// Contributions splatted onto the film from elsewhere (light tracing, Metropolis),
+    /// summed per pixel; the image adds them times `splat_scale`.
+    splat: Vec<[f64; 3]>,
+    splat_scale: f64,
 }
 
 /// One pixel's accumulated samples (what a render tile hands back).
@@ -63,7 +67,32 @@ impl Film {
             sum: vec![[0.0; 3]; n],
             sum_sq: vec![[0.0; 3]; n],
             count: vec![0; n],
+            splat: Vec::new(),
+            splat_scale: 0.0,
         }
+    }
+
+    /// Adds `v` to the splat sum of pixel `index` (ignored past the end).
+    pub fn add_splat(&mut self, index: usize, v: Vec3) {
+        if self.splat.is_empty() {
+            self.splat = vec![[0.0; 3]; self.count.len()];
+        }
+        if let Some(s) = self.splat.get_mut(index) {
+            s[0] += v.x as f64;
+            s[1] += v.y as f64;
+            s[2] += v.z as f64;
+        }
+    }
+
+    /// Sets the factor by which the splat sums enter the image (for light tracing,
+    /// 1 / samples per pixel; for Metropolis sampling, `b` / mutations per pixel).
+    pub fn set_splat_scale(&mut self, scale: f64) {
+        self.splat_scale = scale;
+    }
+
+    /// Whether any contribution was splatted.
+    pub fn has_splats(&self) -> bool {
+        !self.splat.is_empty()
     }
 
     /// Width in pixels.
@@ -97,13 +126,20 @@ impl Film {
         (min, max)
     }
 
-    /// The pixel estimates (means), row-major from the top-left, 0 where no sample landed.
+    /// The pixel estimates (means, plus the scaled splats), row-major from the top-left, 0
+    /// where no sample landed.
     pub fn mean(&self) -> Vec<Vec3> {
         (0..self.count.len())
             .map(|i| {
                 let n = self.count[i].max(1) as f64;
                 let s = self.sum[i];
-                Vec3::new((s[0] / n) as f32, (s[1] / n) as f32, (s[2] / n) as f32)
+                let k = self.splat_scale;
+                let sp = self.splat.get(i).copied().unwrap_or([0.0; 3]);
+                Vec3::new(
+                    (s[0] / n + sp[0] * k) as f32,
+                    (s[1] / n + sp[1] * k) as f32,
+                    (s[2] / n + sp[2] * k) as f32,
+                )
             })
             .collect()
     }

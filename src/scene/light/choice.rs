@@ -87,7 +87,7 @@ impl LightChoice {
     }
 
     /// The power distribution (the whole choice, or the spatial choice's fallback).
-    fn power(&self) -> &AliasTable {
+    pub(crate) fn power(&self) -> &AliasTable {
         match self {
             Self::Power(t) | Self::Spatial { power: t, .. } => t,
         }

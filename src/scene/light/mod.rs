@@ -5,6 +5,7 @@
 
 mod build;
 mod choice;
+mod emission;
 mod envmap;
 mod rect;
 

@@ -34,6 +34,8 @@ impl Effects {
             indirect: match integrator {
                 Integrator::Path(p) => p.max_depth < 0 || p.max_depth > 2,
                 Integrator::Direct(_) => false,
+                Integrator::Bdpt(b) => b.max_depth < 0 || b.max_depth > 2,
+                Integrator::Mlt(m) => m.max_depth > 2,
             },
             ..Effects::default()
         };

@@ -20,7 +20,12 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod bidir;
+#[cfg(test)]
+mod bidir_tests;
+mod bidir_view;
 mod effects;
+mod mlt_loop;
 mod tiles;
 mod view;
 
@@ -35,13 +40,15 @@ pub(crate) mod geo {
 
 pub use geo::{AccelKind, ShapeSampling};
 
-use crate::integrator::{DirectIntegrator, Integrator, PathTracer, Strategy};
+use crate::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
 use crate::sampling::sampler::{
     AnySampler, IndependentSampler, Sampler, SobolSampler, StratifiedSampler,
 };
 use crate::sampling::SamplingError;
 use crate::scene::bsdf::{AnyBsdf, Sided};
-use crate::scene::description::{IntegratorDesc, SamplerKind, SceneDescription, ShapeKind};
+use crate::scene::description::{
+    IntegratorDesc, IntegratorKind, SamplerKind, SceneDescription, ShapeKind,
+};
 use crate::scene::film::{write_exr, write_png, Film, ImageError, PixelFilter};
 use crate::scene::light::Lights;
 use geo::{Camera, Geometry};
@@ -79,6 +86,12 @@ pub struct RenderOptions {
     pub light_sampling: ShapeSampling,
     /// Sample generator (else the file's `sampler` type).
     pub sampler: Option<SamplerKind>,
+    /// Integrator type (else the file's); the file's `max_depth` and `rr_depth` carry over
+    /// where both have them.
+    pub integrator: Option<IntegratorKind>,
+    /// Bidirectional path tracing with this strategy `(s, t)` alone at unit weight (for
+    /// tests and pictures of one strategy).
+    pub bdpt_only: Option<(u32, u32)>,
     /// Pick the render loop specialised to the scene's effects (default). `false` always
     /// runs the general loop (every material type, point lights and environment checked at
     /// run time); for benchmarks and tests of the specialisation.
@@ -96,6 +109,8 @@ impl Default for RenderOptions {
             sampler: None,
             light_sampling: ShapeSampling::SolidAngle,
             specialize: true,
+            integrator: None,
+            bdpt_only: None,
         }
     }
 }
@@ -115,6 +130,7 @@ pub struct Renderer {
     threads: usize,
     effects: Effects,
     specialize: bool,
+    seed: u64,
 }
 
 /// A finished (or cancelled) render.
@@ -127,6 +143,8 @@ pub struct RenderOutput {
     pub rays: u64,
     /// Wall-clock render time in seconds.
     pub seconds: f64,
+    /// For bidirectional path tracing: what each strategy contributed.
+    pub strategies: Option<crate::integrator::StrategyStats>,
 }
 
 /// Radius of a sphere about the origin that holds every shape (approximate for meshes read
@@ -191,7 +209,11 @@ impl Renderer {
             })
             .collect::<Result<Vec<_>, _>>()?;
         let strategy = opts.strategy.unwrap_or_default();
-        let integrator = match desc.integrator {
+        let integrator_desc = match opts.integrator {
+            Some(kind) => desc.integrator.with_kind(kind),
+            None => desc.integrator,
+        };
+        let integrator = match integrator_desc {
             IntegratorDesc::Path {
                 max_depth,
                 rr_depth,
@@ -208,7 +230,48 @@ impl Renderer {
                 bsdf_samples,
                 strategy,
             }),
+            IntegratorDesc::Bdpt {
+                max_depth,
+                rr_depth,
+            } => Integrator::Bdpt(Bdpt {
+                max_depth,
+                rr_depth,
+                strategy,
+                only: opts.bdpt_only,
+            }),
+            IntegratorDesc::Mlt {
+                max_depth,
+                bootstrap_samples,
+                chains,
+                mutations_per_pixel,
+                large_step_prob,
+                sigma,
+            } => Integrator::Mlt(Mlt {
+                max_depth: max_depth.max(1) as u32,
+                bootstrap_samples,
+                chains,
+                mutations_per_pixel,
+                large_step_prob,
+                sigma,
+                strategy,
+            }),
         };
+        if matches!(integrator, Integrator::Bdpt(_) | Integrator::Mlt(_)) {
+            if !camera.is_similarity() {
+                return Err(RenderError(format!(
+                    "{}: the camera's to_world must be a rotation, uniform scale and \
+                     translation (its importance is exact only then)",
+                    integrator.name()
+                )));
+            }
+            if matches!(strategy, Strategy::BsdfOnly | Strategy::LightOnly)
+                && matches!(integrator, Integrator::Mlt(_))
+            {
+                return Err(RenderError(
+                    "mlt weighs its strategies by MIS: use --strategy balance or power".into(),
+                ));
+            }
+        }
         let film = &desc.sensor.film;
         if film.width == 0 || film.height == 0 {
             return Err(RenderError(format!(
@@ -217,7 +280,11 @@ impl Renderer {
             )));
         }
         let effects = Effects::of(&bsdfs, &lights, &integrator);
-        let spp = opts.spp.unwrap_or(desc.sensor.sampler.sample_count);
+        let file_spp = match integrator {
+            Integrator::Mlt(m) => m.mutations_per_pixel,
+            _ => desc.sensor.sampler.sample_count,
+        };
+        let spp = opts.spp.unwrap_or(file_spp);
         let seed = opts.seed.unwrap_or(desc.sensor.sampler.seed);
         let kind = opts.sampler.unwrap_or(desc.sensor.sampler.kind);
         let sampler =
@@ -236,6 +303,7 @@ impl Renderer {
             threads: opts.threads,
             effects,
             specialize: opts.specialize,
+            seed,
         })
     }
 
@@ -281,6 +349,7 @@ impl Renderer {
             height: self.height,
             spp: self.spp,
             sampler: &self.sampler,
+            seed: self.seed,
             t_max: f32::INFINITY,
             progress,
             cancel,
@@ -302,15 +371,14 @@ impl Renderer {
             samples: stats.samples,
             rays: stats.rays,
             seconds: start.elapsed().as_secs_f64(),
+            strategies: stats.strategies,
         }
     }
 
     fn dispatch(&self, p: &tiles::LoopParams<'_>) -> (Film, tiles::LoopStats) {
         let e = self.effects;
         if !self.specialize {
-            let (geo, lights) = (&self.geo, &self.lights);
-            let bsdfs = self.bsdfs.clone();
-            return tiles::render_loop(&SceneView::<_, true, true> { geo, bsdfs, lights }, p);
+            return self.run_loop(&self.view::<_, true, true>(self.bsdfs.clone()), p);
         }
         if e.diffuse_only {
             let bsdfs: Vec<_> = self
@@ -334,20 +402,38 @@ impl Renderer {
         bsdfs: Vec<B>,
         p: &tiles::LoopParams<'_>,
     ) -> (Film, tiles::LoopStats) {
-        let (geo, lights) = (&self.geo, &self.lights);
         match (self.effects.delta_lights, self.effects.environment) {
-            (false, false) => {
-                tiles::render_loop(&SceneView::<B, false, false> { geo, bsdfs, lights }, p)
-            }
-            (true, false) => {
-                tiles::render_loop(&SceneView::<B, true, false> { geo, bsdfs, lights }, p)
-            }
-            (false, true) => {
-                tiles::render_loop(&SceneView::<B, false, true> { geo, bsdfs, lights }, p)
-            }
-            (true, true) => {
-                tiles::render_loop(&SceneView::<B, true, true> { geo, bsdfs, lights }, p)
-            }
+            (false, false) => self.run_loop(&self.view::<B, false, false>(bsdfs), p),
+            (true, false) => self.run_loop(&self.view::<B, true, false>(bsdfs), p),
+            (false, true) => self.run_loop(&self.view::<B, false, true>(bsdfs), p),
+            (true, true) => self.run_loop(&self.view::<B, true, true>(bsdfs), p),
+        }
+    }
+
+    /// The estimators' view of the scene with materials `bsdfs`.
+    fn view<B, const DELTA: bool, const ENV: bool>(
+        &self,
+        bsdfs: Vec<B>,
+    ) -> SceneView<'_, B, DELTA, ENV> {
+        SceneView {
+            geo: &self.geo,
+            bsdfs,
+            lights: &self.lights,
+            camera: &self.camera,
+            world: self.geo.bounding_sphere(),
+        }
+    }
+
+    /// The render loop of the integrator.
+    fn run_loop<B: crate::integrator::Bsdf + Sync, const DELTA: bool, const ENV: bool>(
+        &self,
+        view: &SceneView<'_, B, DELTA, ENV>,
+        p: &tiles::LoopParams<'_>,
+    ) -> (Film, tiles::LoopStats) {
+        match &self.integrator {
+            Integrator::Bdpt(b) => bidir::render_loop_bdpt(view, p, b),
+            Integrator::Mlt(m) => mlt_loop::render_mlt(view, p, m),
+            _ => tiles::render_loop(view, p),
         }
     }
 }

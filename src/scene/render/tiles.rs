@@ -21,6 +21,8 @@ pub(crate) struct LoopParams<'a> {
     pub height: u32,
     pub spp: u32,
     pub sampler: &'a AnySampler,
+    /// The render's seed (Metropolis chains derive theirs from it).
+    pub seed: u64,
     pub t_max: f32,
     pub progress: &'a (dyn Fn(u64, u64) + Sync),
     pub cancel: &'a AtomicBool,
@@ -30,13 +32,15 @@ pub(crate) struct LoopParams<'a> {
 type TileResult = (Vec<(usize, PixelAccum)>, u64);
 
 /// Counters of the work done.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct LoopStats {
     pub samples: u64,
     pub rays: u64,
+    /// What each bidirectional strategy contributed (BDPT only).
+    pub strategies: Option<crate::integrator::StrategyStats>,
 }
 
-fn tiles(w: u32, h: u32) -> Vec<(u32, u32, u32, u32)> {
+pub(crate) fn tiles(w: u32, h: u32) -> Vec<(u32, u32, u32, u32)> {
     let mut v = Vec::new();
     for y0 in (0..h).step_by(TILE as usize) {
         for x0 in (0..w).step_by(TILE as usize) {
@@ -48,7 +52,7 @@ fn tiles(w: u32, h: u32) -> Vec<(u32, u32, u32, u32)> {
 
 /// Samples per pass: about 16 passes, at most 64 spp each, so progress and cancellation are
 /// responsive.
-fn pass_size(spp: u32) -> u32 {
+pub(crate) fn pass_size(spp: u32) -> u32 {
     spp.div_ceil(16).clamp(1, 64)
 }
 

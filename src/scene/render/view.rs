@@ -17,6 +17,10 @@ pub struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
     pub(crate) geo: &'a Geometry,
     pub(crate) bsdfs: Vec<B>,
     pub(crate) lights: &'a Lights,
+    /// The camera, for the bidirectional estimators' camera endpoint.
+    pub(crate) camera: &'a super::geo::Camera,
+    /// The scene's bounding sphere (centre, radius): where lights at infinity emit from.
+    pub(crate) world: (Vec3, f32),
 }
 
 #[inline]
@@ -158,12 +162,14 @@ mod tests {
                 }
             })
             .collect();
+        let camera = Camera::new(&desc.sensor).unwrap();
         let scene = SceneView::<_, true, false> {
             geo: &geo,
             bsdfs,
             lights: &lights,
+            camera: &camera,
+            world: geo.bounding_sphere(),
         };
-        let camera = Camera::new(&desc.sensor).unwrap();
         let f = &desc.sensor.film;
         let ray = camera.generate_ray(Vec2::new(f.width as f32, f.height as f32) * 0.5);
         let pt = PathTracer {

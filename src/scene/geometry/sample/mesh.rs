@@ -69,6 +69,20 @@ pub(super) fn sample(
     (pdf.is_finite() && pdf > 0.0).then_some(ShapeSample { p, n, pdf })
 }
 
+/// A point uniform by area over the whole mesh (a triangle by its area, then a uniform
+/// point on it) and the front normal there.
+pub(super) fn sample_area(m: &MeshData, u_pick: f32, u: Vec2) -> Option<(Vec3, Vec3)> {
+    if let Some([corner, ex, ey]) = m.parallelogram {
+        return Some((
+            corner + u.x * ex + u.y * ey,
+            front_normal(m, triangle(m, 0)),
+        ));
+    }
+    let (k, _) = m.pick.as_ref()?.sample_with_pmf(u_pick);
+    let tri = triangle(m, k);
+    Some((uniform_point(tri, u), front_normal(m, tri)))
+}
+
 pub(super) fn pdf(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) -> Option<f32> {
     if m.parallelogram.is_some() {
         return pdf_parallelogram(m, how, reference, hit);

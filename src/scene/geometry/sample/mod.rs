@@ -33,7 +33,7 @@ pub enum ShapeSampling {
     /// Spheres keep cone sampling, which is cheap.
     Area,
 }
-use crate::sampling::warp::{UniformDiskConcentric, Warp};
+use crate::sampling::warp::{UniformDiskConcentric, UniformSphere, Warp};
 use crate::scene::accel::Aabb;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -142,6 +142,37 @@ impl Geometry {
                 })
             }
         }
+    }
+
+    /// A point uniformly distributed by area over shape `shape` (`u_pick` chooses a
+    /// triangle of a mesh by its area, `u` the point): the emission positions of area
+    /// lights. `pdf` is per unit area, `1/area`. `None` for a shape without area or an
+    /// index out of range.
+    pub fn sample_area(&self, shape: u32, u_pick: f32, u: Vec2) -> Option<ShapeSample> {
+        let area = self.shape_area(shape);
+        if !(area > 0.0 && area.is_finite()) {
+            return None;
+        }
+        let (p, n) = match self.shapes.get(shape as usize)? {
+            ShapeData::Mesh(m) => mesh::sample_area(m, u_pick, u)?,
+            &ShapeData::Sphere {
+                center,
+                radius,
+                flip,
+            } => {
+                let n = UniformSphere.sample(u);
+                (center + radius * n, if flip { -n } else { n })
+            }
+            ShapeData::Disk(d) => {
+                let q = UniformDiskConcentric.sample(u);
+                (d.to_world.transform_point3(q.extend(0.0)), d.normal)
+            }
+        };
+        p.is_finite().then_some(ShapeSample {
+            p,
+            n,
+            pdf: 1.0 / area,
+        })
     }
 
     /// The density per unit solid angle at `reference` with which

@@ -1,0 +1,284 @@
+//! One connection strategy `(s, t)`: the first `s` vertices of the light subpath joined to
+//! the first `t` of the camera subpath, with its unweighted contribution and its multiple
+//! importance weight against every other strategy that can make the same path.
+//!
+//! The weight uses the ratio recurrence of Veach 1997 (thesis, section 10.2.1): with `p_i`
+//! the density of the whole path under the strategy with `i` light vertices,
+//! `p_{i+1}/p_i = p_fwd(x_i)/p_rev(x_i)`, so all ratios follow in one pass over the path.
+
+use super::vertex::{bare_point, Kind, Mode, Vertex};
+use crate::integrator::{is_positive, BidirectionalScene, EmitterKind, SampleSource};
+use glam::{Vec2, Vec3};
+
+/// The MIS heuristic's exponent: 1 balance, 2 power.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Heuristic {
+    Balance,
+    Power,
+    /// Every strategy counts in full (for testing one strategy alone).
+    Unit,
+}
+
+/// A connection's contribution (before its weight), its weight, and for `t = 1` the film
+/// position it lands on.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Connection {
+    pub value: Vec3,
+    pub weight: f32,
+    pub raster: Option<Vec2>,
+}
+
+/// Connects `light[..s]` with `camera[..t]`; `None` when the strategy cannot make a path
+/// here (or the contribution is zero). `s = 1` samples a fresh light point from `rng`,
+/// `t = 1` connects to the camera. Shadow rays are added to `rays`.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
+    scene: &S,
+    light: &[Vertex],
+    camera: &[Vertex],
+    s: usize,
+    t: usize,
+    heuristic: Heuristic,
+    rng: &mut R,
+    rays: &mut u32,
+) -> Option<Connection> {
+    if t == 0 || t > camera.len() || s > light.len() {
+        return None;
+    }
+    // A camera ray that escaped can only be an emitter hit (s = 0).
+    if s > 0 && camera[t - 1].is_infinite() {
+        return None;
+    }
+    let mut sampled: Option<Vertex> = None;
+    let mut raster = None;
+    let value = if s == 0 {
+        let pt = &camera[t - 1];
+        if t < 2 || !pt.is_light() {
+            return None;
+        }
+        pt.le(scene, &camera[t - 2]) * pt.beta
+    } else if t == 1 {
+        let qs = &light[s - 1];
+        if !qs.connectible() {
+            return None;
+        }
+        let c = scene.connect_camera(qs.sp.p)?;
+        let mut cam = bare_point(scene.camera_position());
+        cam.ng = scene.camera_forward();
+        let cam_v = Vertex::new(Kind::Camera, cam, Vec3::ONE, 1.0);
+        let f = if s == 1 {
+            // The light seen directly: its emission toward the camera, with the cosine.
+            let cos = if qs.on_surface() {
+                qs.sp.ng.dot(c.wi).abs()
+            } else {
+                1.0
+            };
+            qs.le(scene, &cam_v) * cos
+        } else {
+            qs.f_dirs(scene, qs.dir_to(&light[s - 2]).0, c.wi, Mode::Importance)
+        };
+        let v = qs.beta * f * (c.importance / (c.dist * c.dist));
+        if v == Vec3::ZERO || !v.is_finite() {
+            return None;
+        }
+        *rays += 1;
+        if scene.occluded(&qs.sp, c.wi, c.dist) {
+            return None;
+        }
+        raster = Some(c.raster);
+        sampled = Some(cam_v);
+        v
+    } else if s == 1 {
+        let pt = &camera[t - 1];
+        if !pt.connectible() {
+            return None;
+        }
+        let u_pick = rng.next_2d();
+        let u_pos = rng.next_2d();
+        let es = scene.sample_emission(u_pick, u_pos, Vec2::splat(0.5))?;
+        if !is_positive(es.pdf_pos) {
+            return None;
+        }
+        let mut lv = Vertex::new(
+            Kind::Light(es.kind),
+            es.point,
+            Vec3::splat(1.0 / es.pdf_pos),
+            es.pdf_pos,
+        );
+        lv.light = es.light;
+        match es.kind {
+            EmitterKind::Infinite => lv.w_env = -es.dir,
+            EmitterKind::Point => lv.intensity = es.radiance,
+            EmitterKind::Area => {}
+        }
+        let (w, d2) = pt.dir_to(&lv);
+        let le = lv.le(scene, pt);
+        let cos_l = if lv.on_surface() {
+            lv.sp.ng.dot(w).abs()
+        } else {
+            1.0
+        };
+        let g = if d2.is_finite() { cos_l / d2 } else { 1.0 };
+        let f = pt.f(scene, &camera[t - 2], &lv, Mode::Radiance);
+        let v = pt.beta * f * le * (g / es.pdf_pos);
+        if v == Vec3::ZERO || !v.is_finite() {
+            return None;
+        }
+        *rays += 1;
+        let dist = if d2.is_finite() {
+            d2.sqrt()
+        } else {
+            f32::INFINITY
+        };
+        if scene.occluded(&pt.sp, w, dist) {
+            return None;
+        }
+        sampled = Some(lv);
+        v
+    } else {
+        let (qs, pt) = (&light[s - 1], &camera[t - 1]);
+        if !qs.connectible() || !pt.connectible() {
+            return None;
+        }
+        let (w, d2) = pt.dir_to(qs);
+        if !is_positive(d2) {
+            return None;
+        }
+        let fq = qs.f(scene, &light[s - 2], pt, Mode::Importance);
+        let fp = pt.f(scene, &camera[t - 2], qs, Mode::Radiance);
+        let v = qs.beta * fq * fp * pt.beta / d2;
+        if v == Vec3::ZERO || !v.is_finite() {
+            return None;
+        }
+        *rays += 1;
+        if scene.occluded(&pt.sp, w, d2.sqrt()) {
+            return None;
+        }
+        v
+    };
+    if value == Vec3::ZERO || !value.is_finite() {
+        return None;
+    }
+    let weight = match heuristic {
+        Heuristic::Unit => 1.0,
+        h => mis_weight(scene, light, camera, sampled.as_ref(), s, t, h),
+    };
+    Some(Connection {
+        value,
+        weight,
+        raster,
+    })
+}
+
+/// `x^β`, with 0 mapped to 1 (a zero density is a delta or impossible strategy; its ratio
+/// then carries no information).
+#[inline]
+fn remap(x: f32, h: Heuristic) -> f32 {
+    if x == 0.0 {
+        return 1.0;
+    }
+    match h {
+        Heuristic::Power => x * x,
+        _ => x,
+    }
+}
+
+/// The MIS weight of strategy `(s, t)` for the path it made; `sampled` is the endpoint
+/// that strategy sampled afresh (`s = 1`: the light vertex; `t = 1`: the camera vertex).
+pub(crate) fn mis_weight<S: BidirectionalScene>(
+    scene: &S,
+    light: &[Vertex],
+    camera: &[Vertex],
+    sampled: Option<&Vertex>,
+    s: usize,
+    t: usize,
+    h: Heuristic,
+) -> f32 {
+    // Paths of one segment: (0, 2) is the only strategy run (see `Bdpt`).
+    if s + t == 2 {
+        return 1.0;
+    }
+    // The endpoints as this strategy sees them.
+    let qs: Option<Vertex> = match s {
+        0 => None,
+        1 => sampled.copied().or(light.first().copied()),
+        _ => Some(light[s - 1]),
+    };
+    let pt: Vertex = if t == 1 {
+        sampled.copied().unwrap_or(camera[0])
+    } else {
+        camera[t - 1]
+    };
+    let pt_prev = (t > 1).then(|| camera[t - 2]);
+    let qs_prev = (s > 1).then(|| light[s - 2]);
+    // Reverse densities of the four vertices next to the connection.
+    let pt_rev = match &qs {
+        Some(q) => q.pdf(scene, qs_prev.as_ref(), &pt),
+        None => pt.pdf_light_origin(scene, pt_prev.as_ref().unwrap_or(&pt)),
+    };
+    let pt_prev_rev = pt_prev.map(|pm| match &qs {
+        Some(q) => pt.pdf(scene, Some(q), &pm),
+        None => pt.pdf_light(scene, &pm),
+    });
+    let qs_rev = qs.map(|q| pt.pdf(scene, pt_prev.as_ref(), &q));
+    let qs_prev_rev = match (&qs, &qs_prev) {
+        (Some(q), Some(qm)) => Some(q.pdf(scene, Some(&pt), qm)),
+        _ => None,
+    };
+    // Camera side: strategies with fewer camera vertices.
+    let cam_rev = |i: usize| {
+        if i == t - 1 {
+            pt_rev
+        } else if i + 2 == t {
+            pt_prev_rev.unwrap_or(0.0)
+        } else {
+            camera[i].pdf_rev
+        }
+    };
+    let cam_delta = |i: usize| if i == t - 1 { false } else { camera[i].delta };
+    let mut sum = 0.0f32;
+    let mut r = 1.0f32;
+    for i in (1..t).rev() {
+        let fwd = if i == t - 1 {
+            pt.pdf_fwd
+        } else {
+            camera[i].pdf_fwd
+        };
+        r *= remap(cam_rev(i), h) / remap(fwd, h);
+        if !cam_delta(i) && !cam_delta(i - 1) {
+            sum += r;
+        }
+    }
+    // Light side: strategies with fewer light vertices.
+    if let Some(q) = qs {
+        let light_v = |i: usize| if i == s - 1 { q } else { light[i] };
+        let light_rev = |i: usize| {
+            if i == s - 1 {
+                qs_rev.unwrap_or(0.0)
+            } else if i + 2 == s {
+                qs_prev_rev.unwrap_or(0.0)
+            } else {
+                light[i].pdf_rev
+            }
+        };
+        let light_delta = |i: usize| if i == s - 1 { false } else { light[i].delta };
+        let mut r = 1.0f32;
+        for i in (0..s).rev() {
+            r *= remap(light_rev(i), h) / remap(light_v(i).pdf_fwd, h);
+            let before_delta = if i > 0 {
+                light_delta(i - 1)
+            } else {
+                light_v(0).is_delta_light()
+            };
+            if !light_delta(i) && !before_delta {
+                sum += r;
+            }
+        }
+    }
+    let w = 1.0 / (1.0 + sum);
+    if w.is_finite() {
+        w
+    } else {
+        0.0
+    }
+}

@@ -1,0 +1,276 @@
+//! Path vertices of the bidirectional estimators and the densities between them, per unit
+//! area (per steradian toward a light at infinity). `docs/renderer.md`, "Bidirectional path
+//! tracing", derives the conversions.
+
+use crate::integrator::{BidirectionalScene, Bsdf, EmitterKind, Frame, SurfacePoint};
+use glam::{Vec2, Vec3};
+
+/// Which way a subpath carries its quantity: radiance (camera subpaths) or importance
+/// (light subpaths, which see the adjoint BSDF).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Mode {
+    Radiance,
+    Importance,
+}
+
+/// What a vertex is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Kind {
+    /// The camera's centre of projection.
+    Camera,
+    /// A scattering surface (possibly emitting too: `light` is then set).
+    Surface,
+    /// The first vertex of a light subpath, or a camera ray that escaped to the environment
+    /// (`Infinite`).
+    Light(EmitterKind),
+}
+
+/// A vertex with the subpath's throughput up to it and the densities of sampling it from
+/// either side.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Vertex {
+    pub kind: Kind,
+    pub sp: SurfacePoint,
+    /// Toward a light at infinity: the unit direction from the scene to the light.
+    pub w_env: Vec3,
+    /// The scene's light index for lights and emitting surfaces, else `u32::MAX`.
+    pub light: u32,
+    /// A point light's intensity.
+    pub intensity: Vec3,
+    /// Throughput of the subpath up to and including this vertex's sampling density.
+    pub beta: Vec3,
+    /// Density of this vertex when sampled from its own subpath's side.
+    pub pdf_fwd: f32,
+    /// Density of this vertex when sampled from the other side.
+    pub pdf_rev: f32,
+    /// The scattering at this vertex was a Dirac delta (no connection can end here).
+    pub delta: bool,
+    /// The BSDF here has a non-delta component (connections can end here).
+    pub smooth: bool,
+}
+
+/// No light index.
+pub(crate) const NO_LIGHT: u32 = u32::MAX;
+
+/// A surface point for a point in space with no surface (camera, point light, the disk of a
+/// light at infinity): zero normal, so rays leaving it are not offset.
+pub(crate) fn bare_point(p: Vec3) -> SurfacePoint {
+    SurfacePoint {
+        p,
+        ng: Vec3::ZERO,
+        frame: Frame::from_normal(Vec3::Z),
+        t: 0.0,
+        shape: u32::MAX,
+        prim: 0,
+        uv: Vec2::ZERO,
+    }
+}
+
+impl Vertex {
+    /// A vertex of `kind` at `sp`, with no light, throughput `beta` and forward density
+    /// `pdf_fwd`.
+    pub(crate) fn new(kind: Kind, sp: SurfacePoint, beta: Vec3, pdf_fwd: f32) -> Self {
+        Self {
+            kind,
+            sp,
+            w_env: Vec3::ZERO,
+            light: NO_LIGHT,
+            intensity: Vec3::ZERO,
+            beta,
+            pdf_fwd,
+            pdf_rev: 0.0,
+            delta: false,
+            smooth: true,
+        }
+    }
+
+    #[inline]
+    pub(crate) fn is_infinite(&self) -> bool {
+        self.kind == Kind::Light(EmitterKind::Infinite)
+    }
+
+    /// On a surface with a normal (densities toward it carry its cosine).
+    #[inline]
+    pub(crate) fn on_surface(&self) -> bool {
+        matches!(self.kind, Kind::Surface | Kind::Light(EmitterKind::Area))
+    }
+
+    /// A Dirac delta in position (a point light; the pinhole is handled by the estimators).
+    #[inline]
+    pub(crate) fn is_delta_light(&self) -> bool {
+        self.kind == Kind::Light(EmitterKind::Point)
+    }
+
+    /// Whether a connection may end here.
+    #[inline]
+    pub(crate) fn connectible(&self) -> bool {
+        match self.kind {
+            Kind::Surface => self.smooth,
+            Kind::Camera | Kind::Light(_) => true,
+        }
+    }
+
+    /// Whether this vertex emits (a light, or a surface on an area light).
+    #[inline]
+    pub(crate) fn is_light(&self) -> bool {
+        self.light != NO_LIGHT
+    }
+
+    /// Unit direction from this vertex to `to`, and the squared distance (infinite toward
+    /// or from a light at infinity).
+    #[inline]
+    pub(crate) fn dir_to(&self, to: &Vertex) -> (Vec3, f32) {
+        if to.is_infinite() {
+            return (to.w_env, f32::INFINITY);
+        }
+        if self.is_infinite() {
+            return (-self.w_env, f32::INFINITY);
+        }
+        let d = to.sp.p - self.sp.p;
+        let d2 = d.length_squared();
+        if d2 > 0.0 {
+            (d / d2.sqrt(), d2)
+        } else {
+            (Vec3::ZERO, 0.0)
+        }
+    }
+
+    /// A density per steradian at this vertex toward `to`, as a density per unit area at
+    /// `to` (unchanged toward a light at infinity).
+    #[inline]
+    pub(crate) fn area_density(&self, pdf_sa: f32, to: &Vertex) -> f32 {
+        if to.is_infinite() {
+            return pdf_sa;
+        }
+        let (w, d2) = self.dir_to(to);
+        if !(d2 > 0.0 && d2.is_finite()) {
+            return 0.0;
+        }
+        let cos = if to.on_surface() {
+            to.sp.ng.dot(w).abs()
+        } else {
+            1.0
+        };
+        pdf_sa * cos / d2
+    }
+
+    /// Density per unit area with which this vertex, reached from `prev` (`None`: it is an
+    /// endpoint), samples `next`.
+    pub(crate) fn pdf<S: BidirectionalScene>(
+        &self,
+        scene: &S,
+        prev: Option<&Vertex>,
+        next: &Vertex,
+    ) -> f32 {
+        match self.kind {
+            Kind::Light(_) => self.pdf_light(scene, next),
+            Kind::Camera => {
+                let (w, _) = self.dir_to(next);
+                self.area_density(scene.camera_pdf(w), next)
+            }
+            Kind::Surface => {
+                let Some(prev) = prev else {
+                    return self.pdf_light(scene, next);
+                };
+                let (wn, _) = self.dir_to(next);
+                let (wp, _) = self.dir_to(prev);
+                let f = &self.sp.frame;
+                let pdf = scene.bsdf(&self.sp).pdf(f.to_local(wp), f.to_local(wn));
+                self.area_density(pdf, next)
+            }
+        }
+    }
+
+    /// Density per unit area at `next` of the emission direction of this light (or
+    /// emitting surface) toward it.
+    pub(crate) fn pdf_light<S: BidirectionalScene>(&self, scene: &S, next: &Vertex) -> f32 {
+        let (w, _) = self.dir_to(next);
+        if self.is_infinite() {
+            let (_, pdf_disk) = scene.emission_pdf(self.light, &self.sp, -self.w_env);
+            let cos = if next.on_surface() {
+                next.sp.ng.dot(self.w_env).abs()
+            } else {
+                1.0
+            };
+            return pdf_disk * cos;
+        }
+        let (_, pdf_dir) = scene.emission_pdf(self.light, &self.sp, w);
+        self.area_density(pdf_dir, next)
+    }
+
+    /// Density with which a light subpath starts at this light (or emitting surface)
+    /// point: per unit area with the light's choice (per steradian for a light at
+    /// infinity).
+    pub(crate) fn pdf_light_origin<S: BidirectionalScene>(&self, scene: &S, next: &Vertex) -> f32 {
+        let w = if self.is_infinite() {
+            -self.w_env
+        } else {
+            self.dir_to(next).0
+        };
+        scene.emission_pdf(self.light, &self.sp, w).0
+    }
+
+    /// Radiance this light (or emitting surface) sends toward `to`.
+    pub(crate) fn le<S: BidirectionalScene>(&self, scene: &S, to: &Vertex) -> Vec3 {
+        if !self.is_light() {
+            return Vec3::ZERO;
+        }
+        match self.kind {
+            Kind::Light(EmitterKind::Infinite) => scene.environment(self.w_env),
+            Kind::Light(EmitterKind::Point) => self.intensity,
+            _ => scene.emitted(&self.sp, self.dir_to(to).0),
+        }
+    }
+
+    /// The BSDF times the cosine at this surface vertex for light arriving from `from` and
+    /// leaving toward `to`, in the subpath's `mode` (`from` is this subpath's previous vertex).
+    pub(crate) fn f<S: BidirectionalScene>(
+        &self,
+        scene: &S,
+        from: &Vertex,
+        to: &Vertex,
+        mode: Mode,
+    ) -> Vec3 {
+        let (wo, _) = self.dir_to(from);
+        let (wi, _) = self.dir_to(to);
+        self.f_dirs(scene, wo, wi, mode)
+    }
+
+    /// [`Vertex::f`] with world directions: `wo` toward this subpath's previous vertex, `wi`
+    /// the other way.
+    pub(crate) fn f_dirs<S: BidirectionalScene>(
+        &self,
+        scene: &S,
+        wo: Vec3,
+        wi: Vec3,
+        mode: Mode,
+    ) -> Vec3 {
+        let fr = &self.sp.frame;
+        let bsdf = scene.bsdf(&self.sp);
+        match mode {
+            Mode::Radiance => bsdf.eval(fr.to_local(wo), fr.to_local(wi)),
+            Mode::Importance => {
+                bsdf.eval_adjoint(fr.to_local(wo), fr.to_local(wi))
+                    * shading_correction(&self.sp, wo, wi)
+            }
+        }
+    }
+}
+
+/// The factor that makes importance transport with shading normals the adjoint of radiance
+/// transport: `|wo·n_s| |wi·n_g| / (|wo·n_g| |wi·n_s|)` (Veach 1997, thesis, eq. 5.19); 1
+/// where the shading and geometric normals agree.
+#[inline]
+pub(crate) fn shading_correction(sp: &SurfacePoint, wo: Vec3, wi: Vec3) -> f32 {
+    let (ns, ng) = (sp.frame.n, sp.ng);
+    if ns == ng {
+        return 1.0;
+    }
+    let num = wo.dot(ns).abs() * wi.dot(ng).abs();
+    let den = wo.dot(ng).abs() * wi.dot(ns).abs();
+    if den > 0.0 {
+        num / den
+    } else {
+        0.0
+    }
+}
