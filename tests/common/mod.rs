@@ -7,6 +7,7 @@
 //! runs than exist only makes each run slightly stricter.
 #![allow(dead_code)] // each test file uses a different subset
 
+pub mod replicates;
 pub mod samplers;
 
 use mcrt::stats::{ChiSquareTest, Directions, Domain, JacobianCheck};

@@ -1,0 +1,273 @@
+//! Bidirectional path tracing and Metropolis light transport against references: Mitsuba 3's
+//! images of the Cornell box, `veach-mis.xml` and the caustic box (32×32 block means), the
+//! path tracer's image of each path length for every BDPT strategy alone, and white
+//! furnaces with diffuse, mirror and glass spheres.
+//!
+//! Light tracing and Metropolis sampling splat anywhere on the film, so per-pixel variances
+//! are not known: every comparison renders 16 independent replicates (seeds 1000…) and
+//! t-tests the block means at a family-wise α = 0.01 per comparison (Šidák over blocks and
+//! channels; `tests/common/replicates.rs`), with an allowance for the reference's own error
+//! and a 1% bias bound (1.5% for the caustic box, whose reference agrees with itself to 0.72%
+//! on 32×32 blocks). Fixed seeds.
+
+mod common;
+
+use common::replicates::{compare, render_replicates};
+use mcrt::glam::{Mat4, Vec3};
+use mcrt::scene::description::*;
+use mcrt::scene::film::read_exr;
+use mcrt::scene::render::{RenderOptions, Renderer, ShapeSampling};
+use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
+
+const REPLICATES: u32 = 16;
+const SEED: u64 = 1000;
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join("data")
+        .join(name)
+}
+
+fn load(name: &str) -> SceneDescription {
+    mcrt::scene::loader::load_scene(&data(name), &[]).expect("scene loads")
+}
+
+fn opts(kind: IntegratorKind, spp: u32) -> RenderOptions {
+    RenderOptions {
+        spp: Some(spp),
+        integrator: Some(kind),
+        light_sampling: ShapeSampling::Area,
+        ..RenderOptions::default()
+    }
+}
+
+/// MLT with a bound on the length (the references are unbounded: paths above 12 segments
+/// carry about 0.1% of the Cornell box) and a smaller bootstrap, for test time.
+fn mlt_desc(mut desc: SceneDescription) -> SceneDescription {
+    desc.integrator = IntegratorDesc::Mlt {
+        max_depth: 12,
+        bootstrap_samples: 20_000,
+        chains: 64,
+        mutations_per_pixel: 1,
+        large_step_prob: 0.3,
+        sigma: 0.01,
+    };
+    desc
+}
+
+fn against_mitsuba(
+    what: &str,
+    desc: &SceneDescription,
+    o: &RenderOptions,
+    reference: &str,
+    allowance: f64,
+) {
+    let (w, h, images) = render_replicates(desc, o, REPLICATES, SEED);
+    let (rw, rh, rf) = read_exr(&data(reference)).expect("reference reads");
+    assert_eq!((w, h), (rw, rh), "{what}: size differs from the reference");
+    compare(&images, &rf, w, h, 32, allowance).assert_passed(what);
+}
+
+#[test]
+fn bdpt_cornell_box_matches_mitsuba() {
+    let d = load("cornell-box.xml");
+    against_mitsuba(
+        "bdpt cornell",
+        &d,
+        &opts(IntegratorKind::Bdpt, 2),
+        "cornell-box.exr",
+        0.01,
+    );
+}
+
+#[test]
+fn bdpt_veach_mis_matches_mitsuba() {
+    let d = load("veach-mis.xml");
+    against_mitsuba(
+        "bdpt veach-mis",
+        &d,
+        &opts(IntegratorKind::Bdpt, 2),
+        "veach-mis.exr",
+        0.01,
+    );
+}
+
+#[test]
+fn bdpt_caustic_box_matches_mitsuba() {
+    let d = load("cornell-box-caustic.xml");
+    against_mitsuba(
+        "bdpt caustic",
+        &d,
+        &opts(IntegratorKind::Bdpt, 8),
+        "cornell-box-caustic.exr",
+        0.015,
+    );
+}
+
+#[test]
+fn mlt_cornell_box_matches_mitsuba() {
+    let d = mlt_desc(load("cornell-box.xml"));
+    against_mitsuba(
+        "mlt cornell",
+        &d,
+        &opts(IntegratorKind::Mlt, 4),
+        "cornell-box.exr",
+        0.01,
+    );
+}
+
+#[test]
+fn mlt_veach_mis_matches_mitsuba() {
+    let d = mlt_desc(load("veach-mis.xml"));
+    against_mitsuba(
+        "mlt veach-mis",
+        &d,
+        &opts(IntegratorKind::Mlt, 4),
+        "veach-mis.exr",
+        0.01,
+    );
+}
+
+#[test]
+fn mlt_caustic_box_matches_mitsuba() {
+    let d = mlt_desc(load("cornell-box-caustic.xml"));
+    against_mitsuba(
+        "mlt caustic",
+        &d,
+        &opts(IntegratorKind::Mlt, 16),
+        "cornell-box-caustic.exr",
+        0.015,
+    );
+}
+
+/// The path tracer's image of paths of exactly `k` segments: the same seeds at `max_depth`
+/// `k` and `k − 1` draw the same paths up to `k − 1` segments, so the difference holds the
+/// `k`-segment contributions alone.
+fn path_tracer_length(k: i32, res: u32, spp: u32) -> Vec<Vec3> {
+    let render = |d: i32| {
+        let desc = mcrt::scene::cornell_box::cornell_box_with(spp, res, d);
+        let o = RenderOptions {
+            seed: Some(7),
+            light_sampling: ShapeSampling::Area,
+            ..RenderOptions::default()
+        };
+        Renderer::new(&desc, &o)
+            .expect("scene builds")
+            .render(&|_, _| {}, &AtomicBool::new(false))
+            .image()
+    };
+    let (a, b) = (render(k), render(k - 1));
+    a.iter().zip(&b).map(|(x, y)| *x - *y).collect()
+}
+
+#[test]
+fn each_strategy_alone_makes_the_path_tracers_image_of_its_length() {
+    let res = 64;
+    for k in [2u32, 3] {
+        let reference = path_tracer_length(k as i32, res, 1024);
+        for s in 0..=k {
+            let t = k + 1 - s;
+            let desc = mcrt::scene::cornell_box::cornell_box_with(4, res, k as i32);
+            let o = RenderOptions {
+                bdpt_only: Some((s, t)),
+                ..opts(IntegratorKind::Bdpt, 4)
+            };
+            let (w, h, images) = render_replicates(&desc, &o, REPLICATES, SEED);
+            // 2% for the reference's own noise (1024 spp; its 16×16 blocks to about 0.5%).
+            compare(&images, &reference, w, h, 16, 0.02)
+                .assert_passed(&format!("strategy ({s}, {t}), {k} segments"));
+        }
+    }
+}
+
+/// A unit sphere under a constant environment of radiance 1, seen by a narrow camera.
+fn furnace(bsdf: BsdfDesc, integrator: IntegratorDesc) -> SceneDescription {
+    let mut sphere = ShapeDesc::new(ShapeKind::Sphere {
+        center: Vec3::ZERO,
+        radius: 1.0,
+    });
+    sphere.bsdf = bsdf;
+    SceneDescription {
+        integrator,
+        sensor: SensorDesc {
+            fov: 8.0,
+            to_world: Mat4::look_at_rh(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y).inverse()
+                * Mat4::from_scale(Vec3::new(-1.0, 1.0, -1.0)),
+            film: FilmDesc {
+                width: 16,
+                height: 16,
+                filter: FilterDesc::Box,
+            },
+            ..SensorDesc::default()
+        },
+        shapes: vec![sphere],
+        emitters: vec![EmitterDesc::Constant {
+            radiance: Vec3::ONE,
+        }],
+        source: None,
+    }
+}
+
+#[test]
+fn furnaces_return_the_albedo() {
+    let rho = Vec3::new(0.2, 0.5, 0.8);
+    let materials = [
+        ("diffuse", BsdfDesc::Diffuse { reflectance: rho }, rho),
+        (
+            "mirror",
+            BsdfDesc::Conductor {
+                fresnel: ConductorFresnel::Perfect,
+                specular_reflectance: Vec3::ONE,
+            },
+            Vec3::ONE,
+        ),
+        (
+            "glass",
+            BsdfDesc::Dielectric {
+                int_ior: 1.5,
+                ext_ior: 1.0,
+                specular_reflectance: Vec3::ONE,
+                specular_transmittance: Vec3::ONE,
+            },
+            Vec3::ONE,
+        ),
+    ];
+    let integrators = [
+        (
+            "bdpt",
+            IntegratorDesc::Bdpt {
+                max_depth: -1,
+                rr_depth: 5,
+            },
+            16,
+        ),
+        (
+            "mlt",
+            IntegratorDesc::Mlt {
+                max_depth: 24,
+                bootstrap_samples: 4096,
+                chains: 16,
+                mutations_per_pixel: 64,
+                large_step_prob: 0.3,
+                sigma: 0.01,
+            },
+            64,
+        ),
+    ];
+    for (iname, integrator, spp) in integrators {
+        for (mname, bsdf, want) in &materials {
+            let desc = furnace(bsdf.clone(), integrator);
+            let o = RenderOptions {
+                spp: Some(spp),
+                ..RenderOptions::default()
+            };
+            let (w, h, images) = render_replicates(&desc, &o, REPLICATES, SEED);
+            let reference = vec![*want; (w * h) as usize];
+            // Four 8×8 blocks, each within 0.5% plus the t bound.
+            compare(&images, &reference, w, h, 8, 0.005)
+                .assert_passed(&format!("{iname} furnace, {mname} sphere"));
+        }
+    }
+}
