@@ -135,14 +135,27 @@ impl Vertex {
         }
     }
 
-    /// A density per steradian at this vertex toward `to`, as a density per unit area at
-    /// `to` (unchanged toward a light at infinity).
+    /// A density per steradian at this vertex toward `to`, in the measure the weights use
+    /// for `to`: per unit area (unchanged toward a light at infinity), or, when `to`
+    /// scattered by a Dirac delta, per unit *projected* solid angle at this vertex
+    /// (`pdf / |cos θ|`). Across a chain of specular vertices the generalized geometric
+    /// terms of the two directions then cancel in the ratio of two strategies' densities
+    /// (Veach 1997, thesis, section 10.3.5), where per-area densities would leave the
+    /// geometry of the chain's first segment from each side in it.
     #[inline]
     pub(crate) fn area_density(&self, pdf_sa: f32, to: &Vertex) -> f32 {
         if to.is_infinite() {
             return pdf_sa;
         }
         let (w, d2) = self.dir_to(to);
+        if to.delta {
+            let cos = if self.on_surface() {
+                self.sp.ng.dot(w).abs()
+            } else {
+                1.0
+            };
+            return if cos > 0.0 { pdf_sa / cos } else { 0.0 };
+        }
         if !(d2 > 0.0 && d2.is_finite()) {
             return 0.0;
         }
@@ -187,7 +200,7 @@ impl Vertex {
         let (w, _) = self.dir_to(next);
         if self.is_infinite() {
             let (_, pdf_disk) = scene.emission_pdf(self.light, &self.sp, -self.w_env);
-            let cos = if next.on_surface() {
+            let cos = if next.on_surface() && !next.delta {
                 next.sp.ng.dot(self.w_env).abs()
             } else {
                 1.0

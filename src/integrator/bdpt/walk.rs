@@ -150,6 +150,7 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
             return;
         };
         let flags = scene.bsdf(&sp).flags();
+        let pdf_in = pdf;
         let mut v = Vertex::new(Kind::Surface, sp, beta, 0.0);
         v.smooth = flags.smooth;
         v.pdf_fwd = if prev.is_infinite() {
@@ -192,7 +193,16 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
             (bs.pdf, bsdf.pdf(bs.wi, wo))
         };
         let n = path.len();
-        path[n - 1].delta = bs.delta;
+        if bs.delta {
+            // This vertex's own density is then per projected solid angle at the previous
+            // one (see `Vertex::area_density`).
+            path[n - 1].delta = true;
+            path[n - 1].pdf_fwd = if prev.is_infinite() {
+                pdf_in
+            } else {
+                prev.area_density(pdf_in, &path[n - 1])
+            };
+        }
         let rev = path[n - 1].area_density(pdf_rev, &path[n - 2]);
         path[n - 2].pdf_rev = rev;
         pdf = pdf_fwd;
