@@ -387,6 +387,9 @@ def main(argv=None) -> int:
     table = markdown_table(results, a.baseline) + "\n" + best_table(results, a.baseline)
     print(table)
     info = machine_info(mi.__version__)
+    for out in (a.markdown, a.json):
+        if out:
+            out.parent.mkdir(parents=True, exist_ok=True)
     if a.markdown:
         a.markdown.write_text(table)
     if a.json:

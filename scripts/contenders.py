@@ -308,12 +308,22 @@ def build_renderer(binary: Path) -> None:
 
 def read_exr(path: Path):
     """Read an RGB EXR as a float64 array HxWx3 (with Mitsuba's Bitmap class)."""
+    import drjit as dr
     import mitsuba as mi
     import numpy as np
 
     if not mi.variant():
         mi.set_variant("scalar_rgb")
-    bmp = mi.Bitmap(str(path)).convert(
-        mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False
-    )
-    return np.asarray(bmp, dtype=np.float64)
+    # With Dr.Jit's thread pool at one thread (--threads 1), reading an EXR file never
+    # returns (Mitsuba 3.9.1): read with two, then restore.
+    threads = dr.thread_count()
+    if threads < 2:
+        dr.set_thread_count(2)
+    try:
+        bmp = mi.Bitmap(str(path)).convert(
+            mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False
+        )
+        return np.asarray(bmp, dtype=np.float64)
+    finally:
+        if threads < 2:
+            dr.set_thread_count(threads)
