@@ -31,6 +31,8 @@ mod context;
 mod emitter;
 mod error;
 mod integrator;
+mod params;
+mod position;
 mod props;
 mod sensor;
 mod shape;
