@@ -23,7 +23,7 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<IntegratorDesc> {
             }
         }
         "direct" => {
-            let max = u32::MAX as i64;
+            let max = crate::scene::validate::MAX_SHADING_SAMPLES as i64;
             let shading = p.int_in("shading_samples", 0, max)?.unwrap_or(1);
             let emitter = p.int_in("emitter_samples", 0, max)?.unwrap_or(shading);
             let bsdf = p.int_in("bsdf_samples", 0, max)?.unwrap_or(shading);

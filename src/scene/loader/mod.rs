@@ -105,6 +105,14 @@ pub fn parse_scene(
             _ => return Err(top_level_error(&ctx, c)),
         }
     }
+    // The total work: located at the sensor, or at the integrator if only it is given.
+    let film = &desc.sensor.film;
+    let pixels = film.width as u64 * film.height as u64;
+    let spp = desc.sensor.sampler.sample_count;
+    if let Err(i) = crate::scene::validate::work(pixels, spp, &desc.integrator) {
+        let at = sensor.or(integrator).unwrap_or(&root);
+        return Err(ctx.err(at, SceneErrorKind::InvalidValue(i.to_string())));
+    }
     Ok(desc)
 }
 

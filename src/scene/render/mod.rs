@@ -169,8 +169,12 @@ fn bit(i: u32, b: u32) -> f32 {
 }
 
 impl Renderer {
-    /// Prepares a scene: geometry, lights, materials, camera and integrator.
+    /// Prepares a scene: geometry, lights, materials, camera and integrator. First refuses,
+    /// naming the part of the scene, whatever [`validate::scene`](crate::scene::validate::scene)
+    /// refuses (with `opts.spp` in place of the file's sample count, if given).
     pub fn new(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {
+        let spp = opts.spp.unwrap_or(desc.sensor.sampler.sample_count);
+        crate::scene::validate::scene(desc, spp).map_err(RenderError)?;
         let base: Option<PathBuf> = desc
             .source
             .as_ref()
@@ -217,7 +221,6 @@ impl Renderer {
             )));
         }
         let effects = Effects::of(&bsdfs, &lights, &integrator);
-        let spp = opts.spp.unwrap_or(desc.sensor.sampler.sample_count);
         let seed = opts.seed.unwrap_or(desc.sensor.sampler.seed);
         let kind = opts.sampler.unwrap_or(desc.sensor.sampler.kind);
         let sampler =
