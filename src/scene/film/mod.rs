@@ -29,6 +29,27 @@ pub struct Film {
     count: Vec<u32>,
 }
 
+/// [`Film::merge`] was given a pixel index past the end of the film.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PixelOutOfRange {
+    /// The index given.
+    pub index: usize,
+    /// The film's pixel count.
+    pub pixels: usize,
+}
+
+impl std::fmt::Display for PixelOutOfRange {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "pixel index {} is outside a film of {} pixels",
+            self.index, self.pixels
+        )
+    }
+}
+
+impl std::error::Error for PixelOutOfRange {}
+
 /// One pixel's accumulated samples (what a render tile hands back).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PixelAccum {
@@ -77,12 +98,25 @@ impl Film {
     }
 
     /// Adds a pixel's accumulated samples (pixel index `y · width + x`).
-    pub fn merge(&mut self, index: usize, a: &PixelAccum) {
+    ///
+    /// # Errors
+    /// [`PixelOutOfRange`] if `index` is past the last pixel; the film is unchanged.
+    pub fn merge(&mut self, index: usize, a: &PixelAccum) -> Result<(), PixelOutOfRange> {
+        let pixels = self.count.len();
+        let out = PixelOutOfRange { index, pixels };
+        let (Some(sum), Some(sum_sq), Some(count)) = (
+            self.sum.get_mut(index),
+            self.sum_sq.get_mut(index),
+            self.count.get_mut(index),
+        ) else {
+            return Err(out);
+        };
         for c in 0..3 {
-            self.sum[index][c] += a.sum[c];
-            self.sum_sq[index][c] += a.sum_sq[c];
+            sum[c] += a.sum[c];
+            sum_sq[c] += a.sum_sq[c];
         }
-        self.count[index] += a.count;
+        *count = count.saturating_add(a.count);
+        Ok(())
     }
 
     /// Samples in pixel `index`.
@@ -99,9 +133,18 @@ impl Film {
 
     /// The pixel estimates (means), row-major from the top-left, 0 where no sample landed.
     pub fn mean(&self) -> Vec<Vec3> {
+        self.mean_or(Vec3::ZERO)
+    }
+
+    /// The pixel estimates, with `unsampled` where no sample landed (a cancelled render
+    /// writes NaN there, so that such pixels are marked rather than black).
+    pub fn mean_or(&self, unsampled: Vec3) -> Vec<Vec3> {
         (0..self.count.len())
             .map(|i| {
-                let n = self.count[i].max(1) as f64;
+                if self.count[i] == 0 {
+                    return unsampled;
+                }
+                let n = self.count[i] as f64;
                 let s = self.sum[i];
                 Vec3::new((s[0] / n) as f32, (s[1] / n) as f32, (s[2] / n) as f32)
             })
@@ -139,7 +182,19 @@ mod tests {
         for v in [1.0, 2.0, 3.0, 4.0] {
             a.add(Vec3::splat(v));
         }
-        f.merge(1, &a);
+        f.merge(1, &a).expect("inside");
+        assert_eq!(
+            f.merge(2, &a),
+            Err(PixelOutOfRange {
+                index: 2,
+                pixels: 2
+            })
+        );
+        assert_eq!(
+            f.merge(usize::MAX, &a).map_err(|e| e.index),
+            Err(usize::MAX)
+        );
+        assert!(f.mean_or(Vec3::NAN)[0].is_nan());
         let m = f.mean();
         let v = f.variance();
         assert_eq!(m[0], Vec3::ZERO);

@@ -125,6 +125,9 @@ pub struct RenderOutput {
     pub samples: u64,
     /// Rays cast.
     pub rays: u64,
+    /// Samples whose value came out NaN or infinite; they are added to their pixel as 0
+    /// and counted here (a correct render has none).
+    pub nonfinite_samples: u64,
     /// Wall-clock render time in seconds.
     pub seconds: f64,
 }
@@ -304,6 +307,7 @@ impl Renderer {
             film,
             samples: stats.samples,
             rays: stats.rays,
+            nonfinite_samples: stats.nonfinite,
             seconds: start.elapsed().as_secs_f64(),
         }
     }
