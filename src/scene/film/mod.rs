@@ -12,10 +12,12 @@
 mod compare;
 mod filter;
 mod io;
+mod output;
 
 pub use compare::{compare_blocks, z_two_sided, BlockReport};
 pub use filter::PixelFilter;
 pub use io::{read_exr, write_exr, write_png, ImageError};
+pub use output::{OutputError, OutputPlan, EXIT_INTERRUPTED};
 
 use glam::Vec3;
 
