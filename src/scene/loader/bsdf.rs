@@ -141,7 +141,7 @@ fn roughness(e: &Elem, p: &mut Props) -> Res<f32> {
         }
         _ => return Err(p.invalid("alpha", e, "give either alpha or both alpha_u and alpha_v")),
     };
-    if !(alpha >= 0.0 && alpha <= validate::MAX_ROUGHNESS) {
+    if !(0.0..=validate::MAX_ROUGHNESS).contains(&alpha) {
         return Err(p.invalid("alpha", e, "must lie in [0, 10]"));
     }
     Ok(alpha.max(MIN_ROUGHNESS))

@@ -106,7 +106,7 @@ impl Planar {
         let centre = to + 0.5 * (self.e1 + self.e2);
         let d2 = centre.length_squared();
         let omega = self.area * self.normal.dot(centre).abs() / (d2 * d2.sqrt());
-        if !(omega >= MIN_SOLID_ANGLE) {
+        if omega.is_nan() || omega < MIN_SOLID_ANGLE {
             return Err(SamplingError::Degenerate {
                 what: "the shape subtends less than 1e-30 sr, so no density per steradian \
                        fits f32: sample it by area",
