@@ -7,6 +7,7 @@
 //! - `loader/defaults_20k`: 20 000 `<default>` parameters and 20 000 shapes using them.
 //! - `loader/spheres_80k`: four times the spheres; linear loading takes about four times as
 //!   long (the old loader's quadratic position lookups took sixteen).
+//! - `loader/bsdfs_1m`: a million top-level `<bsdf type="diffuse"/>` (24 MB).
 //!
 //! `tests/hostile_input.rs` bounds the same loads at a few seconds, so that a return to
 //! quadratic time fails the tests too.
@@ -46,6 +47,14 @@ fn defaults(n: usize) -> String {
     xml
 }
 
+/// `n` top-level BSDFs.
+fn bsdfs(n: usize) -> String {
+    let mut xml = String::from("<scene version=\"3.0.0\">\n");
+    xml.push_str(&"<bsdf type=\"diffuse\"/>\n".repeat(n));
+    xml.push_str("</scene>");
+    xml
+}
+
 fn bench_loader(c: &mut Criterion) {
     let mut g = c.benchmark_group("loader");
     g.warm_up_time(Duration::from_millis(500))
@@ -55,6 +64,7 @@ fn bench_loader(c: &mut Criterion) {
         ("spheres_20k", spheres(20_000)),
         ("defaults_20k", defaults(20_000)),
         ("spheres_80k", spheres(80_000)),
+        ("bsdfs_1m", bsdfs(1_000_000)),
     ] {
         g.throughput(Throughput::Bytes(xml.len() as u64));
         g.bench_function(name, |b| {

@@ -145,6 +145,17 @@ fn loading_is_linear() {
         "{:?}",
         start.elapsed()
     );
+    // A million top-level BSDFs (the old loader took over a minute).
+    let mut xml = String::from("<scene version=\"3.0.0\">\n");
+    xml.push_str(&"<bsdf type=\"diffuse\"/>\n".repeat(1_000_000));
+    xml.push_str("</scene>");
+    let start = Instant::now();
+    parse(&xml).expect("a million BSDFs load");
+    assert!(
+        start.elapsed() < Duration::from_secs(20),
+        "{:?}",
+        start.elapsed()
+    );
     // An error late in a large file still has the right line.
     let mut bad = spheres(20_000, false);
     bad = bad.replace("</scene>", "<shape type=\"teapot\"/>\n</scene>");
