@@ -391,3 +391,26 @@ fn cancelling_takes_effect_within_a_second_inside_long_pixel_work() {
     assert!(out.samples < 16 * 64 * 64, "{}", out.samples);
     assert_eq!(out.nonfinite_samples, 0);
 }
+
+#[test]
+fn crowded_elements_are_refused_before_parsing() {
+    // The XML parser checks attributes for duplicates pairwise: 10^5 attributes on one
+    // element would take minutes.
+    let attrs: String = (0..100_000).map(|i| format!(" a{i}=\"1\"")).collect();
+    let start = Instant::now();
+    let e = err(&format!("<shape type=\"cube\"{attrs}/>"));
+    assert!(matches!(e.kind, SceneErrorKind::Xml(_)), "{e}");
+    assert_eq!(e.line, Some(2), "{e}");
+    assert!(e.to_string().contains("more than 256 attributes"), "{e}");
+    assert!(
+        start.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        start.elapsed()
+    );
+    // An `=` inside a quoted value is not an attribute.
+    let xml = format!(
+        "<scene version=\"3.0.0\"><bsdf type=\"diffuse\" id=\"{}\"/></scene>",
+        "=".repeat(1000)
+    );
+    parse(&xml).expect("one attribute full of '='");
+}

@@ -10,6 +10,10 @@ use std::path::Path;
 /// Deepest element nesting accepted (real scenes use fewer than ten levels).
 const MAX_DEPTH: usize = 64;
 
+/// Most attributes on one element (Mitsuba's take at most five; roxmltree's duplicate check
+/// is quadratic in their number).
+const MAX_ATTRIBUTES: usize = 256;
+
 /// One XML element after parameter substitution.
 #[derive(Debug, Clone)]
 pub(crate) struct Elem {
@@ -57,15 +61,16 @@ pub(crate) fn read_tree(
         allow_dtd: false,
         nodes_limit: 10_000_000,
     };
-    // roxmltree parses nested elements recursively: refuse deep nesting before it does.
-    if let Some(offset) = too_deep(xml) {
+    // roxmltree parses nested elements recursively and checks attributes for duplicates
+    // pairwise: refuse deep nesting and crowded elements before it sees them.
+    if let Some((offset, message)) = prescan(xml) {
         let (line, column) = Positions::new(xml).at(offset);
         return Err(SceneError::new(
             file,
             Some(line),
             Some(column),
             None,
-            SceneErrorKind::Xml(format!("elements nested deeper than {MAX_DEPTH}")),
+            SceneErrorKind::Xml(message),
         ));
     }
     let doc = roxmltree::Document::parse_with_options(xml, opts).map_err(|e| {
@@ -110,9 +115,10 @@ pub(crate) fn read_tree(
     }
 }
 
-/// The byte offset of the first start tag nested deeper than [`MAX_DEPTH`], by a scan
-/// that skips comments, CDATA, processing instructions and quoted attribute values.
-fn too_deep(xml: &str) -> Option<usize> {
+/// The byte offset of the first start tag nested deeper than [`MAX_DEPTH`] or with more
+/// than [`MAX_ATTRIBUTES`] attributes, and what is wrong, by a scan that skips comments,
+/// CDATA, processing instructions and quoted attribute values.
+fn prescan(xml: &str) -> Option<(usize, String)> {
     let b = xml.as_bytes();
     let skip_to = |from: usize, end: &str| {
         xml[from..]
@@ -137,11 +143,17 @@ fn too_deep(xml: &str) -> Option<usize> {
             i = skip_to(i, ">");
         } else {
             let start = i;
-            let (end, self_closing) = tag_end(b, i + 1);
+            let (end, self_closing, attributes) = tag_end(b, i + 1);
+            if attributes > MAX_ATTRIBUTES {
+                return Some((
+                    start,
+                    format!("an element with more than {MAX_ATTRIBUTES} attributes"),
+                ));
+            }
             if !self_closing {
                 depth += 1;
                 if depth > MAX_DEPTH + 1 {
-                    return Some(start);
+                    return Some((start, format!("elements nested deeper than {MAX_DEPTH}")));
                 }
             }
             i = end;
@@ -150,20 +162,22 @@ fn too_deep(xml: &str) -> Option<usize> {
     None
 }
 
-/// The index after the `>` closing a start tag that begins at `i`, and whether it is
-/// self-closing (`/>`). Quoted values may contain `>`.
-fn tag_end(b: &[u8], mut i: usize) -> (usize, bool) {
-    let mut quote: Option<u8> = None;
+/// The index after the `>` closing a start tag that begins at `i`, whether it is
+/// self-closing (`/>`), and its number of attributes (`=` outside quotes). Quoted values
+/// may contain `>`.
+fn tag_end(b: &[u8], mut i: usize) -> (usize, bool, usize) {
+    let (mut quote, mut equals) = (None::<u8>, 0usize);
     while i < b.len() {
         match (quote, b[i]) {
             (Some(q), c) if c == q => quote = None,
             (None, b'"' | b'\'') => quote = Some(b[i]),
-            (None, b'>') => return (i + 1, i > 0 && b[i - 1] == b'/'),
+            (None, b'=') => equals += 1,
+            (None, b'>') => return (i + 1, i > 0 && b[i - 1] == b'/', equals),
             _ => {}
         }
         i += 1;
     }
-    (b.len(), false)
+    (b.len(), false, equals)
 }
 
 /// Accepts `major.minor.patch` with major 2 or more (older files need Mitsuba's
@@ -295,12 +309,12 @@ mod tests {
                 "</a>".repeat(n)
             )
         };
-        assert_eq!(too_deep(&deep(MAX_DEPTH)), None);
-        assert!(too_deep(&deep(MAX_DEPTH + 1)).is_some());
+        assert_eq!(prescan(&deep(MAX_DEPTH)), None);
+        assert!(prescan(&deep(MAX_DEPTH + 1)).is_some());
         let e = read_tree(&deep(1_000_000), None, &[]).unwrap_err();
         assert!(matches!(e.kind, SceneErrorKind::Xml(_)), "{e}");
         let flat = "<s>\n<!-- <a><a> --><b x=\">\"/><c/></s>";
-        assert_eq!(too_deep(flat), None);
+        assert_eq!(prescan(flat), None);
     }
 
     #[test]
