@@ -2,18 +2,24 @@
 //!
 //! ```text
 //! cargo run --release --example render -- [scene.xml] [--spp N] [-D name=value]...
-//!     [-o out.exr] [--threads N] [--seed S] [--variance]
+//!     [-o out.exr|out.png] [--threads N] [--seed S] [--variance]
 //!     [--strategy bsdf|light|balance|power] [--sampler independent|stratified|sobol]
 //!     [--accel bvh|grid] [--light-sampling solid-angle|area]
 //!     [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]
 //! ```
 //!
-//! Writes a linear float EXR and an sRGB PNG beside it (and `<name>-variance.exr` with
-//! `--variance`). Ctrl-C stops early and writes the image so far.
+//! `--help` lists every option with its default. Writes a linear float EXR and an sRGB PNG
+//! beside it (the extension of `-o` chooses which name is which; `<name>-variance.exr` with
+//! `--variance`). The output folder is checked before rendering, and files are replaced
+//! atomically. Ctrl-C (or SIGTERM) stops early, writes the image so far as
+//! `NAME.partial.exr` / `NAME.partial.png` (pixels without a sample are NaN in the EXR)
+//! and exits with status 130.
 
+use clap::{Arg, ArgAction, Command};
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrt::integrator::Strategy;
 use mcrt::scene::description::{IntegratorKind, SamplerKind, SceneDescription};
+use mcrt::scene::film::{OutputPlan, EXIT_INTERRUPTED};
 use mcrt::scene::render::{AccelKind, RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -29,95 +35,229 @@ struct Args {
     opts: RenderOptions,
 }
 
-const USAGE: &str = "usage: render [scene.xml] [--spp N] [-D name=value]... [-o out.exr] \
-[--threads N] [--seed S] [--variance] [--strategy bsdf|light|balance|power] \
-[--sampler independent|stratified|sobol] [--accel bvh|grid] \
-[--light-sampling solid-angle|area] [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]";
+/// One command-line option: adding an option is adding one entry to [`OPTIONS`].
+struct Opt {
+    /// `--long` name.
+    long: &'static str,
+    /// `-s` short name, if any.
+    short: Option<char>,
+    /// The value's placeholder in `--help`; `None` for a switch.
+    value: Option<&'static str>,
+    /// What it does, and its default.
+    help: &'static str,
+    /// Applies one occurrence (a switch gets `""`).
+    apply: fn(&mut Args, &str) -> Result<(), String>,
+}
 
-fn parse_num<T: std::str::FromStr>(flag: &str, v: Option<String>) -> Result<T, String> {
-    let v = v.ok_or_else(|| format!("{flag} needs a value"))?;
+const OPTIONS: &[Opt] = &[
+    Opt {
+        long: "spp",
+        short: None,
+        value: Some("N"),
+        help: "samples per pixel [default: the scene's sample_count]",
+        apply: |a, v| {
+            a.opts.spp = Some(num("--spp", v)?);
+            Ok(())
+        },
+    },
+    Opt {
+        long: "define",
+        short: Some('D'),
+        value: Some("NAME=VALUE"),
+        help: "set a scene parameter, overriding its <default> (repeatable) [default: none]",
+        apply: |a, v| {
+            let (k, x) = v
+                .split_once('=')
+                .ok_or_else(|| format!("-D {v}: expected name=value"))?;
+            a.defines.push((k.to_string(), x.to_string()));
+            Ok(())
+        },
+    },
+    Opt {
+        long: "output",
+        short: Some('o'),
+        value: Some("FILE"),
+        help: "output image, NAME.exr or NAME.png; the other format is written beside it \
+               [default: SCENE.exr in the current folder]",
+        apply: |a, v| {
+            a.out = Some(v.into());
+            Ok(())
+        },
+    },
+    Opt {
+        long: "threads",
+        short: None,
+        value: Some("N"),
+        help: "worker threads, 0 for all cores [default: 0]",
+        apply: |a, v| {
+            a.opts.threads = num("--threads", v)?;
+            Ok(())
+        },
+    },
+    Opt {
+        long: "seed",
+        short: None,
+        value: Some("S"),
+        help: "sampler seed [default: the scene's sampler seed]",
+        apply: |a, v| {
+            a.opts.seed = Some(num("--seed", v)?);
+            Ok(())
+        },
+    },
+    Opt {
+        long: "variance",
+        short: None,
+        value: None,
+        help: "also write the per-pixel variance of the estimate as NAME-variance.exr \
+               [default: off]",
+        apply: |a, _| {
+            a.variance = true;
+            Ok(())
+        },
+    },
+    Opt {
+        long: "strategy",
+        short: None,
+        value: Some("bsdf|light|balance|power"),
+        help: "sampling strategy at every vertex [default: power (MIS, power heuristic)]",
+        apply: |a, v| {
+            let s = Strategy::parse(v)
+                .ok_or_else(|| format!("--strategy {v}: expected bsdf, light, balance or power"))?;
+            a.opts.strategy = Some(s);
+            Ok(())
+        },
+    },
+    Opt {
+        long: "sampler",
+        short: None,
+        value: Some("independent|stratified|sobol"),
+        help: "sample generator [default: the scene's sampler type]",
+        apply: |a, v| {
+            a.opts.sampler = Some(match v {
+                "independent" => SamplerKind::Independent,
+                "stratified" => SamplerKind::Stratified,
+                "sobol" | "ldsampler" => SamplerKind::LowDiscrepancy,
+                _ => {
+                    return Err(format!(
+                        "--sampler {v}: expected independent, stratified or sobol"
+                    ))
+                }
+            });
+            Ok(())
+        },
+    },
+    Opt {
+        long: "accel",
+        short: None,
+        value: Some("bvh|grid"),
+        help: "acceleration structure [default: bvh]",
+        apply: |a, v| {
+            a.opts.accel = match v {
+                "bvh" => AccelKind::Bvh,
+                "grid" => AccelKind::Grid,
+                _ => return Err(format!("--accel {v}: expected bvh or grid")),
+            };
+            Ok(())
+        },
+    },
+    Opt {
+        long: "light-sampling",
+        short: None,
+        value: Some("solid-angle|area"),
+        help: "how area lights on triangles and rectangles are sampled [default: solid-angle]",
+        apply: |a, v| {
+            a.opts.light_sampling = match v {
+                "solid-angle" => ShapeSampling::SolidAngle,
+                "area" => ShapeSampling::Area,
+                _ => {
+                    return Err(format!(
+                        "--light-sampling {v}: expected solid-angle or area"
+                    ))
+                }
+            };
+            Ok(())
+        },
+    },
+    Opt {
+        long: "integrator",
+        short: None,
+        value: Some("path|direct|bdpt|mlt"),
+        help: "estimator, overriding the scene's <integrator> (its max_depth and rr_depth carry \
+               over; mlt counts --spp as mutations per pixel) [default: the scene's]",
+        apply: |a, v| {
+            a.opts.integrator =
+                Some(IntegratorKind::parse(v).ok_or_else(|| {
+                    format!("--integrator {v}: expected path, direct, bdpt or mlt")
+                })?);
+            Ok(())
+        },
+    },
+    Opt {
+        long: "bdpt-strategy",
+        short: None,
+        value: Some("S,T"),
+        help: "bdpt: render only the strategy with S light and T camera vertices, unweighted \
+               (a picture of one strategy) [default: all, weighted by MIS]",
+        apply: |a, v| {
+            let bad = || format!("--bdpt-strategy {v}: expected two integers s,t");
+            let (s, t) = v.split_once(',').ok_or_else(bad)?;
+            a.opts.bdpt_only = Some((
+                s.trim().parse().map_err(|_| bad())?,
+                t.trim().parse().map_err(|_| bad())?,
+            ));
+            Ok(())
+        },
+    },
+];
+
+fn num<T: std::str::FromStr>(flag: &str, v: &str) -> Result<T, String> {
     v.parse()
         .map_err(|_| format!("{flag}: '{v}' is not a valid number"))
 }
 
-fn parse_args() -> Result<Args, String> {
-    let mut a = Args::default();
-    let mut it = std::env::args().skip(1);
-    while let Some(arg) = it.next() {
-        match arg.as_str() {
-            "-h" | "--help" => return Err(USAGE.into()),
-            "--spp" => a.opts.spp = Some(parse_num("--spp", it.next())?),
-            "--threads" => a.opts.threads = parse_num("--threads", it.next())?,
-            "--seed" => a.opts.seed = Some(parse_num("--seed", it.next())?),
-            "--variance" => a.variance = true,
-            "-o" => a.out = Some(it.next().ok_or("-o needs a file name")?.into()),
-            "-D" => {
-                let d = it.next().ok_or("-D needs name=value")?;
-                let (k, v) = d
-                    .split_once('=')
-                    .ok_or_else(|| format!("-D {d}: expected name=value"))?;
-                a.defines.push((k.to_string(), v.to_string()));
+/// The parser for [`OPTIONS`].
+fn command() -> Command {
+    let scene = Arg::new("scene")
+        .value_name("SCENE.xml")
+        .help("Mitsuba 3 XML scene [default: the built-in Cornell box]");
+    OPTIONS.iter().fold(
+        Command::new("render")
+            .about("Renders a Mitsuba 3 XML scene with mcrt's path tracer.")
+            .after_help(
+                "Ctrl-C or SIGTERM stops early: the image so far is written as \
+                 NAME.partial.exr / NAME.partial.png and the exit status is 130.",
+            )
+            .arg(scene),
+        |cmd, o| {
+            let mut arg = Arg::new(o.long).long(o.long).help(o.help);
+            if let Some(s) = o.short {
+                arg = arg.short(s);
             }
-            "--strategy" => {
-                let s = it.next().ok_or("--strategy needs a value")?;
-                a.opts.strategy = Some(Strategy::parse(&s).ok_or_else(|| {
-                    format!("--strategy {s}: expected bsdf, light, balance or power")
-                })?);
-            }
-            "--sampler" => {
-                let s = it.next().ok_or("--sampler needs a value")?;
-                a.opts.sampler = Some(match s.as_str() {
-                    "independent" => SamplerKind::Independent,
-                    "stratified" => SamplerKind::Stratified,
-                    "sobol" | "ldsampler" => SamplerKind::LowDiscrepancy,
-                    _ => {
-                        return Err(format!(
-                            "--sampler {s}: expected independent, stratified or sobol"
-                        ))
-                    }
-                });
-            }
-            "--light-sampling" => {
-                let s = it.next().ok_or("--light-sampling needs a value")?;
-                a.opts.light_sampling = match s.as_str() {
-                    "solid-angle" => ShapeSampling::SolidAngle,
-                    "area" => ShapeSampling::Area,
-                    _ => {
-                        return Err(format!(
-                            "--light-sampling {s}: expected solid-angle or area"
-                        ))
-                    }
-                };
-            }
-            "--integrator" => {
-                let s = it.next().ok_or("--integrator needs a value")?;
-                a.opts.integrator = Some(IntegratorKind::parse(&s).ok_or_else(|| {
-                    format!("--integrator {s}: expected path, direct, bdpt or mlt")
-                })?);
-            }
-            "--bdpt-strategy" => {
-                let v = it.next().ok_or("--bdpt-strategy needs s,t")?;
-                let bad = || format!("--bdpt-strategy {v}: expected two integers s,t");
-                let (s, t) = v.split_once(',').ok_or_else(bad)?;
-                a.opts.bdpt_only = Some((
-                    s.trim().parse().map_err(|_| bad())?,
-                    t.trim().parse().map_err(|_| bad())?,
-                ));
-            }
-            "--accel" => {
-                let s = it.next().ok_or("--accel needs a value")?;
-                a.opts.accel = match s.as_str() {
-                    "bvh" => AccelKind::Bvh,
-                    "grid" => AccelKind::Grid,
-                    _ => return Err(format!("--accel {s}: expected bvh or grid")),
-                };
-            }
-            s if s.starts_with('-') => return Err(format!("unknown option {s}\n{USAGE}")),
-            s => {
-                if a.scene.is_some() {
-                    return Err(format!("more than one scene given ({s})\n{USAGE}"));
+            arg = match o.value {
+                Some(v) => arg.value_name(v).action(ArgAction::Append),
+                None => arg.action(ArgAction::SetTrue),
+            };
+            cmd.arg(arg)
+        },
+    )
+}
+
+/// Parses the command line; `Err` carries clap's message (for `--help`, the help text).
+fn parse_args() -> Result<Args, clap::Error> {
+    let m = command().try_get_matches()?;
+    let mut a = Args {
+        scene: m.get_one::<String>("scene").map(PathBuf::from),
+        ..Args::default()
+    };
+    let usage = |e: String| command().error(clap::error::ErrorKind::ValueValidation, e);
+    for o in OPTIONS {
+        match o.value {
+            None if m.get_flag(o.long) => (o.apply)(&mut a, "").map_err(usage)?,
+            None => {}
+            Some(_) => {
+                for v in m.get_many::<String>(o.long).into_iter().flatten() {
+                    (o.apply)(&mut a, v).map_err(usage)?;
                 }
-                a.scene = Some(s.into());
             }
         }
     }
@@ -149,22 +289,36 @@ fn load(path: &std::path::Path, defines: &[(String, String)]) -> Result<SceneDes
     mcrt::scene::loader::load_scene(path, defines).map_err(|e| e.to_string())
 }
 
-fn run() -> Result<(), String> {
-    let args = parse_args()?;
-    let (desc, name) = match &args.scene {
-        None => (builtin(&args.defines)?, "cornell-box".to_string()),
-        Some(p) => (
-            load(p, &args.defines)?,
-            p.file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_else(|| "scene".into()),
-        ),
+/// Renders and writes; returns whether the render was interrupted.
+fn run(args: Args) -> Result<bool, String> {
+    let name = match &args.scene {
+        None => "cornell-box".to_string(),
+        Some(p) => p
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into()),
     };
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("{name}.exr")));
+    // Decide and check the output before any work, so that a bad name fails at once.
+    let plan = OutputPlan::new(
+        args.out.as_deref(),
+        &name,
+        args.scene.as_deref(),
+        args.variance,
+    )
+    .map_err(|e| e.to_string())?;
+    plan.check_writable().map_err(|e| e.to_string())?;
+    let desc = match &args.scene {
+        None => builtin(&args.defines)?,
+        Some(p) => load(p, &args.defines)?,
+    };
     let renderer = Renderer::new(&desc, &args.opts).map_err(|e| e.to_string())?;
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        // With ctrlc's `termination` feature this handles SIGINT, SIGTERM and SIGHUP.
+        let c = cancel.clone();
+        ctrlc::set_handler(move || c.store(true, Ordering::Relaxed))
+            .map_err(|e| format!("cannot install the Ctrl-C handler: {e}"))?;
+    }
     let (w, h) = renderer.size();
     println!(
         "{name}: {w}×{h}, integrator {}, {} {} ({}), strategy {}, effects: {}",
@@ -183,12 +337,6 @@ fn run() -> Result<(), String> {
         renderer.integrator().strategy().name(),
         renderer.effects().describe()
     );
-    let cancel = Arc::new(AtomicBool::new(false));
-    {
-        let c = cancel.clone();
-        ctrlc::set_handler(move || c.store(true, Ordering::Relaxed))
-            .map_err(|e| format!("cannot install the Ctrl-C handler: {e}"))?;
-    }
     let total = renderer.spp() as u64 * w as u64 * h as u64;
     let bar = ProgressBar::new(total);
     bar.set_style(
@@ -197,27 +345,26 @@ fn run() -> Result<(), String> {
     );
     let result = renderer.render(&|done, _| bar.set_position(done), &cancel);
     bar.finish_and_clear();
-    let (lo, hi) = result.film.count_range();
-    if cancel.load(Ordering::Relaxed) {
-        println!("interrupted: pixels have {lo}..{hi} samples each");
-    }
+    let interrupted = cancel.load(Ordering::Relaxed);
     let secs = result.seconds.max(1e-9);
     println!(
-        "time {:.3} s, {:.3} M samples/s, {:.3} M rays/s ({} samples, {} rays)",
+        "time {:.3} s, {:.3} M samples/s, {:.3} M rays/s ({} samples, {} rays, {} non-finite)",
         result.seconds,
         result.samples as f64 / secs / 1e6,
         result.rays as f64 / secs / 1e6,
         result.samples,
-        result.rays
+        result.rays,
+        result.nonfinite_samples
     );
     if let Some(st) = &result.strategies {
         let lens: Vec<String> = st
             .length_shares()
             .iter()
+            .filter(|x| x.1 >= 0.001)
             .map(|(l, f)| format!("{l}: {:.1}%", 100.0 * f))
             .collect();
         println!(
-            "share of the image by path length (segments): {}",
+            "bdpt, share of the image by path length in segments (above 0.1%): {}",
             lens.join(", ")
         );
         let strat: Vec<String> = st
@@ -226,29 +373,39 @@ fn run() -> Result<(), String> {
             .filter(|x| x.2 >= 0.001)
             .map(|(s, t, f)| format!("({s},{t}) {:.1}%", 100.0 * f))
             .collect();
-        println!("by strategy (s,t), above 0.1%: {}", strat.join(", "));
+        println!("bdpt, by strategy (s,t) (above 0.1%): {}", strat.join(", "));
     }
-    result.write_exr(&out).map_err(|e| e.to_string())?;
-    let png = out.with_extension("png");
-    result.write_png(&png).map_err(|e| e.to_string())?;
-    println!("wrote {} and {}", out.display(), png.display());
-    if args.variance {
-        let stem = out
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let vpath = out.with_file_name(format!("{stem}-variance.exr"));
-        result
-            .write_variance_exr(&vpath)
-            .map_err(|e| e.to_string())?;
-        println!("wrote {}", vpath.display());
+    let written = plan
+        .write(&result.film, interrupted)
+        .map_err(|e| e.to_string())?;
+    let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+    println!("wrote {}", names.join(", "));
+    if interrupted {
+        let (lo, hi) = result.film.count_range();
+        println!(
+            "interrupted: pixels have {lo}..{hi} of {} samples each (NaN in the EXR where none)",
+            renderer.spp()
+        );
     }
-    Ok(())
+    Ok(interrupted)
 }
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(()) => ExitCode::SUCCESS,
+    let args = match parse_args() {
+        Ok(a) => a,
+        Err(e) => {
+            // `--help` prints to stdout and succeeds; usage errors go to stderr.
+            e.print().ok();
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
+    match run(args) {
+        Ok(false) => ExitCode::SUCCESS,
+        Ok(true) => ExitCode::from(EXIT_INTERRUPTED),
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE

@@ -67,6 +67,7 @@ fn run(scene: &str, defines: &[(&str, &str)], reference: &str, spp: u32, block: 
     let out = Renderer::new(&desc, &opts)
         .expect("scene builds")
         .render(&|_, _| {}, &AtomicBool::new(false));
+    assert_eq!(out.nonfinite_samples, 0, "{scene}: non-finite samples");
     let (w, h) = (out.film.width(), out.film.height());
     let (rw, rh, rf) = read_exr(&data(reference)).expect("reference reads");
     assert_eq!((w, h), (rw, rh), "{scene}: size differs from the reference");

@@ -13,3 +13,4 @@ pub mod light;
 pub mod loader;
 pub mod obj;
 pub mod render;
+pub mod validate;

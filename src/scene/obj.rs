@@ -31,9 +31,12 @@ pub struct ObjMesh {
     pub indices: Vec<[u32; 3]>,
 }
 
-/// Reads the OBJ file at `path`. Errors name the file and the line.
+/// Reads the OBJ file at `path`, a regular file of at most
+/// [`MAX_OBJ_BYTES`](crate::scene::loader::MAX_OBJ_BYTES). Errors name the file and the
+/// line.
 pub fn read_obj(path: &Path) -> Result<ObjMesh, SceneError> {
-    let text = std::fs::read(path).map_err(|e| SceneError::io(path, &e))?;
+    let text = crate::scene::loader::read_capped(path, crate::scene::loader::MAX_OBJ_BYTES)
+        .map_err(|e| SceneError::io(path, &e))?;
     parse_obj(&String::from_utf8_lossy(&text), Some(path))
 }
 

@@ -124,7 +124,8 @@ impl MicrofacetDistribution for Beckmann {
 
     fn d(&self, m: Vec3) -> f32 {
         let (r2, z2) = radial_axial(m);
-        if m.z <= 0.0 {
+        // The finiteness test also sends NaN and infinite normals to 0.
+        if m.z <= 0.0 || !m.is_finite() {
             return 0.0;
         }
         let e = r2 / (z2 * self.alpha * self.alpha);
@@ -219,7 +220,8 @@ impl MicrofacetDistribution for Ggx {
 
     fn d(&self, m: Vec3) -> f32 {
         let (r2, z2) = radial_axial(m);
-        if m.z <= 0.0 {
+        // The finiteness test also sends NaN and infinite normals to 0.
+        if m.z <= 0.0 || !m.is_finite() {
             return 0.0;
         }
         let a2 = self.alpha * self.alpha;

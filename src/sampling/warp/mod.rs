@@ -6,6 +6,20 @@
 //! take any of them. The derivation of each mapping (pdf, CDF, inverse, Jacobian) is in
 //! `docs/derivations.md`.
 //!
+//! # Inputs outside the unit square
+//!
+//! Every warp is defined for `u ∈ [0,1)^d`; the property tests pin the edges `u = 0` and
+//! `u = 1 − 2⁻²⁴`. For `u` outside it (negative, ≥ 1, NaN or infinite) all warps agree:
+//!
+//! - `sample` and `sample_with_pdf` do not panic and return *some* point (and density),
+//!   which may lie off the support or be NaN or infinite; nothing more is promised
+//!   (clamping would hide the caller's bug and cost every sample a branch);
+//! - `pdf` of any point, NaN and infinite points included, is finite and ≥ 0, and 0 for a
+//!   non-finite point or a point off the support; so `pdf(sample(u))` is never NaN, and an
+//!   estimator that checks `pdf > 0` drops such a sample.
+//!
+//! `tests/warp_edge_inputs.rs` checks this for every warp.
+//!
 //! ```
 //! use mcrt::glam::Vec2;
 //! use mcrt::sampling::warp::{CosineHemisphere, Warp};

@@ -56,7 +56,10 @@ pub struct SphericalRectangle {
 
 impl SphericalRectangle {
     /// The rectangle `corner + s·edge_x + t·edge_y`, s, t ∈ [0, 1] (world space), seen from
-    /// `origin`. Errors: non-finite input, zero area, `origin` in the rectangle's plane.
+    /// `origin`. Errors: non-finite input, zero area, `origin` in the rectangle's plane, or
+    /// a solid angle below
+    /// [`SPHERICAL_MIN_SOLID_ANGLE`](super::SPHERICAL_MIN_SOLID_ANGLE) (sample such a
+    /// rectangle by area).
     ///
     /// To see one rectangle from many origins, build a [`RectangleFrame`] once and call
     /// [`RectangleFrame::seen_from`]: it skips the origin-independent work.
@@ -173,8 +176,9 @@ impl RectangleFrame {
         })
     }
 
-    /// The rectangle seen from `origin`. Errors: non-finite `origin`, or `origin` in the
-    /// rectangle's plane. Same result as [`SphericalRectangle::new`].
+    /// The rectangle seen from `origin`. Errors: non-finite `origin`, `origin` in the
+    /// rectangle's plane, or too small a solid angle. Same result as
+    /// [`SphericalRectangle::new`].
     #[inline]
     pub fn seen_from(&self, origin: Vec3) -> Result<SphericalRectangle, SamplingError> {
         self.seen_from_f64(widen("origin", origin)?)

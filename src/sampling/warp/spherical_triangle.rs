@@ -10,6 +10,11 @@ pub(crate) mod planar;
 
 use planar::{triangle_solid_angle, widen, Planar};
 
+/// Smallest solid angle (sr) the spherical triangle and rectangle warps accept: below it no
+/// density per steradian fits `f32` safely, and callers sample the shape by area (per unit
+/// area) instead, as the scene's light sampling does.
+pub use planar::MIN_SOLID_ANGLE as SPHERICAL_MIN_SOLID_ANGLE;
+
 /// Below this solid angle (sr) the warp samples the triangle by area instead.
 pub const SPHERICAL_TRIANGLE_MIN_SOLID_ANGLE: f32 = 1e-4;
 
@@ -76,7 +81,8 @@ fn interior_angle(a: DVec3, b: DVec3, c: DVec3) -> (f64, DVec3) {
 
 impl SphericalTriangle {
     /// The triangle `a`, `b`, `c` (world space) seen from `origin`. Errors: non-finite input,
-    /// zero area, or `origin` in the triangle's plane (relative distance ≤ 1e-9).
+    /// zero area, `origin` in the triangle's plane (relative distance ≤ 1e-9), or a solid
+    /// angle below [`SPHERICAL_MIN_SOLID_ANGLE`] (sample such a triangle by area).
     pub fn new(origin: Vec3, a: Vec3, b: Vec3, c: Vec3) -> Result<Self, SamplingError> {
         let o = widen("origin", origin)?;
         let (pa, pb, pc) = (widen("a", a)?, widen("b", b)?, widen("c", c)?);

@@ -54,10 +54,12 @@ fn unstretch(alpha: f32, h: DVec3) -> Vec3 {
 /// G₁(wi) D(m) max(0, wi·m)/cos θ_i given the precomputed 1/((1 + Λ(wi)) cos θ_i).
 fn visible_pdf(d: f32, wi: Vec3, m: Vec3, scale: f32) -> f32 {
     let dot = wi.dot(m);
-    if m.z <= 0.0 || dot <= 0.0 {
-        return 0.0;
+    // Written so that NaN and infinite normals also give 0.
+    if m.z > 0.0 && dot > 0.0 && m.is_finite() {
+        d * dot * scale
+    } else {
+        0.0
     }
-    d * dot * scale
 }
 
 /// Visible normals of the GGX distribution, sampled exactly by the spherical-cap method.

@@ -12,10 +12,12 @@
 mod compare;
 mod filter;
 mod io;
+mod output;
 
 pub use compare::{compare_blocks, z_two_sided, BlockReport};
 pub use filter::PixelFilter;
 pub use io::{read_exr, write_exr, write_png, ImageError};
+pub use output::{OutputError, OutputPlan, EXIT_INTERRUPTED};
 
 use glam::Vec3;
 
@@ -32,6 +34,27 @@ pub struct Film {
     splat: Vec<[f64; 3]>,
     splat_scale: f64,
 }
+
+/// [`Film::merge`] was given a pixel index past the end of the film.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PixelOutOfRange {
+    /// The index given.
+    pub index: usize,
+    /// The film's pixel count.
+    pub pixels: usize,
+}
+
+impl std::fmt::Display for PixelOutOfRange {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "pixel index {} is outside a film of {} pixels",
+            self.index, self.pixels
+        )
+    }
+}
+
+impl std::error::Error for PixelOutOfRange {}
 
 /// One pixel's accumulated samples (what a render tile hands back).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -106,12 +129,25 @@ impl Film {
     }
 
     /// Adds a pixel's accumulated samples (pixel index `y · width + x`).
-    pub fn merge(&mut self, index: usize, a: &PixelAccum) {
+    ///
+    /// # Errors
+    /// [`PixelOutOfRange`] if `index` is past the last pixel; the film is unchanged.
+    pub fn merge(&mut self, index: usize, a: &PixelAccum) -> Result<(), PixelOutOfRange> {
+        let pixels = self.count.len();
+        let out = PixelOutOfRange { index, pixels };
+        let (Some(sum), Some(sum_sq), Some(count)) = (
+            self.sum.get_mut(index),
+            self.sum_sq.get_mut(index),
+            self.count.get_mut(index),
+        ) else {
+            return Err(out);
+        };
         for c in 0..3 {
-            self.sum[index][c] += a.sum[c];
-            self.sum_sq[index][c] += a.sum_sq[c];
+            sum[c] += a.sum[c];
+            sum_sq[c] += a.sum_sq[c];
         }
-        self.count[index] += a.count;
+        *count = count.saturating_add(a.count);
+        Ok(())
     }
 
     /// Samples in pixel `index`.
@@ -129,8 +165,20 @@ impl Film {
     /// The pixel estimates (means, plus the scaled splats), row-major from the top-left, 0
     /// where no sample landed.
     pub fn mean(&self) -> Vec<Vec3> {
+        self.mean_or(Vec3::ZERO)
+    }
+
+    /// The pixel estimates, with `unsampled` where no sample landed (a cancelled render
+    /// writes NaN there, so that such pixels are marked rather than black).
+    /// A film of splats alone (Metropolis sampling) has no per-pixel samples: its pixels
+    /// are its splats.
+    pub fn mean_or(&self, unsampled: Vec3) -> Vec<Vec3> {
+        let splats_only = !self.splat.is_empty() && self.count.iter().all(|&c| c == 0);
         (0..self.count.len())
             .map(|i| {
+                if self.count[i] == 0 && !splats_only {
+                    return unsampled;
+                }
                 let n = self.count[i].max(1) as f64;
                 let s = self.sum[i];
                 let k = self.splat_scale;
@@ -175,7 +223,19 @@ mod tests {
         for v in [1.0, 2.0, 3.0, 4.0] {
             a.add(Vec3::splat(v));
         }
-        f.merge(1, &a);
+        f.merge(1, &a).expect("inside");
+        assert_eq!(
+            f.merge(2, &a),
+            Err(PixelOutOfRange {
+                index: 2,
+                pixels: 2
+            })
+        );
+        assert_eq!(
+            f.merge(usize::MAX, &a).map_err(|e| e.index),
+            Err(usize::MAX)
+        );
+        assert!(f.mean_or(Vec3::NAN)[0].is_nan());
         let m = f.mean();
         let v = f.variance();
         assert_eq!(m[0], Vec3::ZERO);

@@ -109,7 +109,12 @@ impl EnvMap {
                 }
             })
             .collect();
-        let weights = cell_weights(width, height, &texels);
+        let mut weights = cell_weights(width, height, &texels);
+        // A black map (or `scale` 0) is a black environment: sample it by solid angle;
+        // every sample then carries zero radiance.
+        if weights.iter().all(|&w| w <= 0.0) {
+            weights.fill(1.0);
+        }
         let dist = PiecewiseConstant2D::new(&weights, width, cell_rows(height))
             .map_err(|e| format!("environment map: {e}"))?;
         let m = Mat3::from_mat4(to_world);

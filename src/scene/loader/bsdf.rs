@@ -7,6 +7,7 @@ use super::props::{Props, Value};
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::scene::description::{BsdfDesc, ConductorFresnel, MicrofacetKind};
+use crate::scene::validate::{self, MIN_ROUGHNESS};
 use glam::Vec3;
 
 /// A `<bsdf>` element, or a `<ref>` whose id names one.
@@ -89,6 +90,7 @@ pub(crate) fn read_bsdf(ctx: &Ctx, e: &Elem) -> Res<BsdfDesc> {
         }
         other => return Err(unknown_plugin(ctx, e, other)),
     };
+    validate::bsdf(&desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(desc)
 }
@@ -122,7 +124,8 @@ fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>) -> Res<BsdfDesc> {
     Ok(BsdfDesc::TwoSided(Box::new(read_bsdf(ctx, target)?)))
 }
 
-/// The isotropic roughness: `alpha`, or `alpha_u` = `alpha_v`.
+/// The isotropic roughness: `alpha`, or `alpha_u` = `alpha_v`. Values in [0, 10⁻⁴) are
+/// raised to 10⁻⁴, as Mitsuba 3 does; negative values and values above 10 are refused.
 fn roughness(e: &Elem, p: &mut Props) -> Res<f32> {
     let alpha = p.float("alpha")?;
     let (au, av) = (p.float("alpha_u")?, p.float("alpha_v")?);
@@ -138,10 +141,10 @@ fn roughness(e: &Elem, p: &mut Props) -> Res<f32> {
         }
         _ => return Err(p.invalid("alpha", e, "give either alpha or both alpha_u and alpha_v")),
     };
-    if !(alpha > 0.0 && alpha <= 10.0) {
-        return Err(p.invalid("alpha", e, "must lie in (0, 10]"));
+    if !(0.0..=validate::MAX_ROUGHNESS).contains(&alpha) {
+        return Err(p.invalid("alpha", e, "must lie in [0, 10]"));
     }
-    Ok(alpha)
+    Ok(alpha.max(MIN_ROUGHNESS))
 }
 
 /// Mitsuba's conductor rule: `material = "none"` (the default) without `eta` or `k` is a
@@ -163,9 +166,6 @@ fn fresnel(ctx: &Ctx, e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
     }
     let eta = eta.unwrap_or(Vec3::ZERO);
     let k = k.unwrap_or(Vec3::ONE);
-    if eta.min_element() < 0.0 || k.min_element() < 0.0 {
-        return Err(p.invalid("eta", e, "and k must be non-negative"));
-    }
     Ok(ConductorFresnel::Complex { eta, k })
 }
 
@@ -179,9 +179,7 @@ fn ior(e: &Elem, p: &mut Props, name: &str, default: f32) -> Res<f32> {
         Some((Value::Int(v), _)) => v as f32,
         Some((_, el)) => return Err(p.wrong(el, name, "a <float> or a <string>")),
     };
-    if value <= 0.0 {
-        return Err(p.invalid(name, e, "must be positive"));
-    }
+    validate::ior("", value).map_err(|i| p.invalid(name, e, &i.message))?;
     Ok(value)
 }
 

@@ -69,8 +69,8 @@ impl<'a> Ctx<'a> {
         )
     }
 
-    /// Resolves `name` against the scene's folder and checks that it can be opened and
-    /// read; `magic`, if given, must be the file's first bytes.
+    /// Resolves `name` against the scene's folder and checks that it is a regular file
+    /// that can be opened and read; `magic`, if given, must be the file's first bytes.
     pub fn readable_file(&self, e: &Elem, name: &str, magic: Option<&[u8]>) -> Res<PathBuf> {
         let p = Path::new(name);
         let path = if p.is_absolute() {
@@ -90,10 +90,7 @@ impl<'a> Ctx<'a> {
         if name.is_empty() {
             return Err(io_err("empty file name".into()));
         }
-        let mut f = std::fs::File::open(&path).map_err(|x| io_err(x.to_string()))?;
-        if path.is_dir() {
-            return Err(io_err("is a directory".into()));
-        }
+        let mut f = super::file::open_regular(&path).map_err(|x| io_err(x.to_string()))?;
         if let Some(magic) = magic {
             let mut head = vec![0u8; magic.len()];
             f.read_exact(&mut head)

@@ -6,6 +6,7 @@ use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::scene::description::{AreaEmitterDesc, EmitterDesc};
+use crate::scene::validate;
 use glam::{Mat4, Vec3};
 
 /// The first bytes of every OpenEXR file.
@@ -62,9 +63,6 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
             })?;
             let filename = ctx.readable_file(e, &name, Some(&EXR_MAGIC))?;
             let scale = p.float("scale")?.unwrap_or(1.0);
-            if scale < 0.0 {
-                return Err(p.invalid("scale", e, "must be non-negative"));
-            }
             EmitterDesc::EnvMap {
                 filename,
                 scale,
@@ -79,15 +77,14 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
         }
         other => return Err(unknown_plugin(ctx, e, other)),
     };
+    validate::emitter(&desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(desc)
 }
 
-/// A colour parameter with default 1 whose channels must be non-negative.
-fn non_negative(e: &Elem, p: &mut Props, name: &str) -> Res<Vec3> {
+/// A colour parameter with default 1 whose channels must be finite and non-negative.
+fn non_negative(e: &Elem, p: &mut Props, name: &'static str) -> Res<Vec3> {
     let v = p.rgb(name)?.unwrap_or(Vec3::ONE);
-    if v.min_element() < 0.0 {
-        return Err(p.invalid(name, e, "must be non-negative"));
-    }
+    validate::colour(name, v).map_err(|i| p.invalid(name, e, &i.message))?;
     Ok(v)
 }

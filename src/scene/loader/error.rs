@@ -134,8 +134,75 @@ pub struct SceneError {
     pub kind: SceneErrorKind,
 }
 
+/// Most characters of user text an error message quotes in one place.
+pub(crate) const QUOTE_CHARS: usize = 120;
+
+/// `s`, cut to [`QUOTE_CHARS`] characters with `…` marking the cut.
+pub(crate) fn clip(s: &str) -> String {
+    match s.char_indices().nth(QUOTE_CHARS) {
+        None => s.to_string(),
+        Some((k, _)) => format!("{}…", &s[..k]),
+    }
+}
+
+/// A path cut like [`clip`] when it is longer than that.
+fn clip_path(p: &Path) -> PathBuf {
+    match p.to_str() {
+        Some(s) if s.chars().count() > QUOTE_CHARS => PathBuf::from(clip(s)),
+        _ => p.to_path_buf(),
+    }
+}
+
+impl SceneErrorKind {
+    /// The kind with every quoted string clipped (see [`clip`]).
+    fn clipped(self) -> Self {
+        let c = |s: String| clip(&s);
+        match self {
+            Self::Io { path, reason } => Self::Io {
+                path: clip_path(&path),
+                reason: c(reason),
+            },
+            Self::Xml(m) => Self::Xml(c(m)),
+            Self::Version(m) => Self::Version(c(m)),
+            Self::UnknownElement(m) => Self::UnknownElement(c(m)),
+            Self::Unsupported(m) => Self::Unsupported(c(m)),
+            Self::UnknownAttribute(m) => Self::UnknownAttribute(c(m)),
+            Self::MissingAttribute(m) => Self::MissingAttribute(c(m)),
+            Self::UnknownPlugin {
+                category,
+                plugin_type,
+            } => Self::UnknownPlugin {
+                category: c(category),
+                plugin_type: c(plugin_type),
+            },
+            Self::UnknownParameter { plugin, name } => Self::UnknownParameter {
+                plugin: c(plugin),
+                name: c(name),
+            },
+            Self::DuplicateParameter(m) => Self::DuplicateParameter(c(m)),
+            Self::WrongType {
+                name,
+                expected,
+                found,
+            } => Self::WrongType {
+                name: c(name),
+                expected,
+                found: c(found),
+            },
+            Self::Malformed(m) => Self::Malformed(c(m)),
+            Self::InvalidValue(m) => Self::InvalidValue(c(m)),
+            Self::UndefinedParameter(m) => Self::UndefinedParameter(c(m)),
+            Self::UndefinedReference(m) => Self::UndefinedReference(c(m)),
+            Self::DuplicateId(m) => Self::DuplicateId(c(m)),
+            Self::Misplaced(m) => Self::Misplaced(c(m)),
+            Self::Obj(m) => Self::Obj(c(m)),
+        }
+    }
+}
+
 impl SceneError {
-    /// An error at a position in a file.
+    /// An error at a position in a file. Quoted user text is clipped to a few hundred
+    /// bytes, so that no message repeats a huge attribute.
     pub fn new(
         file: Option<&Path>,
         line: Option<u32>,
@@ -144,11 +211,11 @@ impl SceneError {
         kind: SceneErrorKind,
     ) -> Self {
         Self {
-            file: file.map(Path::to_path_buf),
+            file: file.map(clip_path),
             line,
             column,
-            element: element.map(String::into_boxed_str),
-            kind,
+            element: element.map(|e| clip(&e).into_boxed_str()),
+            kind: kind.clipped(),
         }
     }
 
@@ -195,5 +262,14 @@ mod tests {
     #[test]
     fn error_stays_small() {
         assert!(std::mem::size_of::<SceneError>() < 128);
+        let huge = "é".repeat(100_000);
+        let e = SceneError::new(
+            Some(Path::new(&huge)),
+            Some(1),
+            None,
+            Some(huge.clone()),
+            SceneErrorKind::Malformed(huge.clone()),
+        );
+        assert!(e.to_string().len() < 2000, "{}", e.to_string().len());
     }
 }

@@ -23,7 +23,7 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<IntegratorDesc> {
             }
         }
         "direct" => {
-            let max = u32::MAX as i64;
+            let max = crate::scene::validate::MAX_SHADING_SAMPLES as i64;
             let shading = p.int_in("shading_samples", 0, max)?.unwrap_or(1);
             let emitter = p.int_in("emitter_samples", 0, max)?.unwrap_or(shading);
             let bsdf = p.int_in("bsdf_samples", 0, max)?.unwrap_or(shading);
@@ -62,7 +62,9 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<IntegratorDesc> {
                 unreachable!("MLT_DEFAULTS is an Mlt")
             };
             let max = u32::MAX as i64;
-            let max_depth = p.int_in("max_depth", 1, 1024)?.unwrap_or(d_depth as i64) as i32;
+            let max_depth = p
+                .int_in("max_depth", 1, crate::scene::validate::MAX_MLT_DEPTH as i64)?
+                .unwrap_or(d_depth as i64) as i32;
             let bootstrap_samples = p
                 .int_in("bootstrap_samples", 1, max)?
                 .unwrap_or(d_boot as i64) as u32;

@@ -30,7 +30,10 @@ mod bsdf;
 mod context;
 mod emitter;
 mod error;
+mod file;
 mod integrator;
+mod params;
+mod position;
 mod props;
 mod sensor;
 mod shape;
@@ -39,6 +42,8 @@ mod tree;
 mod values;
 
 pub use error::{SceneError, SceneErrorKind};
+pub(crate) use file::read_capped;
+pub use file::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};
 pub use transform::look_at;
 
 use crate::scene::description::SceneDescription;
@@ -50,11 +55,18 @@ use tree::Elem;
 /// Reads and parses the scene file at `path`. `defines` are `-D name=value` pairs; they
 /// take precedence over the file's `<default>` values. Relative file names inside the
 /// scene (OBJ meshes, EXR maps) are resolved against the scene file's folder.
+///
+/// Only a regular file of at most [`MAX_SCENE_BYTES`] is read (a FIFO or a device is
+/// refused before it is opened).
 pub fn load_scene(
     path: &Path,
     defines: &[(String, String)],
 ) -> Result<SceneDescription, SceneError> {
-    let xml = std::fs::read_to_string(path).map_err(|e| SceneError::io(path, &e))?;
+    let bytes = read_capped(path, MAX_SCENE_BYTES).map_err(|e| SceneError::io(path, &e))?;
+    let xml = String::from_utf8(bytes).map_err(|_| {
+        let e = std::io::Error::other("not UTF-8 text");
+        SceneError::io(path, &e)
+    })?;
     parse_scene(&xml, Some(path), defines)
 }
 
@@ -92,6 +104,14 @@ pub fn parse_scene(
             }
             _ => return Err(top_level_error(&ctx, c)),
         }
+    }
+    // The total work: located at the sensor, or at the integrator if only it is given.
+    let film = &desc.sensor.film;
+    let pixels = film.width as u64 * film.height as u64;
+    let spp = desc.sensor.sampler.sample_count;
+    if let Err(i) = crate::scene::validate::work(pixels, spp, &desc.integrator) {
+        let at = sensor.or(integrator).unwrap_or(&root);
+        return Err(ctx.err(at, SceneErrorKind::InvalidValue(i.to_string())));
     }
     Ok(desc)
 }

@@ -8,6 +8,7 @@ use super::transform::{check_attrs, read_transform, xyz};
 use super::tree::Elem;
 use super::values::{parse_bool, parse_float, parse_int, parse_triple};
 use glam::{Mat4, Vec3};
+use std::collections::HashMap;
 
 /// One parsed property value.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,6 +52,8 @@ pub(crate) struct Props<'c, 'a> {
     ctx: &'c Ctx<'a>,
     plugin: String,
     props: Vec<Prop<'a>>,
+    /// Index of each parameter name in `props` (a plugin may have many parameters).
+    index: HashMap<String, usize>,
     /// Nested plugin and `ref` elements, in file order.
     pub objects: Vec<&'a Elem>,
 }
@@ -63,6 +66,7 @@ impl<'c, 'a> Props<'c, 'a> {
             ctx,
             plugin,
             props: Vec::new(),
+            index: HashMap::new(),
             objects: Vec::new(),
         };
         for c in &e.children {
@@ -72,7 +76,7 @@ impl<'c, 'a> Props<'c, 'a> {
             }
             let value = read_value(ctx, c)?;
             let name = c.attr("name").unwrap_or("").to_string();
-            if out.props.iter().any(|p| p.name == name) {
+            if out.index.insert(name.clone(), out.props.len()).is_some() {
                 return Err(ctx.err(c, SceneErrorKind::DuplicateParameter(name)));
             }
             out.props.push(Prop {
@@ -87,14 +91,14 @@ impl<'c, 'a> Props<'c, 'a> {
 
     /// Looks up `name`, marking it used; returns its value and element.
     pub fn raw(&mut self, name: &str) -> Option<(Value, &'a Elem)> {
-        let p = self.props.iter_mut().find(|p| p.name == name)?;
+        let p = &mut self.props[*self.index.get(name)?];
         p.used = true;
         Some((p.value.clone(), p.elem))
     }
 
     /// Whether `name` is given (does not mark it used).
     pub fn has(&self, name: &str) -> bool {
-        self.props.iter().any(|p| p.name == name)
+        self.index.contains_key(name)
     }
 
     /// A wrong-type error for parameter `name` given by element `e`.
@@ -111,12 +115,7 @@ impl<'c, 'a> Props<'c, 'a> {
 
     /// An error about the value of parameter `name` (or the plugin, if it is absent).
     pub fn invalid(&self, name: &str, owner: &Elem, msg: &str) -> super::error::SceneError {
-        let e = self
-            .props
-            .iter()
-            .find(|p| p.name == name)
-            .map(|p| p.elem)
-            .unwrap_or(owner);
+        let e = self.index.get(name).map_or(owner, |&i| self.props[i].elem);
         self.ctx
             .err(e, SceneErrorKind::InvalidValue(format!("\"{name}\" {msg}")))
     }

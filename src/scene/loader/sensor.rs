@@ -9,9 +9,10 @@ use super::{no_objects, plugin_type, unknown_plugin};
 use crate::scene::description::{
     FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc,
 };
+use crate::scene::validate::{self, MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
 
-/// Largest accepted film side, in pixels.
-pub(crate) const MAX_RESOLUTION: i64 = 1 << 15;
+/// Largest accepted film side, in pixels (the area is bounded by [`MAX_FILM_PIXELS`]).
+pub(crate) const MAX_RESOLUTION: i64 = MAX_FILM_PIXELS as i64;
 
 /// Reads a `<sensor>` element.
 pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
@@ -87,7 +88,7 @@ fn read_sampler(ctx: &Ctx, e: &Elem) -> Res<SamplerDesc> {
         kind,
         ..SamplerDesc::default()
     };
-    if let Some(n) = p.int_in("sample_count", 1, u32::MAX as i64)? {
+    if let Some(n) = p.int_in("sample_count", 1, MAX_SAMPLE_COUNT as i64)? {
         s.sample_count = n as u32;
     }
     if let Some(seed) = p.int_in("seed", 0, i64::MAX)? {
@@ -144,6 +145,7 @@ fn read_film(ctx: &Ctx, e: &Elem) -> Res<FilmDesc> {
         }
     }
     f.filter = filter.unwrap_or_default();
+    validate::film(&f).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(f)
 }

@@ -9,6 +9,7 @@ use super::props::Props;
 use super::tree::Elem;
 use super::{plugin_type, unknown_plugin};
 use crate::scene::description::{BsdfDesc, ShapeDesc, ShapeKind};
+use crate::scene::validate;
 use glam::Vec3;
 
 /// Reads a `<shape>` element.
@@ -76,6 +77,7 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
         None => BsdfDesc::default(),
     });
     shape.emitter = emitter;
+    validate::shape(&shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(shape)
 }

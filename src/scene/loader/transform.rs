@@ -35,12 +35,12 @@ pub(crate) fn read_transform(ctx: &Ctx, e: &Elem) -> Res<Mat4> {
         };
         m = step * m;
     }
-    if !m.is_finite() || m.determinant() == 0.0 || !m.determinant().is_finite() {
-        return Err(ctx.err(
+    crate::scene::validate::transform("transform", &m).map_err(|i| {
+        ctx.err(
             e,
-            SceneErrorKind::InvalidValue("the transform is singular or not finite".into()),
-        ));
-    }
+            SceneErrorKind::InvalidValue(format!("the transform {}", i.message)),
+        )
+    })?;
     Ok(m)
 }
 

@@ -2,11 +2,17 @@
 //! `<default>` parameters and `-D` defines, and substituting `$name` in every attribute
 //! value in document order, as Mitsuba 3 does.
 
-use super::error::{SceneError, SceneErrorKind};
+use super::error::{clip, SceneError, SceneErrorKind};
+use super::params::{Params, SubstError};
+use super::position::Positions;
 use std::path::Path;
 
 /// Deepest element nesting accepted (real scenes use fewer than ten levels).
 const MAX_DEPTH: usize = 64;
+
+/// Most attributes on one element (Mitsuba's take at most five; roxmltree's duplicate check
+/// is quadratic in their number).
+const MAX_ATTRIBUTES: usize = 256;
 
 /// One XML element after parameter substitution.
 #[derive(Debug, Clone)]
@@ -34,10 +40,10 @@ impl Elem {
 
     /// The start tag with its identifying attributes, for messages.
     pub fn describe(&self) -> String {
-        let mut s = format!("<{}", self.tag);
+        let mut s = format!("<{}", clip(&self.tag));
         for key in ["type", "name", "id"] {
             if let Some(v) = self.attr(key) {
-                s.push_str(&format!(" {key}=\"{v}\""));
+                s.push_str(&format!(" {key}=\"{}\"", clip(v)));
             }
         }
         s.push('>');
@@ -55,15 +61,16 @@ pub(crate) fn read_tree(
         allow_dtd: false,
         nodes_limit: 10_000_000,
     };
-    // roxmltree parses nested elements recursively: refuse deep nesting before it does.
-    if let Some(offset) = too_deep(xml) {
-        let (line, column) = line_column(xml, offset);
+    // roxmltree parses nested elements recursively and checks attributes for duplicates
+    // pairwise: refuse deep nesting and crowded elements before it sees them.
+    if let Some((offset, message)) = prescan(xml) {
+        let (line, column) = Positions::new(xml).at(offset);
         return Err(SceneError::new(
             file,
             Some(line),
             Some(column),
             None,
-            SceneErrorKind::Xml(format!("elements nested deeper than {MAX_DEPTH}")),
+            SceneErrorKind::Xml(message),
         ));
     }
     let doc = roxmltree::Document::parse_with_options(xml, opts).map_err(|e| {
@@ -76,11 +83,10 @@ pub(crate) fn read_tree(
             SceneErrorKind::Xml(e.to_string()),
         )
     })?;
-    let mut params: Vec<(String, String)> = defines.to_vec();
     let mut reader = Reader {
-        doc: &doc,
+        positions: Positions::new(xml),
         file,
-        params: &mut params,
+        params: Params::new(defines),
     };
     let root = reader.convert(doc.root_element(), 0)?;
     let err = |kind| {
@@ -109,9 +115,10 @@ pub(crate) fn read_tree(
     }
 }
 
-/// The byte offset of the first start tag nested deeper than [`MAX_DEPTH`], by a scan
-/// that skips comments, CDATA, processing instructions and quoted attribute values.
-fn too_deep(xml: &str) -> Option<usize> {
+/// The byte offset of the first start tag nested deeper than [`MAX_DEPTH`] or with more
+/// than [`MAX_ATTRIBUTES`] attributes, and what is wrong, by a scan that skips comments,
+/// CDATA, processing instructions and quoted attribute values.
+fn prescan(xml: &str) -> Option<(usize, String)> {
     let b = xml.as_bytes();
     let skip_to = |from: usize, end: &str| {
         xml[from..]
@@ -136,11 +143,17 @@ fn too_deep(xml: &str) -> Option<usize> {
             i = skip_to(i, ">");
         } else {
             let start = i;
-            let (end, self_closing) = tag_end(b, i + 1);
+            let (end, self_closing, attributes) = tag_end(b, i + 1);
+            if attributes > MAX_ATTRIBUTES {
+                return Some((
+                    start,
+                    format!("an element with more than {MAX_ATTRIBUTES} attributes"),
+                ));
+            }
             if !self_closing {
                 depth += 1;
                 if depth > MAX_DEPTH + 1 {
-                    return Some(start);
+                    return Some((start, format!("elements nested deeper than {MAX_DEPTH}")));
                 }
             }
             i = end;
@@ -149,31 +162,22 @@ fn too_deep(xml: &str) -> Option<usize> {
     None
 }
 
-/// The index after the `>` closing a start tag that begins at `i`, and whether it is
-/// self-closing (`/>`). Quoted values may contain `>`.
-fn tag_end(b: &[u8], mut i: usize) -> (usize, bool) {
-    let mut quote: Option<u8> = None;
+/// The index after the `>` closing a start tag that begins at `i`, whether it is
+/// self-closing (`/>`), and its number of attributes (`=` outside quotes). Quoted values
+/// may contain `>`.
+fn tag_end(b: &[u8], mut i: usize) -> (usize, bool, usize) {
+    let (mut quote, mut equals) = (None::<u8>, 0usize);
     while i < b.len() {
         match (quote, b[i]) {
             (Some(q), c) if c == q => quote = None,
             (None, b'"' | b'\'') => quote = Some(b[i]),
-            (None, b'>') => return (i + 1, i > 0 && b[i - 1] == b'/'),
+            (None, b'=') => equals += 1,
+            (None, b'>') => return (i + 1, i > 0 && b[i - 1] == b'/', equals),
             _ => {}
         }
         i += 1;
     }
-    (b.len(), false)
-}
-
-/// 1-based line and column (in characters) of a byte offset.
-fn line_column(xml: &str, offset: usize) -> (u32, u32) {
-    let before = &xml[..offset.min(xml.len())];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (
-        u32::try_from(line).unwrap_or(u32::MAX),
-        u32::try_from(col).unwrap_or(u32::MAX),
-    )
+    (b.len(), false, equals)
 }
 
 /// Accepts `major.minor.patch` with major 2 or more (older files need Mitsuba's
@@ -192,33 +196,29 @@ fn check_version(v: &str) -> Result<(), String> {
     }
 }
 
-struct Reader<'a, 'd> {
-    doc: &'a roxmltree::Document<'d>,
+struct Reader<'a> {
+    positions: Positions<'a>,
     file: Option<&'a Path>,
-    params: &'a mut Vec<(String, String)>,
+    params: Params,
 }
 
-impl Reader<'_, '_> {
+impl Reader<'_> {
     fn convert(&mut self, node: roxmltree::Node, depth: usize) -> Result<Elem, SceneError> {
-        let pos = self.doc.text_pos_at(node.range().start);
+        let (line, column) = self.positions.at(node.range().start);
+        // Describe with the raw attributes until substitution succeeds.
         let mut elem = Elem {
             tag: node.tag_name().name().to_string(),
-            attrs: Vec::new(),
+            attrs: node
+                .attributes()
+                .map(|a| (a.name().to_string(), a.value().to_string()))
+                .collect(),
             children: Vec::new(),
-            line: pos.row,
-            column: pos.col,
+            line,
+            column,
         };
-        let raw: Vec<(String, String)> = node
-            .attributes()
-            .map(|a| (a.name().to_string(), a.value().to_string()))
-            .collect();
-        // Describe with the raw attributes until substitution succeeds.
-        elem.attrs = raw.clone();
-        for (name, value) in raw {
-            let value = self.substitute(&value).map_err(|m| self.err(&elem, m))?;
-            if let Some(slot) = elem.attrs.iter_mut().find(|(n, _)| *n == name) {
-                slot.1 = value;
-            }
+        for i in 0..elem.attrs.len() {
+            let value = self.substitute(&elem.attrs[i].1);
+            elem.attrs[i].1 = value.map_err(|m| self.err(&elem, m))?;
         }
         if depth > MAX_DEPTH {
             return Err(self.err(
@@ -269,30 +269,20 @@ impl Reader<'_, '_> {
                 SceneErrorKind::InvalidValue("<default> needs a non-empty name".into()),
             ));
         }
-        if !self.params.iter().any(|(n, _)| n == name) {
-            self.params.push((name.to_string(), value.to_string()));
-        }
+        self.params.add(name, value);
         Ok(())
     }
 
-    /// Mitsuba's rule: replace `$name` for every known parameter, longest names first;
-    /// any `$` left over is an undefined parameter.
-    fn substitute(&self, value: &str) -> Result<String, SceneErrorKind> {
-        if !value.contains('$') {
-            return Ok(value.to_string());
-        }
-        let mut order: Vec<&(String, String)> = self.params.iter().collect();
-        order.sort_by_key(|p| std::cmp::Reverse(p.0.len()));
-        let mut out = value.to_string();
-        for (name, val) in order {
-            out = out.replace(&format!("${name}"), val);
-        }
-        if out.contains('$') {
-            return Err(SceneErrorKind::UndefinedParameter(format!(
-                "\"{value}\" refers to a parameter that no <default> or define gives"
-            )));
-        }
-        Ok(out)
+    /// Mitsuba's rule (see [`Params`]): `$name` becomes the value of the longest known
+    /// name; any other `$` is an undefined parameter.
+    fn substitute(&mut self, value: &str) -> Result<String, SceneErrorKind> {
+        self.params.substitute(value).map_err(|e| match e {
+            SubstError::Undefined => SceneErrorKind::UndefinedParameter(format!(
+                "\"{}\" refers to a parameter that no <default> or define gives",
+                clip(value)
+            )),
+            SubstError::TooLarge(m) => SceneErrorKind::InvalidValue(m),
+        })
     }
 
     fn err(&self, e: &Elem, kind: SceneErrorKind) -> SceneError {
@@ -319,13 +309,12 @@ mod tests {
                 "</a>".repeat(n)
             )
         };
-        assert_eq!(too_deep(&deep(MAX_DEPTH)), None);
-        assert!(too_deep(&deep(MAX_DEPTH + 1)).is_some());
+        assert_eq!(prescan(&deep(MAX_DEPTH)), None);
+        assert!(prescan(&deep(MAX_DEPTH + 1)).is_some());
         let e = read_tree(&deep(1_000_000), None, &[]).unwrap_err();
         assert!(matches!(e.kind, SceneErrorKind::Xml(_)), "{e}");
         let flat = "<s>\n<!-- <a><a> --><b x=\">\"/><c/></s>";
-        assert_eq!(too_deep(flat), None);
-        assert_eq!(line_column(flat, 4), (2, 1));
+        assert_eq!(prescan(flat), None);
     }
 
     #[test]

@@ -22,6 +22,7 @@ struct TileOut {
     pixels: Vec<(usize, PixelAccum)>,
     splats: Vec<Splat>,
     rays: u64,
+    nonfinite: u64,
     stats: StrategyStats,
 }
 
@@ -51,6 +52,7 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
         pixels: Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize),
         splats: Vec::new(),
         rays: 0,
+        nonfinite: 0,
         stats: StrategyStats::default(),
     };
     let mut buf = BdptBuffers::default();
@@ -59,6 +61,10 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
             let index = (y * p.width + x) as usize;
             let mut acc = PixelAccum::default();
             for s in s0..s1 {
+                if p.cancel.load(Ordering::Relaxed) {
+                    out.pixels.push((index, acc));
+                    return out;
+                }
                 rng.start_pixel_sample([x, y], s);
                 let off = p.filter.sample(rng.next_2d());
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
@@ -75,7 +81,12 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
                 );
                 out.rays += r.rays as u64;
                 let v = r.radiance;
-                acc.add(if v.is_finite() { v } else { Vec3::ZERO });
+                if v.is_finite() {
+                    acc.add(v);
+                } else {
+                    acc.add(Vec3::ZERO);
+                    out.nonfinite += 1;
+                }
             }
             out.pixels.push((index, acc));
         }
@@ -117,12 +128,16 @@ pub(crate) fn render_loop_bdpt<S: BidirectionalScene + Sync>(
                 .collect();
             for r in results.into_iter().flatten() {
                 stats.rays += r.rays;
+                stats.nonfinite += r.nonfinite;
                 for (i, a) in &r.pixels {
                     stats.samples += a.count as u64;
-                    film.merge(*i, a);
+                    let merged = film.merge(*i, a);
+                    debug_assert!(merged.is_ok());
                 }
                 for sp in &r.splats {
-                    if sp.value.is_finite() {
+                    if !sp.value.is_finite() {
+                        stats.nonfinite += 1;
+                    } else {
                         p.filter.splat(sp.raster, p.width, p.height, |i, w| {
                             film.add_splat(i, sp.value * w)
                         });

@@ -141,6 +141,9 @@ pub struct RenderOutput {
     pub samples: u64,
     /// Rays cast.
     pub rays: u64,
+    /// Samples whose value came out NaN or infinite; they are added to their pixel as 0
+    /// and counted here (a correct render has none).
+    pub nonfinite_samples: u64,
     /// Wall-clock render time in seconds.
     pub seconds: f64,
     /// For bidirectional path tracing: what each strategy contributed.
@@ -187,8 +190,12 @@ fn bit(i: u32, b: u32) -> f32 {
 }
 
 impl Renderer {
-    /// Prepares a scene: geometry, lights, materials, camera and integrator.
+    /// Prepares a scene: geometry, lights, materials, camera and integrator. First refuses,
+    /// naming the part of the scene, whatever [`validate::scene`](crate::scene::validate::scene)
+    /// refuses (with `opts.spp` in place of the file's sample count, if given).
     pub fn new(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {
+        let spp = opts.spp.unwrap_or(desc.sensor.sampler.sample_count);
+        crate::scene::validate::scene(desc, spp).map_err(RenderError)?;
         let base: Option<PathBuf> = desc
             .source
             .as_ref()
@@ -370,6 +377,7 @@ impl Renderer {
             film,
             samples: stats.samples,
             rays: stats.rays,
+            nonfinite_samples: stats.nonfinite,
             seconds: start.elapsed().as_secs_f64(),
             strategies: stats.strategies,
         }

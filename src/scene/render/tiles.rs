@@ -1,5 +1,7 @@
 //! The parallel render loop: passes over the image, tiles in parallel (rayon), per-pixel
 //! accumulation merged in a fixed order so the result does not depend on the thread count.
+//! The cancel flag is read before every pixel sample, so cancelling takes effect within
+//! one pixel sample (bounded by the loader's limits on per-sample work).
 
 use super::geo::Camera;
 use crate::integrator::{Integrator, Scene};
@@ -28,8 +30,8 @@ pub(crate) struct LoopParams<'a> {
     pub cancel: &'a AtomicBool,
 }
 
-/// One tile's per-pixel accumulators and its ray count.
-type TileResult = (Vec<(usize, PixelAccum)>, u64);
+/// One tile's per-pixel accumulators, its ray count and its count of non-finite samples.
+type TileResult = (Vec<(usize, PixelAccum)>, u64, u64);
 
 /// Counters of the work done.
 #[derive(Debug, Clone, Default)]
@@ -38,6 +40,8 @@ pub(crate) struct LoopStats {
     pub rays: u64,
     /// What each bidirectional strategy contributed (BDPT only).
     pub strategies: Option<crate::integrator::StrategyStats>,
+    /// Samples whose value was NaN or infinite (added as zero).
+    pub nonfinite: u64,
 }
 
 pub(crate) fn tiles(w: u32, h: u32) -> Vec<(u32, u32, u32, u32)> {
@@ -80,12 +84,16 @@ fn render_tile_with<S: Scene, R: Sampler>(
     (s0, s1): (u32, u32),
 ) -> TileResult {
     let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-    let mut rays = 0u64;
+    let (mut rays, mut nonfinite) = (0u64, 0u64);
     for y in y0..y1 {
         for x in x0..x1 {
             let index = (y * p.width + x) as usize;
             let mut acc = PixelAccum::default();
             for s in s0..s1 {
+                if p.cancel.load(Ordering::Relaxed) {
+                    out.push((index, acc));
+                    return (out, rays, nonfinite);
+                }
                 rng.start_pixel_sample([x, y], s);
                 let off = p.filter.sample(rng.next_2d());
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
@@ -95,12 +103,17 @@ fn render_tile_with<S: Scene, R: Sampler>(
                     .li(scene, ray.origin, ray.dir, t_max.min(p.t_max), &mut rng);
                 rays += r.rays as u64;
                 let v = r.radiance;
-                acc.add(if v.is_finite() { v } else { glam::Vec3::ZERO });
+                if v.is_finite() {
+                    acc.add(v);
+                } else {
+                    nonfinite += 1;
+                    acc.add(glam::Vec3::ZERO);
+                }
             }
             out.push((index, acc));
         }
     }
-    (out, rays)
+    (out, rays, nonfinite)
 }
 
 /// Renders `spp` samples per pixel (fewer if cancelled) into a film.
@@ -127,11 +140,14 @@ pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Fi
                 Some(r)
             })
             .collect();
-        for (px, rays) in results.into_iter().flatten() {
+        for (px, rays, nonfinite) in results.into_iter().flatten() {
             stats.rays += rays;
+            stats.nonfinite += nonfinite;
             for (i, a) in &px {
                 stats.samples += a.count as u64;
-                film.merge(*i, a);
+                // Indices come from `tiles`, which lie inside the film.
+                let merged = film.merge(*i, a);
+                debug_assert!(merged.is_ok());
             }
         }
         s0 = s1;

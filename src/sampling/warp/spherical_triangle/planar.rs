@@ -12,6 +12,10 @@ use crate::sampling::SamplingError;
 /// shape's plane the band is this angle times d/|cos θ'|.
 pub(crate) const ANGULAR_TOLERANCE: f64 = 1e-7;
 
+/// Smallest solid angle (sr) a shape may subtend: below it the density per steradian
+/// (1/Ω, or d²/(A |cos θ'|) in the area fallback) comes within a factor 10⁸ of `f32::MAX`.
+pub const MIN_SOLID_ANGLE: f64 = 1e-30;
+
 /// The shape p0 + s e1 + t e2 with s, t ≥ 0 and s + t ≤ 1 (triangle) or s, t ≤ 1
 /// (parallelogram), seen from `origin`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,6 +102,16 @@ impl Planar {
                 what: "the origin lies in the plane of the shape (zero solid angle)",
             });
         }
+        // Ω ≈ A |cos θ'| / d² from the centre: exact enough for the small shapes it refuses.
+        let centre = to + 0.5 * (self.e1 + self.e2);
+        let d2 = centre.length_squared();
+        let omega = self.area * self.normal.dot(centre).abs() / (d2 * d2.sqrt());
+        if omega.is_nan() || omega < MIN_SOLID_ANGLE {
+            return Err(SamplingError::Degenerate {
+                what: "the shape subtends less than 1e-30 sr, so no density per steradian \
+                       fits f32: sample it by area",
+            });
+        }
         self.origin = origin;
         Ok(self)
     }
@@ -161,7 +175,9 @@ impl Planar {
             Some(sample) => sample(u).as_vec3(),
             None => self.direction_to(self.sample_area(u)),
         };
-        debug_assert!(dir.is_finite());
+        // Outside the unit square the result is unspecified (see `warp`'s module docs).
+        let in_square = (0.0..=1.0).contains(&u.x) && (0.0..=1.0).contains(&u.y);
+        debug_assert!(dir.is_finite() || !in_square);
         dir
     }
 
