@@ -55,7 +55,7 @@ impl Integrator {
     /// Estimates the radiance along one camera ray, for the per-ray estimators (path
     /// tracing, direct lighting). [`Bdpt`] and [`Mlt`] are not per-ray estimators (they
     /// splat onto the film and need a [`BidirectionalScene`]): for them this returns zero
-    /// radiance and no rays; call [`Bdpt::sample`] or [`Mlt::render`].
+    /// radiance and no rays; call [`Bdpt::sample`], or run [`MltChain`]s (the renderer does).
     #[inline]
     pub fn li<S: Scene, R: SampleSource>(
         &self,
