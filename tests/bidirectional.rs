@@ -271,3 +271,33 @@ fn furnaces_return_the_albedo() {
         }
     }
 }
+
+#[test]
+fn images_do_not_depend_on_the_thread_count() {
+    for kind in [IntegratorKind::Bdpt, IntegratorKind::Mlt] {
+        let mut desc = mlt_desc(load("cornell-box-caustic.xml"));
+        desc.sensor.film.width = 32;
+        desc.sensor.film.height = 32;
+        let image = |threads: usize| {
+            let o = RenderOptions {
+                threads,
+                seed: Some(3),
+                ..opts(kind, 8)
+            };
+            Renderer::new(&desc, &o)
+                .expect("scene builds")
+                .render(&|_, _| {}, &AtomicBool::new(false))
+                .image()
+        };
+        let (one, two) = (image(1), image(2));
+        assert!(
+            one.iter().all(|v| v.is_finite()),
+            "{kind:?}: non-finite pixels"
+        );
+        assert!(
+            one.iter().any(|v| *v != Vec3::ZERO),
+            "{kind:?}: black image"
+        );
+        assert_eq!(one, two, "{kind:?}: 1 and 2 threads differ");
+    }
+}

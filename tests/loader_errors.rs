@@ -191,3 +191,60 @@ fn duplicate_parameter_and_second_sensor() {
     let e = err("<sensor type=\"perspective\"/>\n<sensor type=\"perspective\"/>");
     check(&e, 3, "<sensor type=\"perspective\">", "second <sensor>");
 }
+
+#[test]
+fn bidirectional_integrators_read_and_refuse_with_locations() {
+    let ok = |body: &str| {
+        let xml = format!("<scene version=\"3.0.0\">\n{body}\n</scene>");
+        parse_scene(&xml, Some(Path::new(FILE)), &[]).expect("loads")
+    };
+    use mcrt::scene::description::IntegratorDesc;
+    assert_eq!(
+        ok("<integrator type=\"bdpt\"><integer name=\"max_depth\" value=\"8\"/></integrator>")
+            .integrator,
+        IntegratorDesc::Bdpt {
+            max_depth: 8,
+            rr_depth: 5
+        }
+    );
+    let m = ok(
+        "<integrator type=\"mlt\"><integer name=\"chains\" value=\"10\"/>\
+                <float name=\"sigma\" value=\"0.02\"/></integrator>",
+    )
+    .integrator;
+    assert!(
+        matches!(m, IntegratorDesc::Mlt { chains: 10, max_depth: 5, sigma, .. } if sigma == 0.02),
+        "{m:?}"
+    );
+    for (body, element, words) in [
+        (
+            "<integrator type=\"bdpt\"><integer name=\"rr_depth\" value=\"0\"/></integrator>",
+            "rr_depth",
+            "rr_depth",
+        ),
+        (
+            "<integrator type=\"mlt\"><float name=\"large_step_prob\" value=\"0\"/></integrator>",
+            "large_step_prob",
+            "(0, 1]",
+        ),
+        (
+            "<integrator type=\"mlt\"><float name=\"sigma\" value=\"-1\"/></integrator>",
+            "sigma",
+            "positive",
+        ),
+        (
+            "<integrator type=\"mlt\"><integer name=\"max_depth\" value=\"-1\"/></integrator>",
+            "max_depth",
+            "max_depth",
+        ),
+        (
+            "<integrator type=\"mlt\"><integer name=\"chains\" value=\"5000\"/>\
+             <integer name=\"bootstrap_samples\" value=\"100\"/></integrator>",
+            "bootstrap_samples",
+            "chains",
+        ),
+    ] {
+        let e = err(body);
+        check(&e, 2, element, words);
+    }
+}

@@ -5,10 +5,22 @@ use crate::render_study::RenderPoint;
 
 /// Header line.
 const HEADER: &str = "scene,strategy,sampler,spp,seconds,rel_mse";
+/// Header line of the integrator study, whose second column names the integrator.
+pub const INTEGRATOR_HEADER: &str = "scene,integrator,sampler,spp,seconds,rel_mse";
 
 /// Formats the points, one line each after the header.
 pub fn write(points: &[RenderPoint]) -> String {
-    let mut s = format!("{HEADER}\n");
+    write_with(HEADER, points)
+}
+
+/// Parses what [`write`] wrote.
+pub fn read(text: &str) -> Result<Vec<RenderPoint>, String> {
+    read_with(HEADER, text)
+}
+
+/// Formats the points under `header`.
+pub fn write_with(header: &str, points: &[RenderPoint]) -> String {
+    let mut s = format!("{header}\n");
     for p in points {
         s += &format!(
             "{},{},{},{},{:e},{:e}\n",
@@ -18,10 +30,10 @@ pub fn write(points: &[RenderPoint]) -> String {
     s
 }
 
-/// Parses what [`write`] wrote.
-pub fn read(text: &str) -> Result<Vec<RenderPoint>, String> {
+/// Parses what [`write_with`] wrote under `header`.
+pub fn read_with(header: &str, text: &str) -> Result<Vec<RenderPoint>, String> {
     let mut lines = text.lines();
-    if lines.next() != Some(HEADER) {
+    if lines.next() != Some(header) {
         return Err("not a convergence render CSV".into());
     }
     lines
@@ -86,5 +98,8 @@ mod tests {
         let merged = merge(vec![p.clone(), other.clone()], std::slice::from_ref(&newer));
         assert_eq!(merged, vec![other, newer]);
         assert!(read(&format!("{HEADER}\na,b,c,x,1,2\n")).is_err());
+        let text = write_with(INTEGRATOR_HEADER, std::slice::from_ref(&p));
+        assert!(read(&text).is_err());
+        assert_eq!(read_with(INTEGRATOR_HEADER, &text), Ok(vec![p]));
     }
 }

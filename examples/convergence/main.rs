@@ -4,6 +4,8 @@
 //! cargo run --release --example convergence -- [--quick] [--out docs/] [--max-spp N]
 //!     [--no-render] [--strategies bsdf,light,balance,power]
 //!     [--samplers independent,stratified,sobol] [--scenes cornell-box,veach-mis] [--note TEXT]
+//! cargo run --release --example convergence -- --integrators [--max-spp N] [--kinds path,bdpt,mlt]
+//!     [--scenes cornell-box,veach-mis,cornell-box-caustic] [--time-limit SECONDS] [--note TEXT]
 //! ```
 //!
 //! Measures the f32 warps against f64 references, the resolution of a 2D distribution
@@ -16,6 +18,12 @@
 //! or redo lines
 //! to an earlier study.
 //!
+//! `--integrators` runs only the integrator study (PT, BDPT, MLT; ladder to 256 spp unless
+//! `--max-spp` says otherwise), merges it into `convergence/integrators.csv`, redraws its
+//! plots and replaces section 4 of an existing `convergence.md` (the rest of the page is
+//! kept); other runs carry section 4 over unchanged. `--time-limit` skips a render, and the larger ones of its line, when four times
+//! the line's previous render time exceeds it.
+//!
 //! Run time on the project's busy 2-core machine: `--quick` (renders to 4 spp) about 15 s;
 //! the sampling half of a full run about 30 s; the rendering half to 256 spp
 //! (`--max-spp 256`) about 20 minutes, and to the default 1024 spp several times longer.
@@ -24,6 +32,8 @@ mod csv;
 mod distribution;
 mod environment;
 mod image;
+mod integrator_prose;
+mod integrator_study;
 mod measure;
 mod naive;
 mod plot;
@@ -50,6 +60,9 @@ struct Options {
     strategies: Option<Vec<String>>,
     samplers: Option<Vec<String>>,
     scenes: Option<Vec<String>>,
+    integrators: bool,
+    kinds: Option<Vec<String>>,
+    time_limit: Option<f64>,
 }
 
 /// A comma-separated list, each entry one of `allowed`.
@@ -67,7 +80,9 @@ fn list(v: Option<String>, flag: &str, allowed: &[&str]) -> Result<Option<Vec<St
 
 const USAGE: &str = "usage: convergence [--quick] [--out DIR] [--max-spp N] [--no-render] \
 [--strategies bsdf,light,balance,power] [--samplers independent,stratified,sobol] \
-[--scenes cornell-box,veach-mis] [--note TEXT]";
+[--scenes cornell-box,veach-mis] [--note TEXT]
+       convergence --integrators [--out DIR] [--max-spp N] [--kinds path,bdpt,mlt] \
+[--scenes cornell-box,veach-mis,cornell-box-caustic] [--time-limit SECONDS] [--note TEXT]";
 
 fn parse() -> Result<Options, String> {
     let mut o = Options {
@@ -79,6 +94,9 @@ fn parse() -> Result<Options, String> {
         strategies: None,
         samplers: None,
         scenes: None,
+        integrators: false,
+        kinds: None,
+        time_limit: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -96,9 +114,28 @@ fn parse() -> Result<Options, String> {
             }
             "--strategies" => o.strategies = list(it.next(), &a, &render_study::STRATEGIES)?,
             "--samplers" => o.samplers = list(it.next(), &a, &render_study::SAMPLERS)?,
-            "--scenes" => o.scenes = list(it.next(), &a, &render_study::SCENES)?,
+            "--scenes" => o.scenes = list(it.next(), &a, &integrator_study::SCENES)?,
+            "--integrators" => o.integrators = true,
+            "--kinds" => o.kinds = list(it.next(), &a, &integrator_study::KINDS)?,
+            "--time-limit" => {
+                let v = it.next().ok_or("--time-limit needs seconds")?;
+                o.time_limit = Some(
+                    v.parse()
+                        .map_err(|_| format!("--time-limit {v}: not a number"))?,
+                );
+            }
             "-h" | "--help" => return Err(USAGE.into()),
             other => return Err(format!("unknown argument {other}\n{USAGE}")),
+        }
+    }
+    let only_integrators = |l: &Vec<String>| {
+        l.iter()
+            .find(|s| !render_study::SCENES.contains(&s.as_str()))
+            .cloned()
+    };
+    if let Some(s) = o.scenes.as_ref().and_then(only_integrators) {
+        if !o.integrators {
+            return Err(format!("--scenes {s}: only with --integrators"));
         }
     }
     Ok(o)
@@ -190,7 +227,81 @@ fn render_half(o: &Options, dir: &Path) -> Result<Vec<render_study::RenderPoint>
     Ok(all)
 }
 
+/// Runs the integrator study, merges it into its CSV, draws its plots and returns section 4
+/// of the page.
+fn integrator_half(o: &Options, dir: &Path) -> Result<String, String> {
+    let csv_path = dir.join("integrators.csv");
+    let earlier = std::fs::read_to_string(&csv_path)
+        .ok()
+        .map(|t| csv::read_with(csv::INTEGRATOR_HEADER, &t))
+        .transpose()?
+        .unwrap_or_default();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut scenes = integrator_study::scenes(root);
+    if let Some(keep) = &o.scenes {
+        scenes.retain(|s| keep.iter().any(|k| k == s.name));
+    }
+    let wanted = |k: &str, sa: &str| {
+        let ok =
+            |l: &Option<Vec<String>>, x: &str| l.as_ref().is_none_or(|l| l.iter().any(|y| y == x));
+        ok(&o.kinds, k) && (k == "mlt" || ok(&o.samplers, sa))
+    };
+    let plan = integrator_study::Plan {
+        wanted: &wanted,
+        max_spp: o.max_spp.unwrap_or(if o.quick { 4 } else { 256 }),
+        limit: o.time_limit,
+    };
+    let (points, skipped) = integrator_study::run(&renderer::render_integrator, &scenes, &plan);
+    for s in &skipped {
+        eprintln!("skipped: {s}");
+    }
+    let all = csv::merge(earlier, &points);
+    let text = csv::write_with(csv::INTEGRATOR_HEADER, &all);
+    std::fs::write(&csv_path, text).map_err(|e| format!("{}: {e}", csv_path.display()))?;
+    for scene in integrator_study::SCENES {
+        draw(
+            integrator_study::plot(&all, scene),
+            &dir.join(format!("integrators-{scene}.png")),
+        )?;
+    }
+    let made = format!(
+        "Made with `{}` on {}. {}",
+        command(),
+        report::machine(),
+        o.note
+    );
+    Ok(integrator_study::section(&all, made.trim_end()))
+}
+
+/// The command line as typed (arguments with spaces quoted).
+fn command() -> String {
+    std::iter::once("cargo run --release --example convergence --".to_string())
+        .chain(
+            std::env::args()
+                .skip(1)
+                .map(|a| if a.contains(' ') { format!("'{a}'") } else { a }),
+        )
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// `--integrators`: the integrator study alone, spliced into an existing page.
+fn run_integrators(o: &Options) -> Result<(), String> {
+    let dir = o.out.join("convergence");
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let section = integrator_half(o, &dir)?;
+    let path = o.out.join("convergence.md");
+    let doc = std::fs::read_to_string(&path).unwrap_or_default();
+    let doc = integrator_study::splice(&doc, &section);
+    std::fs::write(&path, doc).map_err(|e| format!("{}: {e}", path.display()))?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
 fn run(o: &Options) -> Result<(), String> {
+    if o.integrators {
+        return run_integrators(o);
+    }
     let dir = o.out.join("convergence");
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let effort = if o.quick {
@@ -242,25 +353,19 @@ fn run(o: &Options) -> Result<(), String> {
             )?;
         }
     }
-    let ctx =
-        report::Context {
-            command: std::iter::once("cargo run --release --example convergence --".to_string())
-                .chain(std::env::args().skip(1).map(|a| {
-                    if a.contains(' ') {
-                        format!("'{a}'")
-                    } else {
-                        a
-                    }
-                }))
-                .collect::<Vec<_>>()
-                .join(" "),
-            machine: report::machine(),
-            note: o.note.clone(),
-            quick: o.quick,
-        };
+    let ctx = report::Context {
+        command: command(),
+        machine: report::machine(),
+        note: o.note.clone(),
+        quick: o.quick,
+    };
     let render_ref = render.as_deref().map_err(String::as_str);
-    let doc = report::document(&ctx, &warp_rows, &dist_rows, de, truth, render_ref);
+    let mut doc = report::document(&ctx, &warp_rows, &dist_rows, de, truth, render_ref);
     let path = o.out.join("convergence.md");
+    let earlier = std::fs::read_to_string(&path).unwrap_or_default();
+    if let Some(section) = integrator_study::section_of(&earlier) {
+        doc = integrator_study::splice(&doc, section);
+    }
     std::fs::write(&path, doc).map_err(|e| format!("{}: {e}", path.display()))?;
     eprintln!("wrote {}", path.display());
     Ok(())

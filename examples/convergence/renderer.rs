@@ -1,6 +1,7 @@
 //! The one file that calls the renderer: [`mcrt::scene::render::Renderer`] with the strategy
 //! as [`mcrt::integrator::Strategy`] and the sampler as the scene's
-//! [`mcrt::scene::description::SamplerKind`].
+//! [`mcrt::scene::description::SamplerKind`]; for the integrator study, with the integrator
+//! as [`mcrt::scene::description::IntegratorKind`].
 //!
 //! Whether the renderer honours the scene's sampler kind is checked at run time: a 1-spp
 //! render with the sampler must differ from one with `independent` at the same seed. A
@@ -10,7 +11,7 @@
 use crate::image::Rgb;
 use crate::render_study::{Backend, SceneSpec};
 use mcrt::integrator::Strategy;
-use mcrt::scene::description::{SamplerKind, SceneDescription};
+use mcrt::scene::description::{IntegratorDesc, IntegratorKind, SamplerKind, SceneDescription};
 use mcrt::scene::render::{RenderOptions, Renderer};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -107,4 +108,63 @@ impl Backend for CrateRenderer {
         }
         render(spec, strategy, sampler, spp)
     }
+}
+
+/// MLT's depth limit where the scene file's is unlimited: paths longer than 12 segments
+/// carry about 0.1% of the Cornell box's light, below the error the study measures.
+const MLT_MAX_DEPTH: i32 = 12;
+
+/// One render of the integrator study: `kind` is `path`, `bdpt` or `mlt` (MIS with the
+/// power heuristic throughout), `sampler` a sampler name (ignored by MLT), `spp` samples
+/// or, for MLT, mutations per pixel. Returns the image and the render time in seconds
+/// (for MLT including its bootstrap).
+pub fn render_integrator(
+    spec: &crate::integrator_study::Scene,
+    kind: &str,
+    sampler: &str,
+    spp: u32,
+) -> Result<(Rgb, f64), String> {
+    let mut desc = mcrt::scene::loader::load_scene(&spec.file, &[]).map_err(|e| e.to_string())?;
+    let integrator = IntegratorKind::parse(kind).ok_or(format!("unknown integrator {kind}"))?;
+    if integrator == IntegratorKind::Mlt {
+        let depth = desc.integrator.max_depth().unwrap_or(-1);
+        desc.integrator = match IntegratorDesc::MLT_DEFAULTS {
+            IntegratorDesc::Mlt {
+                bootstrap_samples,
+                chains,
+                large_step_prob,
+                sigma,
+                ..
+            } => IntegratorDesc::Mlt {
+                max_depth: if depth < 0 { MLT_MAX_DEPTH } else { depth },
+                bootstrap_samples,
+                chains,
+                mutations_per_pixel: spp,
+                large_step_prob,
+                sigma,
+            },
+            d => d,
+        };
+    }
+    let opts = RenderOptions {
+        spp: Some(spp),
+        seed: Some(1),
+        strategy: Some(Strategy::MisPower),
+        integrator: Some(integrator),
+        sampler: (kind != "mlt").then(|| sampler_kind(sampler)).transpose()?,
+        ..RenderOptions::default()
+    };
+    let renderer = Renderer::new(&desc, &opts).map_err(|e| e.to_string())?;
+    let out = renderer.render(&|_, _| {}, &AtomicBool::new(false));
+    if out.nonfinite_samples > 0 {
+        eprintln!("    ({} non-finite samples)", out.nonfinite_samples);
+    }
+    let (width, height) = renderer.size();
+    let pixels = out.image().iter().map(|p| [p.x, p.y, p.z]).collect();
+    let img = Rgb {
+        width: width as usize,
+        height: height as usize,
+        pixels,
+    };
+    Ok((img, out.seconds))
 }

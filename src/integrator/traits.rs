@@ -191,7 +191,18 @@ pub trait Scene {
     fn environment_pdf(&self, from: &SurfacePoint, dir: Vec3) -> f32;
 }
 
+/// Dimensions between the starts of two sample streams of a [`Sampler`] (the first stream
+/// starts after the pixel filter's dimension).
+const STREAM_DIMENSIONS: u32 = 1024;
+
 impl<S: crate::sampling::sampler::Sampler> SampleSource for S {
+    #[inline]
+    fn start_stream(&mut self, stream: u32) {
+        crate::sampling::sampler::Sampler::skip_to_dimension(
+            self,
+            1 + stream.saturating_mul(STREAM_DIMENSIONS),
+        );
+    }
     #[inline]
     fn next_1d(&mut self) -> f32 {
         crate::sampling::sampler::Sampler::next_1d(self)

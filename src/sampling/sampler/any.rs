@@ -108,6 +108,11 @@ impl Sampler for AnySampler {
         dispatch!(self, s => s.next_2d())
     }
 
+    #[inline]
+    fn skip_to_dimension(&mut self, dim: u32) {
+        dispatch!(self, s => s.skip_to_dimension(dim))
+    }
+
     fn samples_per_pixel(&self) -> u32 {
         dispatch!(self, s => s.samples_per_pixel())
     }

@@ -93,6 +93,14 @@ pub trait Sampler: Clone + Send + Sync {
     /// dimension.
     fn next_2d(&mut self) -> Vec2;
 
+    /// Jumps to dimension `dim` of the current pixel sample (the next call returns the
+    /// value of that dimension). Estimators with several sample streams (the bidirectional
+    /// ones: camera subpath, light subpath, connections) place each stream at a fixed
+    /// dimension, so that a value keeps its dimension whatever the other streams drew. The
+    /// default does nothing: right for samplers whose dimensions are alike (independent).
+    #[inline]
+    fn skip_to_dimension(&mut self, _dim: u32) {}
+
     /// The number of samples per pixel the sampler was built for (after any rounding, e.g. to a
     /// perfect square for [`StratifiedSampler`]). Sample indices at or beyond it are still
     /// valid, with weaker stratification (each type documents what it does).

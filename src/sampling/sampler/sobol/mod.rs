@@ -63,6 +63,8 @@ pub struct SobolSampler {
     index_rev: u32,
     /// The scramble seed of the next dimension.
     next_seed: u32,
+    /// The scramble seed of dimension 0 of the current pixel sample.
+    first_seed: u32,
 }
 
 impl SobolSampler {
@@ -75,6 +77,7 @@ impl SobolSampler {
             mixed_seed: mix64(seed),
             index_rev: 0,
             next_seed: 0,
+            first_seed: 0,
         })
     }
 
@@ -114,6 +117,14 @@ impl Sampler for SobolSampler {
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
         self.index_rev = (sample_index & ((1 << BLOCK_BITS) - 1)).reverse_bits();
         self.next_seed = first_seed(self.mixed_seed, pixel, sample_index >> BLOCK_BITS);
+        self.first_seed = self.next_seed;
+    }
+
+    #[inline]
+    fn skip_to_dimension(&mut self, dim: u32) {
+        self.next_seed = self
+            .first_seed
+            .wrapping_add(dim.wrapping_mul(DIMENSION_STEP));
     }
 
     #[inline]
@@ -185,6 +196,19 @@ mod tests {
                 }
                 seed = seed.wrapping_add(DIMENSION_STEP);
             }
+        }
+    }
+
+    #[test]
+    fn skipping_to_a_dimension_gives_its_value() {
+        let mut a = SobolSampler::new(16, 4).unwrap();
+        let mut b = a.clone();
+        a.start_pixel_sample([3, 9], 5);
+        let values: Vec<Vec2> = (0..12).map(|_| a.next_2d()).collect();
+        b.start_pixel_sample([3, 9], 5);
+        for d in [7u32, 0, 11, 3] {
+            b.skip_to_dimension(d);
+            assert_eq!(b.next_2d(), values[d as usize], "dimension {d}");
         }
     }
 
