@@ -198,31 +198,31 @@ pub(crate) fn mis_weight<S: BidirectionalScene>(
     if s + t == 2 {
         return 1.0;
     }
-    // The endpoints as this strategy sees them.
-    let qs: Option<Vertex> = match s {
+    // The endpoints as this strategy sees them (by reference: vertices are large).
+    let qs: Option<&Vertex> = match s {
         0 => None,
-        1 => sampled.copied().or(light.first().copied()),
-        _ => Some(light[s - 1]),
+        1 => sampled.or(light.first()),
+        _ => Some(&light[s - 1]),
     };
-    let pt: Vertex = if t == 1 {
-        sampled.copied().unwrap_or(camera[0])
+    let pt: &Vertex = if t == 1 {
+        sampled.unwrap_or(&camera[0])
     } else {
-        camera[t - 1]
+        &camera[t - 1]
     };
-    let pt_prev = (t > 1).then(|| camera[t - 2]);
-    let qs_prev = (s > 1).then(|| light[s - 2]);
+    let pt_prev = (t > 1).then(|| &camera[t - 2]);
+    let qs_prev = (s > 1).then(|| &light[s - 2]);
     // Reverse densities of the four vertices next to the connection.
-    let pt_rev = match &qs {
-        Some(q) => q.pdf(scene, qs_prev.as_ref(), &pt),
-        None => pt.pdf_light_origin(scene, pt_prev.as_ref().unwrap_or(&pt)),
+    let pt_rev = match qs {
+        Some(q) => q.pdf(scene, qs_prev, pt),
+        None => pt.pdf_light_origin(scene, pt_prev.unwrap_or(pt)),
     };
-    let pt_prev_rev = pt_prev.map(|pm| match &qs {
-        Some(q) => pt.pdf(scene, Some(q), &pm),
-        None => pt.pdf_light(scene, &pm),
+    let pt_prev_rev = pt_prev.map(|pm| match qs {
+        Some(q) => pt.pdf(scene, Some(q), pm),
+        None => pt.pdf_light(scene, pm),
     });
-    let qs_rev = qs.map(|q| pt.pdf(scene, pt_prev.as_ref(), &q));
-    let qs_prev_rev = match (&qs, &qs_prev) {
-        (Some(q), Some(qm)) => Some(q.pdf(scene, Some(&pt), qm)),
+    let qs_rev = qs.map(|q| pt.pdf(scene, pt_prev, q));
+    let qs_prev_rev = match (qs, qs_prev) {
+        (Some(q), Some(qm)) => Some(q.pdf(scene, Some(pt), qm)),
         _ => None,
     };
     // Camera side: strategies with fewer camera vertices.
@@ -251,7 +251,7 @@ pub(crate) fn mis_weight<S: BidirectionalScene>(
     }
     // Light side: strategies with fewer light vertices.
     if let Some(q) = qs {
-        let light_v = |i: usize| if i == s - 1 { q } else { light[i] };
+        let light_v = |i: usize| if i == s - 1 { q } else { &light[i] };
         let light_rev = |i: usize| {
             if i == s - 1 {
                 qs_rev.unwrap_or(0.0)
