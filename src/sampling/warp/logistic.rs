@@ -117,7 +117,9 @@ impl Warp1D for Logistic {
 /// `e^{−z}/(s (1 + e^{−z})² M)`, `z = (x − μ)/s`, `M = F(z_max) − F(z_min)` the logistic mass of
 /// the interval.
 ///
-/// Mapping: `x = μ + s F⁻¹(F(z_min) + u M)`, in `f64`. `M` is formed without cancellation
+/// Mapping: `x = μ + s F⁻¹(F(z_min) + u M)`, in `f64`, solved as an offset from `z_min`
+/// (`logit(p + δ) − logit(p) = ln(1 + δ/p) − ln(1 − δ/(1 − p))`, so that an interval narrower
+/// than the CDF's resolution is still sampled by its shape). `M` is formed without cancellation
 /// (`(1 − e^{a−b}) / ((1 + e^a)(1 + e^{−b}))` for `a ≤ 0`), and an interval entirely above
 /// the mean is handled as the mirror image of one below it (where the CDF keeps relative
 /// accuracy), so an interval far in either tail is sampled accurately. Inverse: the mass of
@@ -147,6 +149,10 @@ pub struct TrimmedLogistic {
     mirrored: bool,
     /// The logistic mass of the working interval.
     mass: f64,
+    /// `F(lo)` and `1 − F(lo)`, or in the mirrored case `F(hi)` and `1 − F(hi)`: the CDF at
+    /// the end the samples start from, and its complement, each without cancellation.
+    f_start: f64,
+    g_start: f64,
 }
 
 impl TrimmedLogistic {
@@ -167,6 +173,7 @@ impl TrimmedLogistic {
         let mirrored = za > 0.0;
         let (lo, hi) = if mirrored { (-zb, -za) } else { (za, zb) };
         let mass = std_logistic_mass(lo, hi);
+        let start = if mirrored { hi } else { lo };
         let out = Self {
             mean,
             scale,
@@ -176,6 +183,8 @@ impl TrimmedLogistic {
             hi,
             mirrored,
             mass,
+            f_start: std_logistic_cdf(start),
+            g_start: std_logistic_cdf(-start),
         };
         // The density peaks at the point of the working interval nearest the mean.
         let peak = std_logistic_pdf(hi.min(0.0)) / (s * mass);
@@ -190,12 +199,21 @@ impl TrimmedLogistic {
 
 impl Warp1D for TrimmedLogistic {
     fn sample(&self, u: f32) -> f32 {
-        let u = f64::from(clamp_unit(u));
+        // F(w) = F(start) ± δ with δ = u M, solved as an offset from the start so that a
+        // narrow interval keeps its digits: logit(p + δ) − logit(p) =
+        // ln(1 + δ/p) − ln(1 − δ/(1 − p)).
+        let d = f64::from(clamp_unit(u)) * self.mass;
         let w = if self.mirrored {
             // w = −z runs down as u runs up: start from the top of the working interval.
-            std_logistic_quantile(std_logistic_cdf(self.hi) - u * self.mass)
+            self.hi + (-d / self.f_start).ln_1p() - (d / self.g_start).ln_1p()
         } else {
-            std_logistic_quantile(std_logistic_cdf(self.lo) + u * self.mass)
+            let offset = self.lo + (d / self.f_start).ln_1p() - (-d / self.g_start).ln_1p();
+            if offset.is_finite() {
+                offset
+            } else {
+                // F(lo) underflowed (lo far below the mean): invert F directly.
+                std_logistic_quantile(self.f_start + d)
+            }
         };
         let w = if w.is_nan() {
             self.lo

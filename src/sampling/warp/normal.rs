@@ -125,11 +125,22 @@ pub struct Normal2D {
 
 impl Normal2D {
     /// The isotropic normal density about `mean` with standard deviation `sigma` per
-    /// coordinate. Errors unless both are finite, `sigma > 0`, `1/sigma` is finite and every
-    /// coordinate of `mean` plus 6 sigma fits in `f32`.
+    /// coordinate. Errors unless both are finite, `sigma > 0`, the peak density `1/(2πσ²)`
+    /// is a finite normal `f32` (`2.2·10⁻²⁰ ≲ sigma ≲ 3.6·10¹⁸`) and every coordinate of
+    /// `mean` plus 6 sigma fits in `f32`.
     pub fn new(mean: Vec2, sigma: f32) -> Result<Self, SamplingError> {
         let m = mean.abs().max_element();
         let sigma = check_mean_sigma(m, sigma, 6.0)?.1;
+        let s = f64::from(sigma);
+        let peak = (1.0 / (2.0 * PI * s * s)) as f32;
+        if !(peak.is_finite() && peak >= f32::MIN_POSITIVE) {
+            return Err(SamplingError::InvalidParameter {
+                name: "sigma",
+                value: s,
+                expected:
+                    "a peak density 1/(2 pi sigma^2) that is a normal f32 (2.2e-20 to 3.6e18)",
+            });
+        }
         if !mean.is_finite() {
             return Err(SamplingError::InvalidParameter {
                 name: "mean",
@@ -234,5 +245,8 @@ mod tests {
         assert!(n.pdf(far) > 0.0);
         assert!(Normal2D::new(Vec2::new(f32::NAN, 0.0), 1.0).is_err());
         assert!(Normal2D::new(Vec2::ZERO, 0.0).is_err());
+        assert!(
+            Normal2D::new(Vec2::ZERO, 1e-21).is_err() && Normal2D::new(Vec2::ZERO, 3e-20).is_ok()
+        );
     }
 }
