@@ -8,6 +8,7 @@ mod common;
 use common::{chi2, SEED};
 use mcrt::glam::Vec2;
 use mcrt::sampling::distribution::{AliasTable, PiecewiseConstant1D, PiecewiseConstant2D};
+use mcrt::sampling::WeightedReservoir;
 use mcrt::stats::{
     check_integral, check_inverse, check_jacobian, Discrete, Interval, JacobianCheck, Rectangle,
 };
@@ -267,5 +268,42 @@ fn inversion_method() {
             |u| inv.sample(cdf, pdf, f64::from(u.x)) as f32,
             |x| pdf(f64::from(x)) as f32,
         )
+        .assert_passed();
+}
+
+/// Weighted reservoir sampling over a stream of 50 random weights (every 6th zero), and the
+/// merge of two reservoirs over its halves, against `w / Σw`. The harness's `u` seeds a PCG
+/// stream that supplies one uniform number per offered item. 2·10⁵ samples: 10⁷ offers.
+#[test]
+fn weighted_reservoir() {
+    let weights = random_table(50, 6, SEED + 15);
+    let p = normalised(&weights);
+    let stream =
+        |u: Vec2| Pcg64::seed_from_u64(u64::from(u.x.to_bits()) << 32 | u64::from(u.y.to_bits()));
+    let single = |u: Vec2| {
+        let mut rng = stream(u);
+        let mut r = WeightedReservoir::new();
+        for (i, &w) in weights.iter().enumerate() {
+            r.add(i, w, rng.random());
+        }
+        r.into_item().unwrap_or(usize::MAX)
+    };
+    let merged = |u: Vec2| {
+        let mut rng = stream(u);
+        let (mut a, mut b) = (WeightedReservoir::new(), WeightedReservoir::new());
+        for (i, &w) in weights.iter().enumerate() {
+            let half = if i < 20 { &mut a } else { &mut b };
+            half.add(i, w, rng.random());
+        }
+        a.merge(b, rng.random());
+        a.into_item().unwrap_or(usize::MAX)
+    };
+    chi2(Discrete::new(50), "WeightedReservoir")
+        .samples(200_000)
+        .run_with_masses(single, |i| p[i])
+        .assert_passed();
+    chi2(Discrete::new(50), "WeightedReservoir-merged")
+        .samples(200_000)
+        .run_with_masses(merged, |i| p[i])
         .assert_passed();
 }

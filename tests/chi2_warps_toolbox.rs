@@ -284,3 +284,21 @@ fn von_mises_fisher() {
     }
     f.finish();
 }
+
+#[test]
+fn low_distortion_triangle() {
+    let mut f = Failures::default();
+    let d = Rectangle::unit_square(48);
+    // The map is piecewise linear with a seam on the diagonal u₁ = u₂ (skipped by the
+    // Jacobian check as a point where J(h) and J(2h) disagree).
+    let t = LowDistortionTriangle;
+    check_2d(
+        &mut f,
+        "LowDistortionTriangle",
+        &t,
+        d,
+        common::jacobian(),
+        1e-6,
+    );
+    f.finish();
+}

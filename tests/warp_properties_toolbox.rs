@@ -249,6 +249,15 @@ proptest! {
     }
 
     #[test]
+    fn low_distortion_triangle(u in u_any()) {
+        let tri = |p: Vec2| p.min_element() >= 0.0 && p.x + p.y <= 1.0;
+        check_plane("low-distortion triangle", &LowDistortionTriangle, tri, |_| false, u, false)?;
+        let back = LowDistortionTriangle.invert(LowDistortionTriangle.sample(u));
+        // Exact up to one rounding of u/2 and a sum: 2 ulps of 1.
+        prop_assert!(back.is_finite() && (back - u).abs().max_element() <= 2.0 * f32::EPSILON);
+    }
+
+    #[test]
     fn henyey_greenstein_and_von_mises_fisher(u in u_any()) {
         for g in [-ONE_MINUS, -0.999_999, -0.9, 0.0, 1e-7, 0.5, 0.9999, ONE_MINUS] {
             let hg = HenyeyGreenstein::new(g).expect("valid");
@@ -298,6 +307,9 @@ proptest! {
         }
         let p = Vec2::new(x, y);
         let b = Bilinear::new([1.0, 2.0, 0.0, 3.0]).expect("valid");
+        let t = LowDistortionTriangle;
+        let (tp, tu) = (t.pdf(p), t.invert(p));
+        prop_assert!(tp.is_finite() && tu.is_finite() && tu.min_element() >= 0.0 && tu.max_element() < 1.0);
         let n = Normal2D::new(Vec2::ZERO, 1.0).expect("valid");
         for (pdf, u) in [(b.pdf(p), b.invert(p)), (n.pdf(p), n.invert(p))] {
             prop_assert!(pdf.is_finite() && pdf >= 0.0 && u.is_finite() && u.min_element() >= 0.0 && u.max_element() < 1.0);
