@@ -10,6 +10,7 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use mcrt::sampling::distribution::{AliasTable, PiecewiseConstant1D, PiecewiseConstant2D};
+use mcrt::sampling::{VarianceEstimator, WeightedReservoir};
 
 mod common;
 use common::{config, uniforms_1d, uniforms_2d, BATCH};
@@ -131,9 +132,37 @@ fn piecewise_2d(c: &mut Criterion) {
     group.finish();
 }
 
+/// ns per offered item of a weighted reservoir (a stream of `BATCH` items), and per value of
+/// the Welford estimator.
+fn streaming(c: &mut Criterion) {
+    let w = weights(BATCH, 7);
+    let us = uniforms_1d(BATCH, 8);
+    let mut group = c.benchmark_group("distribution/streaming");
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function("WeightedReservoir::add", |b| {
+        b.iter(|| {
+            let mut r = WeightedReservoir::new();
+            for (i, (&wi, &u)) in w.iter().zip(&us).enumerate() {
+                r.add(i, black_box(wi), black_box(u));
+            }
+            black_box(r.into_item())
+        })
+    });
+    group.bench_function("VarianceEstimator::add", |b| {
+        b.iter(|| {
+            let mut v = VarianceEstimator::new();
+            for &x in &w {
+                v.add(f64::from(black_box(x)));
+            }
+            black_box(v.variance())
+        })
+    });
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     config = config();
-    targets = piecewise_1d, alias, piecewise_2d
+    targets = piecewise_1d, alias, piecewise_2d, streaming
 }
 criterion_main!(benches);
