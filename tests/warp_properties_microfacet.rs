@@ -5,8 +5,8 @@
 
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::sampling::warp::{
-    Beckmann, BeckmannVisible, Ggx, GgxVisible, InvertibleWarp, SphericalRectangle,
-    SphericalTriangle, Warp,
+    Beckmann, BeckmannVisible, CosineSphericalTriangle, Ggx, GgxVisible, InvertibleWarp,
+    SphericalRectangle, SphericalTriangle, Warp,
 };
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -224,6 +224,14 @@ proptest! {
             prop_assert!((pdf * tri.solid_angle() - 1.0).abs() < 1e-5, "{ctx}");
         }
         check_inverse(&tri, dir, &ctx)?;
+        // Weighted by the cosine to a normal (here the first edge's direction, often grazing).
+        let cosine = CosineSphericalTriangle::new(o, p, p + e1, p + e2, e1 + 0.3 * e2)
+            .map_err(|e| TestCaseError::fail(format!("{ctx}: {e}")))?;
+        let (cdir, cpdf) = cosine.sample_with_pdf(u);
+        check_direction(cdir, cpdf, &ctx)?;
+        let again = cosine.pdf(cdir);
+        prop_assert!(again.is_finite() && (again / cpdf - 1.0).abs() < 1e-2 + rounding_tolerance(o, p, e1.cross(e2)), "{ctx}: pdf {again} vs {cpdf}");
+        check_inverse(&cosine, cdir, &ctx)?;
     }
 
     #[test]

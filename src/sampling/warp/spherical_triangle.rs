@@ -6,7 +6,10 @@ use glam::{DVec2, DVec3, Vec2, Vec3};
 use super::{InvertibleWarp, Warp};
 use crate::sampling::SamplingError;
 
+mod cosine;
 pub(crate) mod planar;
+
+pub use cosine::CosineSphericalTriangle;
 
 use planar::{clamp_unit_f64, triangle_solid_angle, widen, Planar};
 
