@@ -9,7 +9,10 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use mcrt::sampling::distribution::{AliasTable, PiecewiseConstant1D, PiecewiseConstant2D};
+use mcrt::sampling::distribution::{
+    AliasTable, PiecewiseConstant1D, PiecewiseConstant2D, PiecewiseLinear2D,
+};
+use mcrt::sampling::warp::{InvertibleWarp, Warp};
 use mcrt::sampling::{VarianceEstimator, WeightedReservoir};
 
 mod common;
@@ -132,6 +135,43 @@ fn piecewise_2d(c: &mut Criterion) {
     group.finish();
 }
 
+/// `PiecewiseLinear2D` on a 1025 × 513 vertex grid (an environment map's texel centres).
+fn piecewise_linear_2d(c: &mut Criterion) {
+    let (width, height) = (1025usize, 513usize);
+    let values = weights(width * height, 9);
+    let us = uniforms_2d(BATCH, 10);
+    let mut group = c.benchmark_group("distribution/piecewise_linear_2d");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function(BenchmarkId::new("build", "1025x513"), |b| {
+        b.iter(|| PiecewiseLinear2D::new(black_box(&values), width, height).unwrap())
+    });
+    let d = PiecewiseLinear2D::new(&values, width, height).unwrap();
+    let ps: Vec<_> = us.iter().map(|&u| d.sample(u)).collect();
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function(BenchmarkId::new("sample", "1025x513"), |b| {
+        b.iter(|| {
+            us.iter()
+                .map(|&u| black_box(d.sample(black_box(u))).x)
+                .sum::<f32>()
+        })
+    });
+    group.bench_function(BenchmarkId::new("pdf", "1025x513"), |b| {
+        b.iter(|| {
+            ps.iter()
+                .map(|&p| black_box(d.pdf(black_box(p))))
+                .sum::<f32>()
+        })
+    });
+    group.bench_function(BenchmarkId::new("invert", "1025x513"), |b| {
+        b.iter(|| {
+            ps.iter()
+                .map(|&p| black_box(d.invert(black_box(p))).x)
+                .sum::<f32>()
+        })
+    });
+    group.finish();
+}
+
 /// ns per offered item of a weighted reservoir (a stream of `BATCH` items), and per value of
 /// the Welford estimator.
 fn streaming(c: &mut Criterion) {
@@ -163,6 +203,6 @@ fn streaming(c: &mut Criterion) {
 criterion_group! {
     name = benches;
     config = config();
-    targets = piecewise_1d, alias, piecewise_2d, streaming
+    targets = piecewise_1d, alias, piecewise_2d, piecewise_linear_2d, streaming
 }
 criterion_main!(benches);

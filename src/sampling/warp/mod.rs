@@ -24,7 +24,7 @@ mod disk;
 mod exponential;
 mod hemisphere;
 mod henyey_greenstein;
-mod linear;
+pub(crate) mod linear;
 mod logistic;
 mod microfacet;
 mod normal;
