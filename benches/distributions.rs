@@ -11,6 +11,7 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use mcrt::sampling::distribution::{
     AliasTable, PiecewiseConstant1D, PiecewiseConstant2D, PiecewiseLinear2D,
+    WindowedPiecewiseConstant2D,
 };
 use mcrt::sampling::warp::{InvertibleWarp, Warp};
 use mcrt::sampling::{VarianceEstimator, WeightedReservoir};
@@ -172,6 +173,43 @@ fn piecewise_linear_2d(c: &mut Criterion) {
     group.finish();
 }
 
+/// `WindowedPiecewiseConstant2D` on a 1024 × 512 table through a window of a tenth of each
+/// side (a portal), and the summed-area table's build.
+fn windowed_2d(c: &mut Criterion) {
+    let (width, height) = (1024usize, 512usize);
+    let values = weights(width * height, 11);
+    let us = uniforms_2d(BATCH, 12);
+    let mut group = c.benchmark_group("distribution/windowed_2d");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function(BenchmarkId::new("build", "1024x512"), |b| {
+        b.iter(|| WindowedPiecewiseConstant2D::new(black_box(&values), width, height).unwrap())
+    });
+    let d = WindowedPiecewiseConstant2D::new(&values, width, height).unwrap();
+    let win = d
+        .window(
+            mcrt::glam::Vec2::new(0.3, 0.4),
+            mcrt::glam::Vec2::new(0.4, 0.5),
+        )
+        .unwrap();
+    let ps: Vec<_> = us.iter().map(|&u| win.sample(u)).collect();
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function(BenchmarkId::new("sample", "window 0.1x0.1"), |b| {
+        b.iter(|| {
+            us.iter()
+                .map(|&u| black_box(win.sample(black_box(u))).x)
+                .sum::<f32>()
+        })
+    });
+    group.bench_function(BenchmarkId::new("invert", "window 0.1x0.1"), |b| {
+        b.iter(|| {
+            ps.iter()
+                .map(|&p| black_box(win.invert(black_box(p))).x)
+                .sum::<f32>()
+        })
+    });
+    group.finish();
+}
+
 /// ns per offered item of a weighted reservoir (a stream of `BATCH` items), and per value of
 /// the Welford estimator.
 fn streaming(c: &mut Criterion) {
@@ -203,6 +241,6 @@ fn streaming(c: &mut Criterion) {
 criterion_group! {
     name = benches;
     config = config();
-    targets = piecewise_1d, alias, piecewise_2d, piecewise_linear_2d, streaming
+    targets = piecewise_1d, alias, piecewise_2d, piecewise_linear_2d, windowed_2d, streaming
 }
 criterion_main!(benches);
