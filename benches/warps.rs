@@ -12,12 +12,12 @@ use criterion::measurement::WallTime;
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::sampling::warp::{
-    Beckmann, BeckmannVisible, Bilinear, CosineHemisphere, Exponential, Ggx, GgxVisible,
-    HenyeyGreenstein, InvertibleWarp, Linear, Logistic, LowDistortionTriangle, Normal, Normal2D,
-    PowerCosineHemisphere, Smoothstep, SphericalRectangle, SphericalTriangle, Tent,
-    ThetaOverSinHemisphere, TrimmedLogistic, TruncatedExponential, UniformCone, UniformDisk,
-    UniformDiskConcentric, UniformHemisphere, UniformSphere, UniformTriangle, VonMisesFisher, Warp,
-    Warp1D,
+    Beckmann, BeckmannVisible, Bilinear, BilinearPatch, CosineHemisphere, CosineSphericalTriangle,
+    Exponential, Ggx, GgxVisible, HenyeyGreenstein, InvertibleWarp, Linear, Logistic,
+    LowDistortionTriangle, Normal, Normal2D, PowerCosineHemisphere, Smoothstep, SphericalRectangle,
+    SphericalTriangle, Tent, ThetaOverSinHemisphere, TrimmedLogistic, TruncatedExponential,
+    UniformCone, UniformDisk, UniformDiskConcentric, UniformHemisphere, UniformSphere,
+    UniformTriangle, VonMisesFisher, Warp, Warp1D,
 };
 use rand_core::{RngCore, SeedableRng};
 use rand_distr::{Distribution, UnitDisc, UnitSphere};
@@ -269,6 +269,24 @@ fn toolbox(c: &mut Criterion) {
     invertible(c, "HenyeyGreenstein(0.7)", hg, &us);
     let vmf = VonMisesFisher::new(100.0).unwrap();
     invertible(c, "VonMisesFisher(100)", vmf, &us);
+    let twisted = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.3, 0.9, 0.8)];
+    invertible(
+        c,
+        "BilinearPatch(twisted)",
+        BilinearPatch::new(twisted).unwrap(),
+        &us,
+    );
+    let (a, b, d) = (
+        Vec3::new(-0.5, -0.5, 2.0),
+        Vec3::new(0.5, -0.5, 2.0),
+        Vec3::new(0.0, 0.5, 2.0),
+    );
+    let tri = SphericalTriangle::new(Vec3::ZERO, a, b, d).unwrap();
+    invertible(c, "SphericalTriangle", tri, &us);
+    let rect = SphericalRectangle::new(Vec3::ZERO, a, Vec3::X, Vec3::Y).unwrap();
+    invertible(c, "SphericalRectangle", rect, &us);
+    let cosine = CosineSphericalTriangle::new(Vec3::ZERO, a, b, d, Vec3::new(0.3, 0.0, 1.0));
+    invertible(c, "CosineSphericalTriangle", cosine.unwrap(), &us);
 }
 
 criterion_group! {

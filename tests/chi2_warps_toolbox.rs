@@ -302,3 +302,43 @@ fn low_distortion_triangle() {
     );
     f.finish();
 }
+
+/// Bilinear patches: a planar trapezoid (not a parallelogram, so sampled through the bilinear
+/// corner weights) by chi-square in its plane; a twisted quad (one corner lifted) and a
+/// parallelogram by the Jacobian identity with the area element `|∂p/∂u₁ × ∂p/∂u₂|` (which,
+/// the map being one-to-one from the square, also proves `∫ pdf dA = 1`); all by the round trip.
+#[test]
+fn bilinear_patches() {
+    let mut f = Failures::default();
+    let trapezoid = [
+        Vec3::ZERO,
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.5, 1.0, 0.0),
+        Vec3::new(1.2, 1.0, 0.0),
+    ];
+    let q = BilinearPatch::new(trapezoid).expect("valid patch");
+    let domain = Rectangle::new(Vec2::ZERO, Vec2::new(2.0, 1.0), 64, 32);
+    let o = chi2(domain, "BilinearPatch-trapezoid")
+        .samples(SAMPLES)
+        .run(|u| q.sample(u).truncate(), |p| q.pdf(p.extend(0.0)));
+    f.push("BilinearPatch-trapezoid", o.passed(), o.report());
+    let twisted = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.3, 0.9, 0.8)];
+    let parallelogram = [
+        Vec3::ZERO,
+        Vec3::new(1.0, 0.0, 0.5),
+        Vec3::Y,
+        Vec3::new(1.0, 1.0, 0.5),
+    ];
+    for (name, corners) in [
+        ("BilinearPatch-trapezoid", trapezoid),
+        ("BilinearPatch-twisted", twisted),
+        ("BilinearPatch-parallelogram", parallelogram),
+    ] {
+        let q = BilinearPatch::new(corners).expect("valid patch");
+        let j = check_warp_jacobian(&q, common::jacobian());
+        f.push(name, j.passed, j.report());
+        let i = check_warp_inverse(&q, 64, 1e-4);
+        f.push(name, i.passed, i.report());
+    }
+    f.finish();
+}

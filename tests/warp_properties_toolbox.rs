@@ -248,6 +248,30 @@ proptest! {
         }
     }
 
+    /// Bilinear patches: twisted, collapsed to a triangle (p₁₁ = p₁₀: the area element is 0
+    /// along that edge), tiny and huge. Samples finite, pdf finite and > 0 except where the
+    /// area element vanishes, invert in [0, 1)² and round trips in the interior.
+    #[test]
+    fn bilinear_patches(u in u_any()) {
+        let twisted = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.3, 0.9, 0.8)];
+        let collapsed = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::X];
+        let scaled = |k: f32| twisted.map(|c| c * k);
+        for (name, corners) in [("twisted", twisted), ("collapsed", collapsed), ("tiny", scaled(1e-15)), ("huge", scaled(1e15))] {
+            let q = BilinearPatch::new(corners).expect("valid patch");
+            let (p, pdf) = q.sample_with_pdf(u);
+            prop_assert!(p.is_finite() && pdf.is_finite() && pdf >= 0.0, "{name}: {p} {pdf}");
+            let edge = u.min_element() == 0.0 || u.max_element() == ONE_MINUS;
+            prop_assert!(pdf > 0.0 || name == "collapsed" || edge, "{name}: pdf 0 at {u}");
+            let back = q.invert(p);
+            prop_assert!(back.is_finite() && back.min_element() >= 0.0 && back.max_element() < 1.0);
+            let again = q.pdf(p);
+            prop_assert!(again.is_finite() && (again - pdf).abs() <= 1e-3 * pdf, "{name}: pdf {again} vs {pdf}");
+            if u.min_element() >= 1e-3 && u.max_element() <= 1.0 - 1e-3 && name != "collapsed" {
+                prop_assert!((back - u).abs().max_element() <= 1e-4, "{name}: {u} -> {back}");
+            }
+        }
+    }
+
     #[test]
     fn low_distortion_triangle(u in u_any()) {
         let tri = |p: Vec2| p.min_element() >= 0.0 && p.x + p.y <= 1.0;

@@ -19,6 +19,7 @@
 
 use glam::Vec2;
 
+mod bilinear_patch;
 mod cone;
 mod disk;
 mod exponential;
@@ -39,6 +40,7 @@ mod triangle;
 mod visible_normals;
 mod von_mises_fisher;
 
+pub use bilinear_patch::*;
 pub use cone::*;
 pub use disk::*;
 pub use exponential::*;
