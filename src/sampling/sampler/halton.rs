@@ -99,7 +99,10 @@ impl HaltonSampler {
     fn take(&mut self) -> (u64, u32) {
         let key = combine(self.pixel_key, self.dimension);
         self.dimension += 1;
-        let index = self.round_start + permute(self.offset, self.spp, key ^ SHUFFLE_TAG);
+        // Wrapping: the last round of u32 indices may run past u32::MAX; only 24 bits are used.
+        let index =
+            self.round_start
+                .wrapping_add(permute(self.offset, self.spp, key ^ SHUFFLE_TAG));
         (key, index & 0x00ff_ffff)
     }
 }
@@ -186,6 +189,23 @@ mod tests {
         let want2 = [0.0, 0.5, 0.25, 0.75, 0.125];
         for (i, &w) in want2.iter().enumerate() {
             assert_eq!(scrambled_base2(i as u32, 0), w);
+        }
+    }
+
+    #[test]
+    fn the_last_indices_do_not_overflow() {
+        for spp in [1u32, 6, 7, 1000] {
+            let mut s = HaltonSampler::new(spp, 3).unwrap();
+            let mut r = super::super::R2Sampler::new(spp, 3).unwrap();
+            for i in [u32::MAX, u32::MAX - 1, u32::MAX - 5] {
+                s.start_pixel_sample([1, 2], i);
+                r.start_pixel_sample([1, 2], i);
+                for _ in 0..8 {
+                    let (a, b) = (s.next_2d(), r.next_2d());
+                    assert!(a.max_element() < 1.0 && b.max_element() < 1.0);
+                    assert!(s.next_1d() < 1.0 && r.next_1d() < 1.0);
+                }
+            }
         }
     }
 

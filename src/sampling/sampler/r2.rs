@@ -78,8 +78,10 @@ impl R2Sampler {
     fn take(&mut self) -> (u64, u64) {
         let key = combine(self.pixel_key, self.dimension);
         self.dimension += 1;
-        let index = self.round_start + permute(self.offset, self.spp, key ^ SHUFFLE_TAG);
-        (key, u64::from(index))
+        // In u64: the last round of u32 indices may run past u32::MAX.
+        let index = u64::from(self.round_start)
+            + u64::from(permute(self.offset, self.spp, key ^ SHUFFLE_TAG));
+        (key, index)
     }
 }
 
