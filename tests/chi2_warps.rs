@@ -323,37 +323,6 @@ fn spherical_triangle(f: &mut Failures, tag: &str, o: Vec3, [a, b, c]: [Vec3; 3]
     check_inverse(f, &name, &t, 1e-3);
 }
 
-/// Cosine-weighted spherical triangles: a normal facing the triangle, one nearly edge-on to it
-/// (two corner cosines near 0, floored at 1 %), on the near and far (area fallback) cases.
-/// 2·10⁵ samples each.
-#[test]
-fn cosine_spherical_triangles() {
-    let mut f = Failures::default();
-    let o = Vec3::new(0.1, -0.2, 0.0);
-    let near = [
-        Vec3::new(-1.0, -1.0, 0.5),
-        Vec3::new(1.5, -1.0, 0.5),
-        Vec3::new(0.0, 1.0, 0.8),
-    ];
-    let far = [
-        Vec3::new(3.0, 0.0, 10.0),
-        Vec3::new(3.1, 0.0, 10.0),
-        Vec3::new(3.0, 0.1, 10.0),
-    ];
-    for (tag, tri, normal) in [
-        ("near-facing", near, Vec3::Z),
-        ("near-grazing", near, Vec3::new(1.0, 0.3, 0.05)),
-        ("far", far, Vec3::new(0.2, 0.1, 1.0)),
-    ] {
-        let name = format!("CosineSphericalTriangle-{tag}");
-        let [a, b, c] = tri;
-        let t = CosineSphericalTriangle::new(o, a, b, c, normal).expect("valid triangle");
-        check_n(&mut f, &name, &t, cap_around(o, &tri), jac_wide(), 200_000);
-        check_inverse(&mut f, &name, &t, 1e-3);
-    }
-    f.finish();
-}
-
 /// A triangle of 5·10⁻⁷ sr, sampled by the area fallback. Kept apart: it fails while the
 /// pdf's hit test accepts a fixed angular band of 10⁻⁶ rad around the triangle, which adds
 /// 0.7 % to the support of a triangle 10⁻³ rad across (see `docs/testing.md`).

@@ -342,3 +342,54 @@ fn bilinear_patches() {
     }
     f.finish();
 }
+
+/// A cap about the mean direction of `points` seen from `origin`, 1.3 × the widest angle (as
+/// `chi2_warps` tests the uniform spherical triangles).
+fn cap_around(origin: Vec3, points: &[Vec3]) -> Directions {
+    let dirs: Vec<Vec3> = points.iter().map(|&p| (p - origin).normalize()).collect();
+    let axis = dirs.iter().copied().sum::<Vec3>().normalize();
+    let widest = dirs
+        .iter()
+        .map(|d| d.dot(axis).clamp(-1.0, 1.0).acos())
+        .fold(0.0, f32::max);
+    Directions::cap(axis, (1.3 * widest).min(std::f32::consts::PI))
+        .resolution(61, 64)
+        .refinement(1.0)
+}
+
+/// Cosine-weighted spherical triangles: a normal facing the triangle, one nearly edge-on to it
+/// (two corner cosines near 0, floored at 1 %), on the near and far (area fallback) cases;
+/// the Jacobian with step 2⁻⁷ as for the uniform spherical triangles.
+#[test]
+fn cosine_spherical_triangles() {
+    let mut f = Failures::default();
+    let o = Vec3::new(0.1, -0.2, 0.0);
+    let near = [
+        Vec3::new(-1.0, -1.0, 0.5),
+        Vec3::new(1.5, -1.0, 0.5),
+        Vec3::new(0.0, 1.0, 0.8),
+    ];
+    let far = [
+        Vec3::new(3.0, 0.0, 10.0),
+        Vec3::new(3.1, 0.0, 10.0),
+        Vec3::new(3.0, 0.1, 10.0),
+    ];
+    for (tag, tri, normal) in [
+        ("near-facing", near, Vec3::Z),
+        ("near-grazing", near, Vec3::new(1.0, 0.3, 0.05)),
+        ("far", far, Vec3::new(0.2, 0.1, 1.0)),
+    ] {
+        let name = format!("CosineSphericalTriangle-{tag}");
+        let [a, b, c] = tri;
+        let t = CosineSphericalTriangle::new(o, a, b, c, normal).expect("valid triangle");
+        check_2d(
+            &mut f,
+            &name,
+            &t,
+            cap_around(o, &tri),
+            jac(1.0 / 128.0),
+            1e-3,
+        );
+    }
+    f.finish();
+}
