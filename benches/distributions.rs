@@ -9,7 +9,12 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use mcrt::sampling::distribution::{AliasTable, PiecewiseConstant1D, PiecewiseConstant2D};
+use mcrt::sampling::distribution::{
+    AliasTable, PiecewiseConstant1D, PiecewiseConstant2D, PiecewiseLinear2D,
+    WindowedPiecewiseConstant2D,
+};
+use mcrt::sampling::warp::{InvertibleWarp, Warp};
+use mcrt::sampling::{VarianceEstimator, WeightedReservoir};
 
 mod common;
 use common::{config, uniforms_1d, uniforms_2d, BATCH};
@@ -131,9 +136,111 @@ fn piecewise_2d(c: &mut Criterion) {
     group.finish();
 }
 
+/// `PiecewiseLinear2D` on a 1025 × 513 vertex grid (an environment map's texel centres).
+fn piecewise_linear_2d(c: &mut Criterion) {
+    let (width, height) = (1025usize, 513usize);
+    let values = weights(width * height, 9);
+    let us = uniforms_2d(BATCH, 10);
+    let mut group = c.benchmark_group("distribution/piecewise_linear_2d");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function(BenchmarkId::new("build", "1025x513"), |b| {
+        b.iter(|| PiecewiseLinear2D::new(black_box(&values), width, height).unwrap())
+    });
+    let d = PiecewiseLinear2D::new(&values, width, height).unwrap();
+    let ps: Vec<_> = us.iter().map(|&u| d.sample(u)).collect();
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function(BenchmarkId::new("sample", "1025x513"), |b| {
+        b.iter(|| {
+            us.iter()
+                .map(|&u| black_box(d.sample(black_box(u))).x)
+                .sum::<f32>()
+        })
+    });
+    group.bench_function(BenchmarkId::new("pdf", "1025x513"), |b| {
+        b.iter(|| {
+            ps.iter()
+                .map(|&p| black_box(d.pdf(black_box(p))))
+                .sum::<f32>()
+        })
+    });
+    group.bench_function(BenchmarkId::new("invert", "1025x513"), |b| {
+        b.iter(|| {
+            ps.iter()
+                .map(|&p| black_box(d.invert(black_box(p))).x)
+                .sum::<f32>()
+        })
+    });
+    group.finish();
+}
+
+/// `WindowedPiecewiseConstant2D` on a 1024 × 512 table through a window of a tenth of each
+/// side (a portal), and the summed-area table's build.
+fn windowed_2d(c: &mut Criterion) {
+    let (width, height) = (1024usize, 512usize);
+    let values = weights(width * height, 11);
+    let us = uniforms_2d(BATCH, 12);
+    let mut group = c.benchmark_group("distribution/windowed_2d");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function(BenchmarkId::new("build", "1024x512"), |b| {
+        b.iter(|| WindowedPiecewiseConstant2D::new(black_box(&values), width, height).unwrap())
+    });
+    let d = WindowedPiecewiseConstant2D::new(&values, width, height).unwrap();
+    let win = d
+        .window(
+            mcrt::glam::Vec2::new(0.3, 0.4),
+            mcrt::glam::Vec2::new(0.4, 0.5),
+        )
+        .unwrap();
+    let ps: Vec<_> = us.iter().map(|&u| win.sample(u)).collect();
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function(BenchmarkId::new("sample", "window 0.1x0.1"), |b| {
+        b.iter(|| {
+            us.iter()
+                .map(|&u| black_box(win.sample(black_box(u))).x)
+                .sum::<f32>()
+        })
+    });
+    group.bench_function(BenchmarkId::new("invert", "window 0.1x0.1"), |b| {
+        b.iter(|| {
+            ps.iter()
+                .map(|&p| black_box(win.invert(black_box(p))).x)
+                .sum::<f32>()
+        })
+    });
+    group.finish();
+}
+
+/// ns per offered item of a weighted reservoir (a stream of `BATCH` items), and per value of
+/// the Welford estimator.
+fn streaming(c: &mut Criterion) {
+    let w = weights(BATCH, 7);
+    let us = uniforms_1d(BATCH, 8);
+    let mut group = c.benchmark_group("distribution/streaming");
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function("WeightedReservoir::add", |b| {
+        b.iter(|| {
+            let mut r = WeightedReservoir::new();
+            for (i, (&wi, &u)) in w.iter().zip(&us).enumerate() {
+                r.add(i, black_box(wi), black_box(u));
+            }
+            black_box(r.into_item())
+        })
+    });
+    group.bench_function("VarianceEstimator::add", |b| {
+        b.iter(|| {
+            let mut v = VarianceEstimator::new();
+            for &x in &w {
+                v.add(f64::from(black_box(x)));
+            }
+            black_box(v.variance())
+        })
+    });
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     config = config();
-    targets = piecewise_1d, alias, piecewise_2d
+    targets = piecewise_1d, alias, piecewise_2d, piecewise_linear_2d, windowed_2d, streaming
 }
 criterion_main!(benches);

@@ -10,7 +10,9 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use mcrt::glam::Vec2;
 #[cfg(feature = "sobol")]
 use mcrt::sampling::sampler::SobolSampler;
-use mcrt::sampling::sampler::{AnySampler, IndependentSampler, Sampler, StratifiedSampler};
+use mcrt::sampling::sampler::{
+    AnySampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler,
+};
 use std::hint::black_box;
 
 mod common;
@@ -73,6 +75,8 @@ fn samplers(c: &mut Criterion) {
     );
     #[cfg(feature = "sobol")]
     bench_one(c, "sobol", SobolSampler::new(128, 1).unwrap());
+    bench_one(c, "halton", HaltonSampler::new(144, 1).unwrap());
+    bench_one(c, "r2", R2Sampler::new(128, 1).unwrap());
     #[cfg(feature = "sobol")]
     raw_sobol(c);
     // The cost of choosing at run time: the same independent sampler behind `AnySampler`.

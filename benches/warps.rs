@@ -12,17 +12,19 @@ use criterion::measurement::WallTime;
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::sampling::warp::{
-    Beckmann, BeckmannVisible, CosineHemisphere, Ggx, GgxVisible, InvertibleWarp,
-    PowerCosineHemisphere, SphericalRectangle, SphericalTriangle, ThetaOverSinHemisphere,
+    Beckmann, BeckmannVisible, Bilinear, BilinearPatch, CosineHemisphere, CosineSphericalTriangle,
+    Exponential, Ggx, GgxVisible, HenyeyGreenstein, InvertibleWarp, Linear, Logistic,
+    LowDistortionTriangle, Normal, Normal2D, PowerCosineHemisphere, Smoothstep, SphericalRectangle,
+    SphericalTriangle, Tent, ThetaOverSinHemisphere, TrimmedLogistic, TruncatedExponential,
     UniformCone, UniformDisk, UniformDiskConcentric, UniformHemisphere, UniformSphere,
-    UniformTriangle, Warp,
+    UniformTriangle, VonMisesFisher, Warp, Warp1D,
 };
 use rand_core::{RngCore, SeedableRng};
 use rand_distr::{Distribution, UnitDisc, UnitSphere};
 use rand_pcg::Pcg32;
 
 mod common;
-use common::{config, uniforms_2d, BATCH};
+use common::{config, uniforms_1d, uniforms_2d, BATCH};
 
 type Group<'a> = BenchmarkGroup<'a, WallTime>;
 
@@ -203,9 +205,93 @@ fn versus_rand_distr(c: &mut Criterion) {
     g.finish();
 }
 
+/// A 1D warp: sample, sample_with_pdf, pdf and invert.
+fn one_d<W: Warp1D>(c: &mut Criterion, name: &str, w: W, us: &[f32]) {
+    let mut g = group(c, name);
+    g.bench_function("sample", |b| {
+        b.iter(|| {
+            for &u in us {
+                black_box(w.sample(black_box(u)));
+            }
+        })
+    });
+    g.bench_function("sample_with_pdf", |b| {
+        b.iter(|| {
+            for &u in us {
+                black_box(w.sample_with_pdf(black_box(u)));
+            }
+        })
+    });
+    let xs: Vec<f32> = us.iter().map(|&u| w.sample(u)).collect();
+    g.bench_function("pdf", |b| {
+        b.iter(|| {
+            for &x in &xs {
+                black_box(w.pdf(black_box(x)));
+            }
+        })
+    });
+    g.bench_function("invert", |b| {
+        b.iter(|| {
+            for &x in &xs {
+                black_box(w.invert(black_box(x)));
+            }
+        })
+    });
+    g.finish();
+}
+
+/// The toolbox of issue 15: 1D densities, bilinear, Box–Muller, phase-function lobes, the
+/// low-distortion triangle.
+fn toolbox(c: &mut Criterion) {
+    let u1 = uniforms_1d(BATCH, 16);
+    one_d(c, "Linear(1,3)", Linear::new(1.0, 3.0).unwrap(), &u1);
+    one_d(c, "Tent(1)", Tent::new(1.0).unwrap(), &u1);
+    one_d(c, "Exponential(2)", Exponential::new(2.0).unwrap(), &u1);
+    let te = TruncatedExponential::new(2.0, 0.0, 1.0).unwrap();
+    one_d(c, "TruncatedExponential(2,[0,1])", te, &u1);
+    one_d(c, "Normal(0,1)", Normal::standard(), &u1);
+    one_d(c, "Logistic(0,1)", Logistic::new(0.0, 1.0).unwrap(), &u1);
+    let tl = TrimmedLogistic::new(0.0, 1.0, -3.0, 3.0).unwrap();
+    one_d(c, "TrimmedLogistic(0,1,[-3,3])", tl, &u1);
+    one_d(
+        c,
+        "Smoothstep([0,1])",
+        Smoothstep::new(0.0, 1.0).unwrap(),
+        &u1,
+    );
+    let us = uniforms_2d(BATCH, 17);
+    let bilinear = Bilinear::new([1.0, 2.0, 3.0, 4.0]).unwrap();
+    invertible(c, "Bilinear([1,2,3,4])", bilinear, &us);
+    let n2 = Normal2D::new(Vec2::ZERO, 1.0).unwrap();
+    invertible(c, "Normal2D(Box-Muller)", n2, &us);
+    invertible(c, "LowDistortionTriangle", LowDistortionTriangle, &us);
+    let hg = HenyeyGreenstein::new(0.7).unwrap();
+    invertible(c, "HenyeyGreenstein(0.7)", hg, &us);
+    let vmf = VonMisesFisher::new(100.0).unwrap();
+    invertible(c, "VonMisesFisher(100)", vmf, &us);
+    let twisted = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.3, 0.9, 0.8)];
+    invertible(
+        c,
+        "BilinearPatch(twisted)",
+        BilinearPatch::new(twisted).unwrap(),
+        &us,
+    );
+    let (a, b, d) = (
+        Vec3::new(-0.5, -0.5, 2.0),
+        Vec3::new(0.5, -0.5, 2.0),
+        Vec3::new(0.0, 0.5, 2.0),
+    );
+    let tri = SphericalTriangle::new(Vec3::ZERO, a, b, d).unwrap();
+    invertible(c, "SphericalTriangle", tri, &us);
+    let rect = SphericalRectangle::new(Vec3::ZERO, a, Vec3::X, Vec3::Y).unwrap();
+    invertible(c, "SphericalRectangle", rect, &us);
+    let cosine = CosineSphericalTriangle::new(Vec3::ZERO, a, b, d, Vec3::new(0.3, 0.0, 1.0));
+    invertible(c, "CosineSphericalTriangle", cosine.unwrap(), &us);
+}
+
 criterion_group! {
     name = benches;
     config = config();
-    targets = basic, microfacet, spherical, versus_rand_distr
+    targets = basic, microfacet, spherical, versus_rand_distr, toolbox
 }
 criterion_main!(benches);

@@ -7,11 +7,11 @@
 //!
 //! | module | what it holds | feature |
 //! |---|---|---|
-//! | [`sampling::warp`] | maps from the unit square to disks, triangles, hemispheres, spheres, cones, microfacet normals, spherical triangles and rectangles | always |
-//! | [`sampling::distribution`] | piecewise-constant 1D and 2D distributions, the alias table, the inversion method | always |
+//! | [`sampling::warp`] | maps from the unit square to disks, triangles, hemispheres, spheres, cones, microfacet normals, spherical triangles and rectangles (uniform and cosine-weighted), bilinear patches, phase-function lobes (Henyey–Greenstein, von Mises–Fisher), Box–Muller; 1D densities ([`sampling::warp::Warp1D`]: linear, tent, exponential, normal, logistic, smoothstep) | always |
+//! | [`sampling::distribution`] | piecewise-constant 1D and 2D distributions, piecewise-linear (bilinear) 2D, summed-area tables and windowed 2D sampling, the alias table, the inversion method | always |
 //! | [`sampling::jacobian`] | change of variables between measures, numerical Jacobians of any warp | always |
 //! | [`sampling::mis`] | balance and power heuristics | always |
-//! | [`sampling::sampler`] | independent, stratified and low-discrepancy sample generators | always (Sobol needs `sobol`) |
+//! | [`sampling::sampler`] | independent, stratified and low-discrepancy (Sobol, Halton, R2) sample generators | always (Sobol needs `sobol`) |
 //! | `stats` | the public chi-square goodness-of-fit harness and pdf-integration checks | `stats` |
 //! | [`integrator`] | path tracing and direct lighting estimators of the light transport equation | always |
 //! | `scene` | the reference scene, its Mitsuba 3 XML loader, and the renderer | `render` |

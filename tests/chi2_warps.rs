@@ -320,6 +320,7 @@ fn spherical_triangle(f: &mut Failures, tag: &str, o: Vec3, [a, b, c]: [Vec3; 3]
     let name = format!("SphericalTriangle-{tag}");
     let t = SphericalTriangle::new(o, a, b, c).expect("valid triangle");
     check(f, &name, &t, cap_around(o, &[a, b, c]), jac_wide());
+    check_inverse(f, &name, &t, 1e-3);
 }
 
 /// A triangle of 5·10⁻⁷ sr, sampled by the area fallback. Kept apart: it fails while the
@@ -373,6 +374,7 @@ fn spherical_rectangles() {
         let r = SphericalRectangle::new(o, corner, ex, ey).expect("valid rectangle");
         let pts = [corner, corner + ex, corner + ex + ey, corner + ey];
         check(&mut f, &name, &r, cap_around(o, &pts), jac_wide());
+        check_inverse(&mut f, &name, &r, 1e-3);
     }
     f.finish();
 }

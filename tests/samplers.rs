@@ -4,7 +4,9 @@
 use mcrt::glam::Vec2;
 #[cfg(feature = "sobol")]
 use mcrt::sampling::sampler::SobolSampler;
-use mcrt::sampling::sampler::{IndependentSampler, Sampler, StratifiedSampler};
+use mcrt::sampling::sampler::{
+    HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler,
+};
 use proptest::prelude::*;
 
 /// A draw pattern close to a path tracer's: 2D, 2D, 1D, 2D, 1D, ...
@@ -50,6 +52,8 @@ macro_rules! for_each_sampler {
         );
         #[cfg(feature = "sobol")]
         $check(SobolSampler::new($spp, $seed).unwrap(), "sobol");
+        $check(HaltonSampler::new($spp, $seed).unwrap(), "halton");
+        $check(R2Sampler::new($spp, $seed).unwrap(), "r2");
     }};
 }
 
@@ -424,3 +428,5 @@ proptest! {
 // A crate root resolves child modules beside itself, so the path names the subdirectory.
 #[path = "samplers/dimensions.rs"]
 mod dimensions;
+#[path = "samplers/low_discrepancy.rs"]
+mod low_discrepancy;

@@ -1,4 +1,5 @@
-//! The sampling core: warps, distributions, change of variables, MIS weights and samplers.
+//! The sampling core: warps, distributions, change of variables, MIS weights and samplers,
+//! and two streaming utilities ([`WeightedReservoir`], [`VarianceEstimator`]).
 //!
 //! Needs only [`glam`] (and `rand_core` for the independent sampler).
 
@@ -6,7 +7,11 @@ pub mod distribution;
 mod error;
 pub mod jacobian;
 pub mod mis;
+mod reservoir;
 pub mod sampler;
+mod variance;
 pub mod warp;
 
 pub use error::SamplingError;
+pub use reservoir::WeightedReservoir;
+pub use variance::VarianceEstimator;

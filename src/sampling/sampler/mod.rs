@@ -12,6 +12,8 @@
 //! | [`IndependentSampler`] | PCG32 seeded by a hash of (seed, pixel, sample index) | independent uniform |
 //! | [`StratifiedSampler`] | jittered strata, shuffled independently per dimension | one per stratum: `n × n` strata in 2D, `spp` in 1D |
 //! | `SobolSampler` (feature `sobol`) | Owen-scrambled Sobol, one scrambled (0,2)-sequence per dimension | every elementary interval of area `2^-k` holds one of the first `2^k` samples |
+//! | [`HaltonSampler`] | Halton bases 2 and 3 with random digit permutations per dimension | each cell of a `2^a × 3^b` grid holds one of the first `2^a 3^b` samples |
+//! | [`R2Sampler`] | the R2 Kronecker lattice with a random Cranley–Patterson rotation per dimension | no exact strata; any prefix evenly spread (low discrepancy) |
 //!
 //! Stratifying each dimension on its own and shuffling the strata independently per dimension
 //! is the "padding" of Kollig & Keller (2002, "Efficient multidimensional sampling", Computer
@@ -60,14 +62,18 @@ use glam::Vec2;
 use super::SamplingError;
 
 mod any;
+mod halton;
 pub(crate) mod hash;
 mod independent;
+mod r2;
 #[cfg(feature = "sobol")]
 mod sobol;
 mod stratified;
 
 pub use any::AnySampler;
+pub use halton::HaltonSampler;
 pub use independent::IndependentSampler;
+pub use r2::R2Sampler;
 #[cfg(feature = "sobol")]
 pub use sobol::SobolSampler;
 pub use stratified::StratifiedSampler;

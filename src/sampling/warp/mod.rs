@@ -3,7 +3,9 @@
 //!
 //! Every warp implements [`Warp`]; the invertible ones also implement [`InvertibleWarp`], so
 //! generic code (the chi-square harness in `mcrt::stats`, property tests, your own code) can
-//! take any of them. The derivation of each mapping (pdf, CDF, inverse, Jacobian) is in
+//! take any of them. Densities on the real line (linear, tent, exponential, normal, logistic,
+//! smoothstep) take a single `u ∈ [0,1)` and implement [`Warp1D`], so a sampler's 1D
+//! dimensions drive them without wasting a second coordinate. The derivation of each mapping (pdf, CDF, inverse, Jacobian) is in
 //! `docs/derivations.md`.
 //!
 //! # Inputs outside the unit square
@@ -31,29 +33,47 @@
 
 use glam::Vec2;
 
+mod bilinear_patch;
 mod cone;
 mod disk;
+mod exponential;
 mod hemisphere;
+mod henyey_greenstein;
+pub(crate) mod linear;
+mod logistic;
 mod microfacet;
+mod normal;
 mod power_cosine;
+mod smoothstep;
 mod sphere;
 mod spherical_rectangle;
 mod spherical_triangle;
+mod tent;
 mod theta_over_sin;
 mod triangle;
 mod visible_normals;
+mod von_mises_fisher;
 
+pub use bilinear_patch::*;
 pub use cone::*;
 pub use disk::*;
+pub use exponential::*;
 pub use hemisphere::*;
+pub use henyey_greenstein::*;
+pub use linear::*;
+pub use logistic::*;
 pub use microfacet::*;
+pub use normal::*;
 pub use power_cosine::*;
+pub use smoothstep::*;
 pub use sphere::*;
 pub use spherical_rectangle::*;
 pub use spherical_triangle::*;
+pub use tent::*;
 pub use theta_over_sin::*;
 pub use triangle::*;
 pub use visible_normals::*;
+pub use von_mises_fisher::*;
 
 /// A map from the unit square to a domain, with the density of its image.
 pub trait Warp {
@@ -80,4 +100,32 @@ pub trait Warp {
 pub trait InvertibleWarp: Warp {
     /// The `u` such that `sample(u) == p` (one of them, where the map is not one-to-one).
     fn invert(&self, p: Self::Point) -> Vec2;
+}
+
+/// A map from `u ∈ [0,1)` to the real line, with the density of its image and its inverse:
+/// the one-dimensional counterpart of [`Warp`] and [`InvertibleWarp`].
+///
+/// ```
+/// use mcrt::sampling::warp::{Tent, Warp1D};
+///
+/// let tent = Tent::new(2.0).unwrap();
+/// let (x, pdf) = tent.sample_with_pdf(0.5);
+/// assert!(x.abs() < 1e-6 && (pdf - 0.5).abs() < 1e-6);
+/// assert!((tent.invert(x) - 0.5).abs() < 1e-6);
+/// ```
+pub trait Warp1D {
+    /// Maps `u ∈ [0,1)` to a point of the support.
+    fn sample(&self, u: f32) -> f32;
+
+    /// The density of [`Warp1D::sample`] at `x`, per unit length; 0 outside the support.
+    fn pdf(&self, x: f32) -> f32;
+
+    /// The `u ∈ [0,1)` with `sample(u) == x` (clamped into `[0, 1 − 2⁻²⁴]`).
+    fn invert(&self, x: f32) -> f32;
+
+    /// [`Warp1D::sample`] and [`Warp1D::pdf`] at once; override when that is cheaper.
+    fn sample_with_pdf(&self, u: f32) -> (f32, f32) {
+        let x = self.sample(u);
+        (x, self.pdf(x))
+    }
 }

@@ -3,8 +3,8 @@
 
 use glam::{DVec3, Vec2, Vec3};
 
-use super::spherical_triangle::planar::{triangle_solid_angle, widen, Planar};
-use super::Warp;
+use super::spherical_triangle::planar::{clamp_unit_f64, triangle_solid_angle, widen, Planar};
+use super::{InvertibleWarp, Warp};
 use crate::sampling::SamplingError;
 use urena::Urena;
 
@@ -25,7 +25,9 @@ pub const SPHERICAL_RECTANGLE_ORTHOGONALITY: f32 = 1e-5;
 /// directions that hit it, 0 elsewhere.
 ///
 /// Mapping: u₁ picks the fraction of the solid angle left of a plane through the origin and
-/// one x-coordinate, u₂ the height along that strip by its sine; computed in `f64`.
+/// one x-coordinate, u₂ the height along that strip by its sine; computed in `f64`. Inverse
+/// ([`InvertibleWarp`]): the hit point `(x, y)`, then `u₁` = the solid angle of the strip left
+/// of `x` over Ω and `u₂` = the fraction of the strip's height sine below `y`.
 ///
 /// **Fallback** (same rules as [`SphericalTriangle`](super::SphericalTriangle)): when
 /// Ω < [`SPHERICAL_RECTANGLE_MIN_SOLID_ANGLE`], an interior angle of the spherical
@@ -214,9 +216,46 @@ impl Warp for SphericalRectangle {
     }
 }
 
+impl InvertibleWarp for SphericalRectangle {
+    /// The `u` whose sample is the direction `w` (unit length expected; normalised here):
+    /// the inverse of Ureña et al.'s map (the strip's solid angle over Ω, then the height's
+    /// sine), or the shape coordinates of the point hit for the area fallback. Directions
+    /// outside the rectangle give values clamped into `[0, 1)²`.
+    fn invert(&self, w: Vec3) -> Vec2 {
+        let dir = w.as_dvec3().normalize_or_zero();
+        match &self.urena {
+            Some(urena) => match urena.invert_local(dir) {
+                Some(u) => clamp_unit_f64(u.x, u.y),
+                None => Vec2::ZERO,
+            },
+            None => self.planar.invert_area(dir),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn round_trip_exact_and_fallback() {
+        let skew = SphericalRectangle::new(Vec3::ZERO, Vec3::Z, Vec3::X, Vec3::new(0.5, 1.0, 0.0))
+            .unwrap();
+        for r in [
+            square(Vec3::new(0.3, -0.2, 0.0), 1.0),
+            square(Vec3::ZERO, 1e3),
+            skew,
+        ] {
+            for i in 1..20 {
+                for j in 1..20 {
+                    let u = Vec2::new(i as f32 / 20.0, j as f32 / 20.0);
+                    let back = r.invert(r.sample(u));
+                    let err = (back - u).abs().max_element();
+                    assert!(back.is_finite() && err < 1e-4, "{u}: {back}");
+                }
+            }
+        }
+    }
 
     fn square(origin: Vec3, dist: f32) -> SphericalRectangle {
         SphericalRectangle::new(

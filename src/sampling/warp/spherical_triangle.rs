@@ -3,12 +3,15 @@
 
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
-use super::Warp;
+use super::{InvertibleWarp, Warp};
 use crate::sampling::SamplingError;
 
+mod cosine;
 pub(crate) mod planar;
 
-use planar::{triangle_solid_angle, widen, Planar};
+pub use cosine::CosineSphericalTriangle;
+
+use planar::{clamp_unit_f64, triangle_solid_angle, widen, Planar};
 
 /// Smallest solid angle (sr) the spherical triangle and rectangle warps accept: below it no
 /// density per steradian fits `f32` safely, and callers sample the shape by area (per unit
@@ -42,7 +45,9 @@ struct Arvo {
 ///
 /// Mapping: u₁ picks the sub-triangle area u₁Ω (which fixes its third vertex C′ on arc AC),
 /// u₂ the point on arc BC′ by its cosine. Computed in `f64`; the vertex with the largest
-/// interior angle plays A.
+/// interior angle plays A. Inverse ([`InvertibleWarp`]): C′ is where the great circle
+/// through B and the direction meets arc AC; `u₁ = Ω(ABC′)/Ω`, `u₂ = (1 − B·ω)/(1 − B·C′)`
+/// (pbrt-v4's `InvertSphericalTriangleSample` inverts the same map).
 ///
 /// **Fallback:** when Ω < [`SPHERICAL_TRIANGLE_MIN_SOLID_ANGLE`] or an interior angle of the
 /// spherical triangle is below [`SPHERICAL_TRIANGLE_MIN_ANGLE`], the warp samples the
@@ -170,6 +175,30 @@ impl Arvo {
         let perp = (c1 - c1.dot(self.b) * self.b).normalize_or_zero();
         (z * self.b + sin_z * perp).normalize()
     }
+
+    /// The inverse of [`Arvo::sample`]: `C′` is where the great circle through B and the
+    /// direction meets arc AC; `u₁` is the area of the sub-triangle ABC′ over Ω, and `u₂` the
+    /// ratio `(1 − B·w)/(1 − B·C′)`, each `1 − cos` taken as half a squared chord.
+    fn invert(&self, w: DVec3, omega: f64) -> DVec2 {
+        let bw = self.b.cross(w);
+        // Within f32 rounding of B (where u₂ = 0 and every u₁ maps to B), the great circle
+        // through B and w is noise: return u₂ = 0.
+        if bw.length_squared() < 1e-14 {
+            return DVec2::ZERO;
+        }
+        let mut c1 = bw.cross(self.a.cross(self.c)).normalize_or_zero();
+        if c1.dot(self.a + self.c) < 0.0 {
+            c1 = -c1;
+        }
+        let u1 = triangle_solid_angle(self.a, self.b, c1) / omega;
+        let chord = (c1 - self.b).length_squared();
+        let u2 = if chord > 0.0 {
+            (w - self.b).length_squared() / chord
+        } else {
+            0.0
+        };
+        DVec2::new(u1, u2)
+    }
 }
 
 impl Warp for SphericalTriangle {
@@ -187,9 +216,44 @@ impl Warp for SphericalTriangle {
     }
 }
 
+impl InvertibleWarp for SphericalTriangle {
+    /// The `u` whose sample is the direction `w` (unit length expected; normalised here):
+    /// the inverse of Arvo's map (see [`SphericalTriangle`]), or of the area fallback's
+    /// `b₁ = 1 − √u₁, b₂ = u₂√u₁` on the point hit. Directions outside the triangle give
+    /// values clamped into `[0, 1)²`.
+    fn invert(&self, w: Vec3) -> Vec2 {
+        let dir = w.as_dvec3().normalize_or_zero();
+        match &self.arvo {
+            Some(arvo) => {
+                let u = arvo.invert(dir, self.omega);
+                clamp_unit_f64(u.x, u.y)
+            }
+            None => self.planar.invert_area(dir),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn round_trip_exact_and_fallback() {
+        for t in [
+            SphericalTriangle::new(Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z).unwrap(),
+            unit_tri(1.0),
+            unit_tri(1000.0),
+        ] {
+            for i in 1..20 {
+                for j in 1..20 {
+                    let u = Vec2::new(i as f32 / 20.0, j as f32 / 20.0);
+                    let back = t.invert(t.sample(u));
+                    let err = (back - u).abs().max_element();
+                    assert!(back.is_finite() && err < 1e-4, "{u}: {back}");
+                }
+            }
+        }
+    }
 
     fn unit_tri(dist: f32) -> SphericalTriangle {
         SphericalTriangle::new(

@@ -5,6 +5,7 @@ use std::f64::consts::TAU;
 
 use glam::{DVec2, DVec3};
 
+use super::super::spherical_triangle::planar::triangle_solid_angle;
 use super::{RectangleFrame, SPHERICAL_RECTANGLE_MIN_SOLID_ANGLE};
 
 /// cos and sin of [`SPHERICAL_RECTANGLE_MIN_ANGLE`](super::SPHERICAL_RECTANGLE_MIN_ANGLE) (`1e-3_f32` widened to `f64`), to compare an angle given
@@ -136,6 +137,38 @@ impl Urena {
             self.y1
         };
         (xu, yv)
+    }
+
+    /// The inverse of [`Urena::sample_local`] for the unit direction `dir`: the local hit
+    /// point `(x, y)` on the plane `z = z0` (clamped into the rectangle), then `u₁` = the
+    /// solid angle of the strip `[x0, x] × [y0, y1]` over Ω (two Van Oosterom–Strackee
+    /// triangles) and `u₂ = (h − h0)/(h1 − h0)` with `h = y/√(x² + z0² + y²)`. `None` when
+    /// the ray does not meet the plane ahead.
+    pub(super) fn invert_local(&self, dir: DVec3) -> Option<DVec2> {
+        let [fx, fy, fz] = self.frame;
+        let t = self.z0 / dir.dot(fz);
+        if !(t.is_finite() && t > 0.0) {
+            return None;
+        }
+        let xu = (t * dir.dot(fx)).clamp(self.x0, self.x1);
+        let yv = (t * dir.dot(fy)).clamp(self.y0, self.y1);
+        let c = [
+            (self.x0, self.y0),
+            (xu, self.y0),
+            (xu, self.y1),
+            (self.x0, self.y1),
+        ]
+        .map(|(x, y)| DVec3::new(x, y, self.z0).normalize());
+        let strip = triangle_solid_angle(c[0], c[1], c[2]) + triangle_solid_angle(c[0], c[2], c[3]);
+        let d2 = xu * xu + self.z0 * self.z0;
+        let h = |y: f64| y / (d2 + y * y).sqrt();
+        let (h0, h1) = (h(self.y0), h(self.y1));
+        let u2 = if h1 > h0 {
+            (h(yv) - h0) / (h1 - h0)
+        } else {
+            0.0
+        };
+        Some(DVec2::new(strip / self.omega, u2))
     }
 
     /// The sampled point relative to the origin (world axes).

@@ -142,6 +142,89 @@ impl Planar {
         inside.then_some((dist, denom.abs()))
     }
 
+    /// The shape coordinates `(s, t)` of the point where the ray from the origin along `dir`
+    /// meets the shape's plane, moved onto the shape when it lies outside, or `None` when the
+    /// ray does not meet the plane ahead.
+    ///
+    /// A point just outside (an `f32`-rounded direction toward an edge) is moved to the
+    /// nearest point of the boundary *in the plane*, not by clamping `(s, t)`: on a sliver the
+    /// coordinates are ill-conditioned (a displacement of 10⁻⁸ across it changes them by
+    /// 10⁻³), and clamping them would move the point along the sliver by that much.
+    pub(crate) fn coords(&self, dir: DVec3) -> Option<(f64, f64)> {
+        let dist = self.normal.dot(self.p0 - self.origin) / self.normal.dot(dir);
+        if !(dist.is_finite() && dist > 0.0) {
+            return None;
+        }
+        let p = self.origin + dist * dir - self.p0;
+        let inv = 1.0 / self.cross.dot(self.normal);
+        let s = p.cross(self.e2).dot(self.normal) * inv;
+        let t = self.e1.cross(p).dot(self.normal) * inv;
+        if !(s.is_finite() && t.is_finite()) {
+            return None;
+        }
+        let inside = s >= 0.0
+            && t >= 0.0
+            && if self.triangle {
+                s + t <= 1.0
+            } else {
+                s <= 1.0 && t <= 1.0
+            };
+        Some(if inside {
+            (s, t)
+        } else {
+            self.nearest_on_boundary(p)
+        })
+    }
+
+    /// The coordinates of the point of the shape's boundary nearest to `p` (relative to
+    /// `p0`, in the plane).
+    fn nearest_on_boundary(&self, p: DVec3) -> (f64, f64) {
+        const TRIANGLE: [[(f64, f64); 2]; 3] = [
+            [(0.0, 0.0), (1.0, 0.0)],
+            [(1.0, 0.0), (0.0, 1.0)],
+            [(0.0, 1.0), (0.0, 0.0)],
+        ];
+        const PARALLELOGRAM: [[(f64, f64); 2]; 4] = [
+            [(0.0, 0.0), (1.0, 0.0)],
+            [(1.0, 0.0), (1.0, 1.0)],
+            [(1.0, 1.0), (0.0, 1.0)],
+            [(0.0, 1.0), (0.0, 0.0)],
+        ];
+        let edges: &[[(f64, f64); 2]] = if self.triangle {
+            &TRIANGLE
+        } else {
+            &PARALLELOGRAM
+        };
+        let at = |(s, t): (f64, f64)| s * self.e1 + t * self.e2;
+        let mut best = (f64::INFINITY, (0.0, 0.0));
+        for &[a, b] in edges {
+            let (pa, pb) = (at(a), at(b));
+            let d = pb - pa;
+            let l = ((p - pa).dot(d) / d.length_squared()).clamp(0.0, 1.0);
+            let gap = (p - (pa + l * d)).length_squared();
+            if gap < best.0 {
+                best = (gap, (a.0 + l * (b.0 - a.0), a.1 + l * (b.1 - a.1)));
+            }
+        }
+        best.1
+    }
+
+    /// The `u` that [`Planar::sample_area`] maps to the point hit along `dir` (the area
+    /// fallback's inverse): triangle `u₁ = (1 − s)²`, `u₂ = t/(1 − s)`; parallelogram
+    /// `(s, t)`. Clamped into `[0, 1)²`; `(0, 0)` when the ray misses the plane.
+    pub(crate) fn invert_area(&self, dir: DVec3) -> Vec2 {
+        let Some((s, t)) = self.coords(dir) else {
+            return Vec2::ZERO;
+        };
+        let (u1, u2) = if self.triangle {
+            let r = (1.0 - s).clamp(0.0, 1.0);
+            (r * r, if r > 0.0 { t / r } else { 0.0 })
+        } else {
+            (s, t)
+        };
+        clamp_unit_f64(u1, u2)
+    }
+
     /// The solid-angle pdf of area sampling at unit `dir`: d² / (A |cos θ'|), 0 on a miss.
     pub(crate) fn area_pdf(&self, dir: DVec3) -> f64 {
         match self.hit(dir) {
@@ -192,6 +275,18 @@ impl Planar {
             None => self.area_pdf(dir) as f32,
         }
     }
+}
+
+/// `(u₁, u₂)` in `f64` clamped into `[0, 1 − 2⁻²⁴]²` as `f32` (NaN to 0).
+pub(crate) fn clamp_unit_f64(u1: f64, u2: f64) -> Vec2 {
+    let c = |x: f64| {
+        if x >= 0.0 {
+            (x as f32).min(1.0 - f32::EPSILON / 2.0)
+        } else {
+            0.0
+        }
+    };
+    Vec2::new(c(u1), c(u2))
 }
 
 /// The solid angle of the triangle with unit vertex directions a, b, c: Van Oosterom &
