@@ -130,16 +130,18 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "sampler",
         short: None,
-        value: Some("independent|stratified|sobol"),
+        value: Some("independent|stratified|sobol|halton|r2"),
         help: "sample generator [default: the scene's sampler type]",
         apply: |a, v| {
             a.opts.sampler = Some(match v {
                 "independent" => SamplerKind::Independent,
                 "stratified" => SamplerKind::Stratified,
                 "sobol" | "ldsampler" => SamplerKind::LowDiscrepancy,
+                "halton" => SamplerKind::Halton,
+                "r2" => SamplerKind::R2,
                 _ => {
                     return Err(format!(
-                        "--sampler {v}: expected independent, stratified or sobol"
+                        "--sampler {v}: expected independent, stratified, sobol, halton or r2"
                     ))
                 }
             });

@@ -287,6 +287,12 @@ pub enum SamplerKind {
     Stratified,
     /// Mitsuba's `ldsampler`; ours is Owen-scrambled Sobol.
     LowDiscrepancy,
+    /// Scrambled Halton ([`HaltonSampler`](crate::sampling::sampler::HaltonSampler)); no
+    /// Mitsuba 3 plugin, so no scene-file name: chosen through the API or `--sampler halton`.
+    Halton,
+    /// The R2 lattice ([`R2Sampler`](crate::sampling::sampler::R2Sampler)); no Mitsuba 3
+    /// plugin, so no scene-file name: chosen through the API or `--sampler r2`.
+    R2,
 }
 
 /// The sampler plugin.

@@ -4,7 +4,7 @@ use glam::Vec2;
 
 #[cfg(feature = "sobol")]
 use super::SobolSampler;
-use super::{IndependentSampler, Sampler, StratifiedSampler};
+use super::{HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler};
 use crate::sampling::SamplingError;
 
 /// One of the crate's samplers, chosen at run time (for example from a scene file's
@@ -30,11 +30,22 @@ pub enum AnySampler {
     /// `SobolSampler` (feature `sobol`).
     #[cfg(feature = "sobol")]
     Sobol(SobolSampler),
+    /// [`HaltonSampler`].
+    Halton(HaltonSampler),
+    /// [`R2Sampler`].
+    R2(R2Sampler),
 }
 
 impl AnySampler {
     /// The names [`AnySampler::by_name`] accepts.
-    pub const NAMES: [&'static str; 4] = ["independent", "stratified", "ldsampler", "sobol"];
+    pub const NAMES: [&'static str; 6] = [
+        "independent",
+        "stratified",
+        "ldsampler",
+        "sobol",
+        "halton",
+        "r2",
+    ];
 
     /// The sampler a name selects, for `spp` samples per pixel and a `seed`, with Mitsuba 3's
     /// sample-count rounding for its plugin names (case-insensitive):
@@ -43,7 +54,9 @@ impl AnySampler {
     /// - `stratified`: jittered [`StratifiedSampler`], `spp` rounded up to a perfect square;
     /// - `ldsampler`: `SobolSampler`, `spp` rounded up to a power of 4 (as Mitsuba's
     ///   `ldsampler`: 5 → 16, 17 → 64);
-    /// - `sobol`: `SobolSampler`, `spp` as given.
+    /// - `sobol`: `SobolSampler`, `spp` as given;
+    /// - `halton`: [`HaltonSampler`], `spp` as given (our name: Mitsuba 3 has no such plugin);
+    /// - `r2`: [`R2Sampler`], `spp` as given (likewise ours only).
     ///
     /// `None` for any other name (and for `ldsampler`/`sobol` when the `sobol` feature is off);
     /// `Some(Err(_))` when the sample count is invalid.
@@ -65,6 +78,8 @@ impl AnySampler {
             ),
             #[cfg(feature = "sobol")]
             "sobol" => Some(SobolSampler::new(spp, seed).map(Self::from)),
+            "halton" => Some(HaltonSampler::new(spp, seed).map(Self::from)),
+            "r2" => Some(R2Sampler::new(spp, seed).map(Self::from)),
             _ => None,
         }
     }
@@ -88,6 +103,8 @@ macro_rules! dispatch {
             AnySampler::Stratified($s) => $call,
             #[cfg(feature = "sobol")]
             AnySampler::Sobol($s) => $call,
+            AnySampler::Halton($s) => $call,
+            AnySampler::R2($s) => $call,
         }
     };
 }
@@ -137,6 +154,18 @@ impl From<SobolSampler> for AnySampler {
     }
 }
 
+impl From<HaltonSampler> for AnySampler {
+    fn from(s: HaltonSampler) -> Self {
+        Self::Halton(s)
+    }
+}
+
+impl From<R2Sampler> for AnySampler {
+    fn from(s: R2Sampler) -> Self {
+        Self::R2(s)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -144,7 +173,10 @@ mod tests {
     fn values<S: Sampler>(mut s: S) -> Vec<f32> {
         s.start_pixel_sample([3, 4], 2);
         let u = s.next_2d();
-        vec![u.x, u.y, s.next_1d(), s.samples_per_pixel() as f32]
+        let v = s.next_1d();
+        s.skip_to_dimension(1024);
+        let w = s.next_2d();
+        vec![u.x, u.y, v, w.x, w.y, s.samples_per_pixel() as f32]
     }
 
     #[test]
@@ -170,6 +202,12 @@ mod tests {
         assert!(AnySampler::by_name("ldsampler", u32::MAX, 0)
             .unwrap()
             .is_err());
+        let s = AnySampler::by_name("Halton", 5, 0).unwrap().unwrap();
+        assert!(matches!(s, AnySampler::Halton(_)));
+        assert_eq!(s.samples_per_pixel(), 5);
+        let s = AnySampler::by_name("r2", 5, 0).unwrap().unwrap();
+        assert!(matches!(s, AnySampler::R2(_)));
+        assert_eq!(s.samples_per_pixel(), 5);
         assert!(AnySampler::by_name("multijitter", 5, 0).is_none());
         assert!(AnySampler::by_name("independent", 0, 0).unwrap().is_err());
     }
@@ -185,5 +223,9 @@ mod tests {
             let c = SobolSampler::new(8, 1).unwrap();
             assert_eq!(values(c.clone()), values(AnySampler::from(c)));
         }
+        let d = HaltonSampler::new(8, 1).unwrap();
+        assert_eq!(values(d.clone()), values(AnySampler::from(d)));
+        let e = R2Sampler::new(8, 1).unwrap();
+        assert_eq!(values(e.clone()), values(AnySampler::from(e)));
     }
 }

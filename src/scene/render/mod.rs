@@ -42,7 +42,8 @@ pub use geo::{AccelKind, ShapeSampling};
 
 use crate::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
 use crate::sampling::sampler::{
-    AnySampler, IndependentSampler, Sampler, SobolSampler, StratifiedSampler,
+    AnySampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, SobolSampler,
+    StratifiedSampler,
 };
 use crate::sampling::SamplingError;
 use crate::scene::bsdf::{AnyBsdf, Sided};
@@ -172,12 +173,14 @@ fn scene_radius(desc: &SceneDescription) -> f32 {
 }
 
 /// The sampler for a scene's `sampler` type (see `sampling::sampler` for the mapping of
-/// Mitsuba's tags; stratified counts round up to a square).
+/// Mitsuba's tags; stratified counts round up to a square; Halton and R2 are ours only).
 fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, SamplingError> {
     Ok(match kind {
         SamplerKind::Independent => IndependentSampler::new(spp, seed)?.into(),
         SamplerKind::Stratified => StratifiedSampler::new(spp, seed, true)?.into(),
         SamplerKind::LowDiscrepancy => SobolSampler::new(spp, seed)?.into(),
+        SamplerKind::Halton => HaltonSampler::new(spp, seed)?.into(),
+        SamplerKind::R2 => R2Sampler::new(spp, seed)?.into(),
     })
 }
 

@@ -72,6 +72,8 @@ fn render_tile<S: Scene>(
         AnySampler::Independent(s) => render_tile_with(scene, p, s.clone(), tile, samples),
         AnySampler::Stratified(s) => render_tile_with(scene, p, s.clone(), tile, samples),
         AnySampler::Sobol(s) => render_tile_with(scene, p, s.clone(), tile, samples),
+        AnySampler::Halton(s) => render_tile_with(scene, p, s.clone(), tile, samples),
+        AnySampler::R2(s) => render_tile_with(scene, p, s.clone(), tile, samples),
     }
 }
 
