@@ -75,7 +75,7 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
             };
             qs.le(scene, &cam_v) * cos
         } else {
-            qs.f_dirs(scene, qs.dir_to(&light[s - 2]).0, c.wi, Mode::Importance)
+            qs.f_dirs(scene, qs.w_prev, c.wi, Mode::Importance)
         };
         let v = qs.beta * f * (c.importance / (c.dist * c.dist));
         if v == Vec3::ZERO || !v.is_finite() {
@@ -119,7 +119,7 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
             1.0
         };
         let g = if d2.is_finite() { cos_l / d2 } else { 1.0 };
-        let f = pt.f(scene, &camera[t - 2], &lv, Mode::Radiance);
+        let f = pt.f_dirs(scene, pt.w_prev, w, Mode::Radiance);
         let v = pt.beta * f * le * (g / es.pdf_pos);
         if v == Vec3::ZERO || !v.is_finite() {
             return None;
@@ -144,8 +144,8 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
         if !is_positive(d2) {
             return None;
         }
-        let fq = qs.f(scene, &light[s - 2], pt, Mode::Importance);
-        let fp = pt.f(scene, &camera[t - 2], qs, Mode::Radiance);
+        let fq = qs.f_dirs(scene, qs.w_prev, -w, Mode::Importance);
+        let fp = pt.f_dirs(scene, pt.w_prev, w, Mode::Radiance);
         let v = qs.beta * fq * fp * pt.beta / d2;
         if v == Vec3::ZERO || !v.is_finite() {
             return None;
@@ -211,18 +211,23 @@ pub(crate) fn mis_weight<S: BidirectionalScene>(
     };
     let pt_prev = (t > 1).then(|| &camera[t - 2]);
     let qs_prev = (s > 1).then(|| &light[s - 2]);
-    // Reverse densities of the four vertices next to the connection.
+    // Reverse densities of the four vertices next to the connection; `w` runs from `pt` to
+    // `qs`, and each subpath vertex knows the direction to its predecessor.
+    let (w, d2) = match qs {
+        Some(q) => pt.dir_to(q),
+        None => (Vec3::ZERO, 0.0),
+    };
     let pt_rev = match qs {
-        Some(q) => q.pdf(scene, qs_prev, pt),
+        Some(q) => q.pdf_along(scene, qs_prev.map(|_| q.w_prev), pt, -w, d2),
         None => pt.pdf_light_origin(scene, pt_prev.unwrap_or(pt)),
     };
     let pt_prev_rev = pt_prev.map(|pm| match qs {
-        Some(q) => pt.pdf(scene, Some(q), pm),
-        None => pt.pdf_light(scene, pm),
+        Some(_) => pt.pdf_along(scene, Some(w), pm, pt.w_prev, pt.d2_prev),
+        None => pt.pdf_light_along(scene, pm, pt.w_prev, pt.d2_prev),
     });
-    let qs_rev = qs.map(|q| pt.pdf(scene, pt_prev, q));
+    let qs_rev = qs.map(|q| pt.pdf_along(scene, pt_prev.map(|_| pt.w_prev), q, w, d2));
     let qs_prev_rev = match (qs, qs_prev) {
-        (Some(q), Some(qm)) => Some(q.pdf(scene, Some(pt), qm)),
+        (Some(q), Some(qm)) => Some(q.pdf_along(scene, Some(-w), qm, q.w_prev, q.d2_prev)),
         _ => None,
     };
     // Camera side: strategies with fewer camera vertices.

@@ -47,6 +47,11 @@ pub(crate) struct Vertex {
     pub delta: bool,
     /// The BSDF here has a non-delta component (connections can end here).
     pub smooth: bool,
+    /// Unit direction toward the previous vertex of this vertex's own subpath (zero at an
+    /// endpoint), and the squared distance to it (infinite from a light at infinity):
+    /// kept so that connections need not recompute them.
+    pub w_prev: Vec3,
+    pub d2_prev: f32,
 }
 
 /// No light index.
@@ -81,6 +86,8 @@ impl Vertex {
             pdf_rev: 0.0,
             delta: false,
             smooth: true,
+            w_prev: Vec3::ZERO,
+            d2_prev: 0.0,
         }
     }
 
@@ -144,10 +151,17 @@ impl Vertex {
     /// geometry of the chain's first segment from each side in it.
     #[inline]
     pub(crate) fn area_density(&self, pdf_sa: f32, to: &Vertex) -> f32 {
+        let (w, d2) = self.dir_to(to);
+        self.area_density_along(pdf_sa, to, w, d2)
+    }
+
+    /// [`Vertex::area_density`] with the unit direction `w` to `to` and the squared
+    /// distance `d2` already known.
+    #[inline]
+    pub(crate) fn area_density_along(&self, pdf_sa: f32, to: &Vertex, w: Vec3, d2: f32) -> f32 {
         if to.is_infinite() {
             return pdf_sa;
         }
-        let (w, d2) = self.dir_to(to);
         if to.delta {
             let cos = if self.on_surface() {
                 self.sp.ng.dot(w).abs()
@@ -167,37 +181,60 @@ impl Vertex {
         pdf_sa * cos / d2
     }
 
-    /// Density per unit area with which this vertex, reached from `prev` (`None`: it is an
-    /// endpoint), samples `next`.
+    /// Density per unit area with which this vertex, reached from `prev`, samples `next`;
+    /// an emitting surface with no `prev` (the end of a camera subpath) samples by emission.
+    /// (The estimators use `pdf_along` with known directions; the tests use this.)
+    #[cfg(all(test, feature = "render"))]
     pub(crate) fn pdf<S: BidirectionalScene>(
         &self,
         scene: &S,
         prev: Option<&Vertex>,
         next: &Vertex,
     ) -> f32 {
-        match self.kind {
-            Kind::Light(_) => self.pdf_light(scene, next),
-            Kind::Camera => {
-                let (w, _) = self.dir_to(next);
-                self.area_density(scene.camera_pdf(w), next)
-            }
-            Kind::Surface => {
-                let Some(prev) = prev else {
-                    return self.pdf_light(scene, next);
-                };
-                let (wn, _) = self.dir_to(next);
-                let (wp, _) = self.dir_to(prev);
+        let (w, d2) = self.dir_to(next);
+        let w_in = prev.map(|p| self.dir_to(p).0);
+        self.pdf_along(scene, w_in, next, w, d2)
+    }
+
+    /// `Vertex::pdf` with the directions known: `w_in` toward the vertex this one was
+    /// reached from (`None` at an endpoint), `w` toward `next`, `d2` the squared distance
+    /// to it.
+    pub(crate) fn pdf_along<S: BidirectionalScene>(
+        &self,
+        scene: &S,
+        w_in: Option<Vec3>,
+        next: &Vertex,
+        w: Vec3,
+        d2: f32,
+    ) -> f32 {
+        match (self.kind, w_in) {
+            (Kind::Light(_), _) | (Kind::Surface, None) => self.pdf_light_along(scene, next, w, d2),
+            (Kind::Camera, _) => self.area_density_along(scene.camera_pdf(w), next, w, d2),
+            (Kind::Surface, Some(wp)) => {
                 let f = &self.sp.frame;
-                let pdf = scene.bsdf(&self.sp).pdf(f.to_local(wp), f.to_local(wn));
-                self.area_density(pdf, next)
+                let pdf = scene.bsdf(&self.sp).pdf(f.to_local(wp), f.to_local(w));
+                self.area_density_along(pdf, next, w, d2)
             }
         }
     }
 
     /// Density per unit area at `next` of the emission direction of this light (or
     /// emitting surface) toward it.
+    #[cfg(all(test, feature = "render"))]
     pub(crate) fn pdf_light<S: BidirectionalScene>(&self, scene: &S, next: &Vertex) -> f32 {
-        let (w, _) = self.dir_to(next);
+        let (w, d2) = self.dir_to(next);
+        self.pdf_light_along(scene, next, w, d2)
+    }
+
+    /// `Vertex::pdf_light` with the unit direction `w` to `next` and the squared distance
+    /// `d2` known.
+    pub(crate) fn pdf_light_along<S: BidirectionalScene>(
+        &self,
+        scene: &S,
+        next: &Vertex,
+        w: Vec3,
+        d2: f32,
+    ) -> f32 {
         if self.is_infinite() {
             let (_, pdf_disk) = scene.emission_pdf(self.light, &self.sp, -self.w_env);
             let cos = if next.on_surface() && !next.delta {
@@ -208,7 +245,7 @@ impl Vertex {
             return pdf_disk * cos;
         }
         let (_, pdf_dir) = scene.emission_pdf(self.light, &self.sp, w);
-        self.area_density(pdf_dir, next)
+        self.area_density_along(pdf_dir, next, w, d2)
     }
 
     /// Density with which a light subpath starts at this light (or emitting surface)
@@ -235,22 +272,8 @@ impl Vertex {
         }
     }
 
-    /// The BSDF times the cosine at this surface vertex for light arriving from `from` and
-    /// leaving toward `to`, in the subpath's `mode` (`from` is this subpath's previous vertex).
-    pub(crate) fn f<S: BidirectionalScene>(
-        &self,
-        scene: &S,
-        from: &Vertex,
-        to: &Vertex,
-        mode: Mode,
-    ) -> Vec3 {
-        let (wo, _) = self.dir_to(from);
-        let (wi, _) = self.dir_to(to);
-        self.f_dirs(scene, wo, wi, mode)
-    }
-
-    /// [`Vertex::f`] with world directions: `wo` toward this subpath's previous vertex, `wi`
-    /// the other way.
+    /// The BSDF times the cosine at this surface vertex in the subpath's `mode`, with world
+    /// directions: `wo` toward this subpath's previous vertex, `wi` the other way.
     pub(crate) fn f_dirs<S: BidirectionalScene>(
         &self,
         scene: &S,

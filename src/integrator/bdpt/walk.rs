@@ -143,6 +143,8 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
                         pdf,
                     );
                     v.w_env = dir;
+                    v.w_prev = -dir;
+                    v.d2_prev = f32::INFINITY;
                     v.light = light;
                     path.push(v);
                 }
@@ -153,6 +155,12 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
         let pdf_in = pdf;
         let mut v = Vertex::new(Kind::Surface, sp, beta, 0.0);
         v.smooth = flags.smooth;
+        v.w_prev = -dir;
+        v.d2_prev = if prev.is_infinite() {
+            f32::INFINITY
+        } else {
+            (sp.p - prev.sp.p).length_squared()
+        };
         v.pdf_fwd = if prev.is_infinite() {
             pdf * sp.ng.dot(dir).abs()
         } else {

@@ -107,16 +107,27 @@ fn resplit<S: crate::integrator::BidirectionalScene>(
             }
         })
         .collect();
+    // Each vertex's direction to its predecessor in its new subpath.
+    let toward = |i: usize, j: usize| {
+        let (w, d2) = q[i].dir_to(&q[j]);
+        (w, d2)
+    };
     let mut light: Vec<Vertex> = q[..s].to_vec();
     for (i, v) in light.iter_mut().enumerate() {
         v.pdf_fwd = from_light[i];
         v.pdf_rev = from_camera[i];
+        if i > 0 {
+            (v.w_prev, v.d2_prev) = toward(i, i - 1);
+        }
     }
     let mut camera: Vec<Vertex> = q[s..].iter().rev().copied().collect();
     for (j, v) in camera.iter_mut().enumerate() {
         let i = n - 1 - j;
         v.pdf_fwd = from_camera[i];
         v.pdf_rev = from_light[i];
+        if i + 1 < n {
+            (v.w_prev, v.d2_prev) = toward(i, i + 1);
+        }
         if i == s && s == 0 {
             // The emitter the camera path ends on is a surface vertex of that subpath.
             v.kind = p[0].kind;
