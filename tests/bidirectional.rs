@@ -301,3 +301,44 @@ fn images_do_not_depend_on_the_thread_count() {
         assert_eq!(one, two, "{kind:?}: 1 and 2 threads differ");
     }
 }
+
+/// A Gaussian pixel filter places film samples past the image's border: the camera's
+/// strategies must count them (a border pixel that sees the environment directly was 30%
+/// dark before the camera density took the filter into account).
+#[test]
+fn bdpt_with_a_gaussian_filter_keeps_its_border_pixels() {
+    let mut desc = furnace(
+        BsdfDesc::Diffuse {
+            reflectance: Vec3::splat(0.5),
+        },
+        IntegratorDesc::Bdpt {
+            max_depth: -1,
+            rr_depth: 5,
+        },
+    );
+    desc.sensor.fov = 40.0;
+    desc.sensor.film.filter = FilterDesc::Gaussian { stddev: 0.5 };
+    desc.sensor.film.width = 32;
+    desc.sensor.film.height = 32;
+    desc.emitters.push(EmitterDesc::Point {
+        position: Vec3::new(1.0, 2.0, 3.0),
+        intensity: Vec3::splat(5.0),
+    });
+    let pt = RenderOptions {
+        spp: Some(1024),
+        seed: Some(11),
+        integrator: Some(IntegratorKind::Path),
+        ..RenderOptions::default()
+    };
+    let reference = Renderer::new(&desc, &pt)
+        .expect("scene builds")
+        .render(&|_, _| {}, &AtomicBool::new(false))
+        .image();
+    let o = RenderOptions {
+        spp: Some(16),
+        ..RenderOptions::default()
+    };
+    let (w, h, images) = render_replicates(&desc, &o, REPLICATES, SEED);
+    // 1% for the path tracer's own noise at 1024 spp (8×8 blocks).
+    compare(&images, &reference, w, h, 8, 0.01).assert_passed("bdpt, gaussian filter");
+}

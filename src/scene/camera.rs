@@ -211,7 +211,8 @@ impl Camera {
             && x.dot(z).abs() < tol
     }
 
-    /// The film position in pixels of the camera-space point `q`, if inside the image.
+    /// The film position in pixels of the camera-space point `q` (in front of the camera),
+    /// whether or not it is inside the image.
     fn raster_of_local(&self, q: Vec3) -> Option<Vec2> {
         if q.z.is_nan() || q.z <= 0.0 {
             return None;
@@ -221,26 +222,47 @@ impl Camera {
             0.5 * (1.0 - q.y / (q.z * self.tan_half.y)),
         );
         let r = s * Vec2::new(self.width as f32, self.height as f32);
-        (s.x >= 0.0 && s.x < 1.0 && s.y >= 0.0 && s.y < 1.0 && r.is_finite()).then_some(r)
+        r.is_finite().then_some(r)
+    }
+
+    /// Whether a film position lies inside the image.
+    fn inside(&self, r: Vec2) -> bool {
+        r.x >= 0.0 && r.y >= 0.0 && r.x < self.width as f32 && r.y < self.height as f32
     }
 
     /// Density per steradian of the direction of [`Camera::generate_ray`] for a film
     /// position uniform over the image (0 outside the field of view); also the importance
     /// `W(ω)`.
     pub fn direction_pdf(&self, dir: Vec3) -> f32 {
+        match self.direction_density(dir) {
+            Some((r, pdf)) if self.inside(r) => pdf,
+            _ => 0.0,
+        }
+    }
+
+    /// The film position of the direction `dir` (anywhere on the image plane, inside the
+    /// image or not) and `1/(A cos³θ)`, the density per steradian that a film position
+    /// uniform over the image would give there; `None` behind the camera.
+    pub fn direction_density(&self, dir: Vec3) -> Option<(Vec2, f32)> {
         let q = self.to_camera.transform_vector3(dir);
         let len = q.length();
-        if len.is_nan() || len <= 0.0 || self.raster_of_local(q).is_none() {
-            return 0.0;
+        let r = self.raster_of_local(q)?;
+        if len.is_nan() || len <= 0.0 {
+            return None;
         }
         let cos = q.z / len;
         let area = 4.0 * self.tan_half.x * self.tan_half.y;
-        1.0 / (area * cos * cos * cos)
+        Some((r, 1.0 / (area * cos * cos * cos)))
     }
 
-    /// The film position of the world point `p` and its camera-space depth, if `p` is in
-    /// the field of view and between the clip planes.
+    /// The film position of the world point `p`, if `p` is in the field of view and between
+    /// the clip planes.
     pub fn raster_of(&self, p: Vec3) -> Option<Vec2> {
+        self.raster_of_unbounded(p).filter(|r| self.inside(*r))
+    }
+
+    /// [`Camera::raster_of`] without the image's bounds (a pixel filter reaches past them).
+    pub fn raster_of_unbounded(&self, p: Vec3) -> Option<Vec2> {
         let q = self.to_camera.transform_point3(p);
         if !(q.z >= self.near && q.z <= self.far) {
             return None;

@@ -87,6 +87,46 @@ impl PixelFilter {
 }
 
 impl PixelFilter {
+    /// `Σ_j h(x − x_j)` over the pixel centres `x_j` of a `width` × `height` film: the
+    /// density (relative to uniform over the film) with which the render loop's filter
+    /// importance sampling places a film sample at `raster`. 1 inside the film for the box
+    /// filter (0 outside); for the Gaussian, about 1 inside (a midpoint sum of its density)
+    /// and falling to 0 within its radius outside. The bidirectional estimators weigh the
+    /// camera's strategies by it.
+    pub fn coverage(&self, raster: Vec2, width: u32, height: u32) -> f32 {
+        let mut sums = [0.0f32; 2];
+        match self {
+            PixelFilter::Box => {
+                let inside = raster.x >= 0.0
+                    && raster.y >= 0.0
+                    && raster.x < width as f32
+                    && raster.y < height as f32;
+                return if inside { 1.0 } else { 0.0 };
+            }
+            &PixelFilter::Gaussian {
+                radius,
+                a,
+                bias,
+                norm,
+                ..
+            } => {
+                let density = |d: f32| ((a * d * d).exp() - bias).max(0.0) * norm;
+                for (axis, (c, n)) in [(raster.x, width), (raster.y, height)]
+                    .into_iter()
+                    .enumerate()
+                {
+                    if !c.is_finite() {
+                        return 0.0;
+                    }
+                    let lo = (c - radius - 0.5).ceil().max(0.0) as i64;
+                    let hi = ((c + radius - 0.5).floor() as i64).min(n as i64 - 1);
+                    sums[axis] = (lo..=hi).map(|i| density(i as f32 + 0.5 - c)).sum();
+                }
+            }
+        }
+        sums[0] * sums[1]
+    }
+
     /// Spreads a contribution at film position `raster` over the pixels of a `width` ×
     /// `height` film as the filter weighs it: `add(pixel index, weight)` for every pixel
     /// whose filter covers `raster`, the weight the filter's density at the offset from the
@@ -154,6 +194,32 @@ mod tests {
         assert!((v.sqrt() - 0.4988).abs() < 0.004, "{}", v.sqrt());
         let b = PixelFilter::Box.sample(Vec2::new(0.0, 0.75));
         assert_eq!(b, Vec2::new(-0.5, 0.25));
+    }
+
+    #[test]
+    fn coverage_is_the_sum_of_the_splat_weights() {
+        for f in [
+            PixelFilter::Box,
+            PixelFilter::from_desc(&FilterDesc::Gaussian { stddev: 0.5 }),
+        ] {
+            for r in [
+                Vec2::new(10.3, 7.8),
+                Vec2::new(0.2, 0.1),
+                Vec2::new(-0.7, 5.0),
+            ] {
+                let mut total = 0.0f32;
+                f.splat(r, 20, 20, |_, w| total += w);
+                let c = f.coverage(r, 20, 20);
+                assert!(
+                    c.is_finite() && (c - total).abs() < 1e-5,
+                    "{r}: {c} vs {total}"
+                );
+            }
+        }
+        // Outside the film the Gaussian still covers the border pixels; the box does not.
+        let g = PixelFilter::from_desc(&FilterDesc::Gaussian { stddev: 0.5 });
+        assert!(g.coverage(Vec2::new(-0.7, 5.0), 20, 20) > 0.0);
+        assert_eq!(PixelFilter::Box.coverage(Vec2::new(-0.7, 5.0), 20, 20), 0.0);
     }
 
     #[test]

@@ -43,19 +43,33 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> BidirectionalScene
         self.camera.forward()
     }
 
+    /// The camera samples film positions by the pixel filter around every pixel centre:
+    /// the density is the uniform one times the filter's coverage there (1 inside the image
+    /// for the box filter; reaching past the border for the Gaussian).
     fn camera_pdf(&self, dir: Vec3) -> f32 {
-        self.camera.direction_pdf(dir)
+        let Some((raster, pdf)) = self.camera.direction_density(dir) else {
+            return 0.0;
+        };
+        let (w, h) = self.film_size();
+        pdf * self.filter.coverage(raster, w, h)
     }
 
     fn connect_camera(&self, p: Vec3) -> Option<CameraConnection> {
-        let raster = self.camera.raster_of(p)?;
+        let raster = self.camera.raster_of_unbounded(p)?;
+        let (w, h) = self.film_size();
+        if self.filter.coverage(raster, w, h) <= 0.0 {
+            return None;
+        }
         let d = self.camera.position() - p;
         let dist = d.length();
         if dist.is_nan() || dist <= 0.0 {
             return None;
         }
         let wi = d / dist;
-        let importance = self.camera.direction_pdf(-wi);
+        let importance = self
+            .camera
+            .direction_density(-wi)
+            .map_or(0.0, |(_, pdf)| pdf);
         (importance > 0.0).then_some(CameraConnection {
             raster,
             wi,

@@ -432,6 +432,7 @@ impl Renderer {
             lights: &self.lights,
             camera: &self.camera,
             world: self.geo.bounding_sphere(),
+            filter: &self.filter,
         }
     }
 

@@ -21,6 +21,8 @@ pub struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
     pub(crate) camera: &'a super::geo::Camera,
     /// The scene's bounding sphere (centre, radius): where lights at infinity emit from.
     pub(crate) world: (Vec3, f32),
+    /// The pixel filter, by which the camera places its film samples.
+    pub(crate) filter: &'a crate::scene::film::PixelFilter,
 }
 
 #[inline]
@@ -169,6 +171,7 @@ mod tests {
             lights: &lights,
             camera: &camera,
             world: geo.bounding_sphere(),
+            filter: &crate::scene::film::PixelFilter::Box,
         };
         let f = &desc.sensor.film;
         let ray = camera.generate_ray(Vec2::new(f.width as f32, f.height as f32) * 0.5);
