@@ -21,12 +21,15 @@
 //! `--integrators` runs only the integrator study (PT, BDPT, MLT; ladder to 256 spp unless
 //! `--max-spp` says otherwise), merges it into `convergence/integrators.csv`, redraws its
 //! plots and replaces section 4 of an existing `convergence.md` (the rest of the page is
-//! kept); other runs carry section 4 over unchanged. `--time-limit` skips a render, and the larger ones of its line, when four times
-//! the line's previous render time exceeds it.
+//! kept); other runs carry section 4 over unchanged. `--time-limit` skips a render, and the
+//! larger ones of its line, when four times the line's previous render time exceeds it;
+//! `--max-spp 0` renders nothing and rebuilds section 4 from the CSV.
 //!
 //! Run time on the project's busy 2-core machine: `--quick` (renders to 4 spp) about 15 s;
 //! the sampling half of a full run about 30 s; the rendering half to 256 spp
 //! (`--max-spp 256`) about 20 minutes, and to the default 1024 spp several times longer.
+//! `--integrators` to 256 spp about 8 minutes, and MLT alone to 1024 (`--kinds mlt
+//! --max-spp 1024`) about 3 more.
 
 mod csv;
 mod distribution;
