@@ -222,3 +222,140 @@ fn bad_sizes_are_errors_not_panics() {
     ));
     assert!(close(m.eval(dir(0.75, 0.5)), Vec3::ZERO, 0.0));
 }
+
+/// `(mean, relative standard deviation)` of `f(radiance, pdf)` over the map's samples for a
+/// 256 × 256 grid of `u` (cell centres).
+fn sample_stats(m: &EnvMap, f: impl Fn(Vec3, f32) -> f64) -> (f64, f64) {
+    let n = 256;
+    let (mut s, mut s2) = (0.0f64, 0.0f64);
+    for i in 0..n {
+        for j in 0..n {
+            let u = Vec2::new((j as f32 + 0.5) / n as f32, (i as f32 + 0.5) / n as f32);
+            let (_, l, pdf) = m.sample(u).expect("a sample");
+            let x = f(l, pdf);
+            s += x;
+            s2 += x * x;
+        }
+    }
+    let k = (n * n) as f64;
+    let mean = s / k;
+    (mean, (s2 / k - mean * mean).max(0.0).sqrt() / mean)
+}
+
+fn lum_over_pdf(l: Vec3, pdf: f32) -> f64 {
+    f64::from(luminance(l)) / f64::from(pdf)
+}
+
+#[test]
+fn pdf_is_proportional_to_luminance_at_the_vertices() {
+    let (w, h) = (12, 10);
+    let mut s = 11u32;
+    let t: Vec<Vec3> = (0..w * h)
+        .map(|_| Vec3::new(lcg(&mut s), lcg(&mut s), lcg(&mut s)) * 3.0 + 0.01)
+        .collect();
+    let m = EnvMap::from_texels(w, h, t, Mat4::IDENTITY).expect("valid map");
+    let ratio = |x: usize, y: usize| {
+        let d = dir((x as f32 + 0.5) / w as f32, y as f32 / (h - 1) as f32);
+        m.pdf(d) / luminance(m.eval(d))
+    };
+    let first = ratio(0, 1);
+    assert!(first.is_finite() && first > 0.0);
+    for y in 1..h - 1 {
+        for x in 0..w {
+            let r = ratio(x, y);
+            assert!(
+                r.is_finite() && (r - first).abs() < 1e-4 * first,
+                "({x}, {y}): {r} vs {first}"
+            );
+        }
+    }
+}
+
+#[test]
+fn light_sampling_of_a_smooth_map_has_almost_no_variance() {
+    // Luminance smooth in u and v, so that within a cell it is nearly bilinear in (u, v)
+    // times sin θ: the sampled density follows it, and L/p is nearly constant. (The former
+    // piecewise-constant sampling over cells weighted by their largest corner: 5.6·10⁻² for
+    // this 64 × 32 map.)
+    let (w, h) = (64, 32);
+    let t: Vec<Vec3> = (0..w * h)
+        .map(|k| {
+            let u = ((k % w) as f32 + 0.5) / w as f32;
+            let v = (k / w) as f32 / (h - 1) as f32;
+            Vec3::splat(1.0 + 0.5 * (2.0 * PI * u).cos() + 0.3 * v)
+        })
+        .collect();
+    let m = EnvMap::from_texels(w, h, t, Mat4::from_rotation_x(0.2)).expect("valid map");
+    let (mean, rel) = sample_stats(&m, lum_over_pdf);
+    let want = f64::from(luminance(Vec3::splat(m.integral())));
+    assert!(
+        mean.is_finite() && (mean - want).abs() < 1e-3 * want,
+        "{mean} vs {want}"
+    );
+    assert!(rel.is_finite() && rel < 1e-3, "relative std of L/p: {rel}");
+    // A uniform map (every vertex alike, so only sin θ's interpolation remains).
+    let m = EnvMap::from_texels(16, 33, vec![Vec3::ONE; 16 * 33], Mat4::IDENTITY).unwrap();
+    let (mean, rel) = sample_stats(&m, lum_over_pdf);
+    assert!((mean - 4.0 * f64::from(PI)).abs() < 1e-3 * mean, "{mean}");
+    assert!(rel.is_finite() && rel < 1e-3, "relative std of L/p: {rel}");
+}
+
+#[test]
+fn a_bright_pole_over_a_black_row_is_sampled_with_a_bounded_ratio() {
+    // Only the north pole row is lit: its light fills the pole cells, and the pole vertices
+    // carry the density there.
+    let (w, h) = (8, 16);
+    let mut t = vec![Vec3::ZERO; w * h];
+    t[..w].fill(Vec3::new(2.0, 1.0, 0.5));
+    let m = EnvMap::from_texels(w, h, t, Mat4::IDENTITY).expect("valid map");
+    let (mean, _) = sample_stats(&m, lum_over_pdf);
+    let mut worst = 0.0f64;
+    let n = 256;
+    for i in 0..n {
+        for j in 0..n {
+            let u = Vec2::new((j as f32 + 0.5) / n as f32, (i as f32 + 0.5) / n as f32);
+            let (_, l, pdf) = m.sample(u).expect("a sample");
+            worst = worst.max(lum_over_pdf(l, pdf));
+        }
+    }
+    assert!(
+        worst.is_finite() && worst < 3.2 * mean,
+        "{worst} vs mean {mean}"
+    );
+    for v in [0.0, 1e-3, 0.5 / (h - 1) as f32] {
+        let d = dir(0.3, v);
+        assert!(
+            m.pdf(d) > 0.0 && m.pdf(d).is_finite(),
+            "v = {v}: {}",
+            m.pdf(d)
+        );
+    }
+}
+
+#[test]
+fn samples_at_the_edges_of_the_square_have_a_density() {
+    let mut t = vec![Vec3::splat(0.5); 6 * 12];
+    t[5 * 6 + 2] = Vec3::splat(80.0);
+    let maps = [
+        EnvMap::from_texels(6, 12, t, Mat4::IDENTITY).unwrap(),
+        EnvMap::from_texels(3, 1, vec![Vec3::ONE; 3], Mat4::IDENTITY).unwrap(),
+        EnvMap::from_texels(5, 2, vec![Vec3::X; 10], Mat4::IDENTITY).unwrap(),
+    ];
+    let top = 1.0 - 2f32.powi(-24);
+    for m in &maps {
+        for u in [
+            Vec2::ZERO,
+            Vec2::new(0.3, 0.0),
+            Vec2::new(0.0, top),
+            Vec2::splat(top),
+            Vec2::new(top, 0.5),
+        ] {
+            let (d, l, pdf) = m.sample(u).expect("a sample");
+            assert!(
+                d.is_finite() && l.is_finite() && pdf.is_finite() && pdf > 0.0,
+                "{u}"
+            );
+            assert!(l.max_element() > 0.0, "{u}: {l}");
+        }
+    }
+}
