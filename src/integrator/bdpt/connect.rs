@@ -94,45 +94,12 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
             return None;
         }
         let u_pick = rng.next_2d();
-        let u_pos = rng.next_2d();
-        let es = scene.sample_emission(u_pick, u_pos, Vec2::splat(0.5))?;
-        if !is_positive(es.pdf_pos) {
-            return None;
-        }
-        let mut lv = Vertex::new(
-            Kind::Light(es.kind),
-            es.point,
-            Vec3::splat(1.0 / es.pdf_pos),
-            es.pdf_pos,
-        );
-        lv.light = es.light;
-        match es.kind {
-            EmitterKind::Infinite => lv.w_env = -es.dir,
-            EmitterKind::Point => lv.intensity = es.radiance,
-            EmitterKind::Area => {}
-        }
-        let (w, d2) = pt.dir_to(&lv);
-        let le = lv.le(scene, pt);
-        let cos_l = if lv.on_surface() {
-            lv.sp.ng.dot(w).abs()
+        let u = rng.next_2d();
+        let (v, lv) = if scene.has_delta_lights() {
+            light_by_emission(scene, pt, u_pick, u, rays)?
         } else {
-            1.0
+            light_by_nee(scene, pt, u_pick, u, rays)?
         };
-        let g = if d2.is_finite() { cos_l / d2 } else { 1.0 };
-        let f = pt.f_dirs(scene, pt.w_prev, w, Mode::Radiance);
-        let v = pt.beta * f * le * (g / es.pdf_pos);
-        if v == Vec3::ZERO || !v.is_finite() {
-            return None;
-        }
-        *rays += 1;
-        let dist = if d2.is_finite() {
-            d2.sqrt()
-        } else {
-            f32::INFINITY
-        };
-        if scene.occluded(&pt.sp, w, dist) {
-            return None;
-        }
         sampled = Some(lv);
         v
     } else {
@@ -168,6 +135,129 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
         weight,
         raster,
     })
+}
+
+/// Strategy `s = 1` by the scene's emission sampling (a light by power, a point by area):
+/// the same density as a light subpath's first vertex. Used in scenes with point lights,
+/// which next-event estimation does not identify. Returns the contribution and the light
+/// vertex.
+fn light_by_emission<S: BidirectionalScene>(
+    scene: &S,
+    pt: &Vertex,
+    u_pick: Vec2,
+    u_pos: Vec2,
+    rays: &mut u32,
+) -> Option<(Vec3, Vertex)> {
+    let es = scene.sample_emission(u_pick, u_pos, Vec2::splat(0.5))?;
+    if !is_positive(es.pdf_pos) {
+        return None;
+    }
+    let mut lv = Vertex::new(
+        Kind::Light(es.kind),
+        es.point,
+        Vec3::splat(1.0 / es.pdf_pos),
+        es.pdf_pos,
+    );
+    lv.light = es.light;
+    match es.kind {
+        EmitterKind::Infinite => lv.w_env = -es.dir,
+        EmitterKind::Point => lv.intensity = es.radiance,
+        EmitterKind::Area => {}
+    }
+    let (w, d2) = pt.dir_to(&lv);
+    let le = lv.le(scene, pt);
+    let cos_l = if lv.on_surface() {
+        lv.sp.ng.dot(w).abs()
+    } else {
+        1.0
+    };
+    let g = if d2.is_finite() { cos_l / d2 } else { 1.0 };
+    let f = pt.f_dirs(scene, pt.w_prev, w, Mode::Radiance);
+    let v = pt.beta * f * le * (g / es.pdf_pos);
+    if v == Vec3::ZERO || !v.is_finite() {
+        return None;
+    }
+    *rays += 1;
+    let dist = if d2.is_finite() {
+        d2.sqrt()
+    } else {
+        f32::INFINITY
+    };
+    if scene.occluded(&pt.sp, w, dist) {
+        return None;
+    }
+    Some((v, lv))
+}
+
+/// Strategy `s = 1` by the scene's next-event estimation ([`crate::integrator::Scene::sample_light`]: by
+/// solid angle where it can, the light chosen per shading point): the contribution divides
+/// by that sample's own density, while the light vertex carries the emission densities, so
+/// the weights of all strategies are computed from one set of densities and stay a
+/// partition of unity (as pbrt-v4 weighs its `s = 1` samples). The closest hit toward the
+/// sample is both the shadow ray and what identifies the light point.
+fn light_by_nee<S: BidirectionalScene>(
+    scene: &S,
+    pt: &Vertex,
+    u_pick: Vec2,
+    u: Vec2,
+    rays: &mut u32,
+) -> Option<(Vec3, Vertex)> {
+    let ls = scene.sample_light(&pt.sp, u_pick, u)?;
+    if ls.delta || !is_positive(ls.pdf) {
+        return None;
+    }
+    let f = pt.f_dirs(scene, pt.w_prev, ls.wi, Mode::Radiance);
+    let v = pt.beta * f * ls.radiance / ls.pdf;
+    if v == Vec3::ZERO || !v.is_finite() {
+        return None;
+    }
+    *rays += 1;
+    let lv = if ls.dist.is_finite() {
+        let hit = scene.trace(&pt.sp, ls.wi)?;
+        let at = pt.sp.p + ls.wi * ls.dist;
+        if (hit.p - at).length_squared() > (1e-3 * ls.dist) * (1e-3 * ls.dist) {
+            return None; // something lies in between
+        }
+        let light = scene.emitter_at(&hit)?;
+        let mut lv = Vertex::new(Kind::Light(EmitterKind::Area), hit, Vec3::ONE, 0.0);
+        lv.light = light;
+        lv.pdf_fwd = scene.emission_pdf(light, &hit, -ls.wi).0;
+        lv
+    } else {
+        if scene.occluded(&pt.sp, ls.wi, f32::INFINITY) {
+            return None;
+        }
+        let light = scene.environment_light()?;
+        let mut lv = Vertex::new(
+            Kind::Light(EmitterKind::Infinite),
+            bare_point(Vec3::ZERO),
+            Vec3::ONE,
+            0.0,
+        );
+        lv.light = light;
+        lv.w_env = ls.wi;
+        lv.pdf_fwd = scene.emission_pdf(light, &lv.sp, -ls.wi).0;
+        lv
+    };
+    Some((v, lv))
+}
+
+/// The density per unit area (per steradian toward a light at infinity) with which the
+/// scene's next-event estimation at `x1` chooses the light point `x0`.
+fn nee_density<S: BidirectionalScene>(scene: &S, x0: &Vertex, x1: &Vertex) -> f32 {
+    if x1.kind != Kind::Surface {
+        return 0.0;
+    }
+    if x0.is_infinite() {
+        return scene.environment_pdf(&x1.sp, x0.w_env);
+    }
+    let (w, d2) = x1.dir_to(x0);
+    let pdf_sa = scene.light_pdf(&x1.sp, &x0.sp);
+    if d2 > 0.0 && d2.is_finite() {
+        pdf_sa * x0.sp.ng.dot(w).abs() / d2
+    } else {
+        0.0
+    }
 }
 
 /// `x^β`, with 0 mapped to 1 (a zero density is a delta or impossible strategy; its ratio
@@ -230,6 +320,32 @@ pub(crate) fn mis_weight<S: BidirectionalScene>(
         (Some(q), Some(qm)) => Some(q.pdf_along(scene, Some(-w), qm, q.w_prev, q.d2_prev)),
         _ => None,
     };
+    // With next-event estimation for s = 1 (scenes without point lights), that strategy's
+    // density of the light point is NEE's, not emission's: its ratio to every other
+    // strategy carries κ = p_nee(x_0 | x_1) / p_emit(x_0) (x_0 the light end, x_1 its
+    // neighbour), per unit area.
+    let kappa = if scene.has_delta_lights() {
+        1.0
+    } else {
+        let (x0, x1, p_emit) = match s {
+            0 => (Some(pt), pt_prev, pt_rev),
+            1 => (qs, Some(pt), qs.map_or(0.0, |q| q.pdf_fwd)),
+            _ => (Some(&light[0]), Some(&light[1]), light[0].pdf_fwd),
+        };
+        match (x0, x1) {
+            (Some(x0), Some(x1)) if p_emit > 0.0 => nee_density(scene, x0, x1) / p_emit,
+            _ => 1.0,
+        }
+    };
+    let kappa_h = if kappa.is_finite() && kappa >= 0.0 {
+        if kappa > 0.0 {
+            remap(kappa, h)
+        } else {
+            0.0
+        }
+    } else {
+        1.0
+    };
     // Camera side: strategies with fewer camera vertices.
     let cam_rev = |i: usize| {
         if i == t - 1 {
@@ -251,7 +367,8 @@ pub(crate) fn mis_weight<S: BidirectionalScene>(
         };
         r *= remap(cam_rev(i), h) / remap(fwd, h);
         if !cam_delta(i) && !cam_delta(i - 1) {
-            sum += r;
+            // The first step from s = 0 is the strategy s = 1.
+            sum += if s == 0 && i == t - 1 { r * kappa_h } else { r };
         }
     }
     // Light side: strategies with fewer light vertices.
@@ -276,9 +393,13 @@ pub(crate) fn mis_weight<S: BidirectionalScene>(
                 light_v(0).is_delta_light()
             };
             if !light_delta(i) && !before_delta {
-                sum += r;
+                sum += if i == 1 { r * kappa_h } else { r };
             }
         }
+    }
+    // Seen from s = 1 itself, every other strategy's ratio carries 1/κ.
+    if s == 1 && kappa_h > 0.0 {
+        sum /= kappa_h;
     }
     let w = 1.0 / (1.0 + sum);
     if w.is_finite() {
