@@ -3,7 +3,8 @@
 //! ```text
 //! cargo run --release --example render -- [scene.xml] [--spp N] [-D name=value]...
 //!     [-o out.exr|out.png] [--threads N] [--seed S] [--variance]
-//!     [--strategy bsdf|light|balance|power] [--sampler independent|stratified|sobol]
+//!     [--strategy bsdf|light|balance|power]
+//!     [--sampler independent|stratified|sobol|halton|r2]
 //!     [--accel bvh|grid] [--light-sampling solid-angle|area]
 //!     [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]
 //! ```
@@ -334,6 +335,8 @@ fn run(args: Args) -> Result<bool, String> {
         match renderer.sampler() {
             mcrt::sampling::sampler::AnySampler::Independent(_) => "independent",
             mcrt::sampling::sampler::AnySampler::Stratified(_) => "stratified",
+            mcrt::sampling::sampler::AnySampler::Halton(_) => "halton",
+            mcrt::sampling::sampler::AnySampler::R2(_) => "r2",
             _ => "sobol",
         },
         renderer.integrator().strategy().name(),

@@ -154,6 +154,11 @@ impl Sampler for HaltonSampler {
     }
 
     #[inline]
+    fn skip_to_dimension(&mut self, dim: u32) {
+        self.dimension = u64::from(dim);
+    }
+
+    #[inline]
     fn next_1d(&mut self) -> f32 {
         let (key, index) = self.take();
         scrambled_base2(index, key as u32)

@@ -101,6 +101,11 @@ impl Sampler for R2Sampler {
     }
 
     #[inline]
+    fn skip_to_dimension(&mut self, dim: u32) {
+        self.dimension = u64::from(dim);
+    }
+
+    #[inline]
     fn next_1d(&mut self) -> f32 {
         let (shift, i) = self.take();
         to_unit(shift.wrapping_add(i.wrapping_mul(ALPHA_1D)))
