@@ -43,7 +43,8 @@ pub enum IntegratorDesc {
         /// Longest path in segments: −1 unlimited, 1 emitters seen directly, 2 direct
         /// lighting.
         max_depth: i32,
-        /// Bounces after which Russian roulette applies on either subpath (default 5).
+        /// Bounces after which Russian roulette applies on the camera subpath (default 5;
+        /// light subpaths play it from their first bounce).
         rr_depth: u32,
     },
     /// Metropolis light transport in primary sample space over bidirectional paths

@@ -83,7 +83,10 @@ pub struct RenderOptions {
     pub strategy: Option<Strategy>,
     /// Acceleration structure.
     pub accel: AccelKind,
-    /// How area lights on triangles and rectangles are sampled (solid angle by default).
+    /// How area lights on triangles and rectangles are sampled by the path tracer and the
+    /// direct integrator (solid angle by default); `bdpt` and `mlt` always sample them by
+    /// area (their other strategies cover the region near a light where solid-angle sampling
+    /// helps, at a fraction of its cost).
     pub light_sampling: ShapeSampling,
     /// Sample generator (else the file's `sampler` type).
     pub sampler: Option<SamplerKind>,
@@ -203,9 +206,17 @@ impl Renderer {
             .source
             .as_ref()
             .and_then(|p| p.parent().map(Path::to_path_buf));
+        // The bidirectional estimators' s = 1 strategy samples rectangles and triangles by
+        // area: their other strategies cover what solid-angle sampling adds near a light,
+        // at a fraction of its cost (spheres keep cone sampling either way).
+        let kind = opts.integrator.unwrap_or(desc.integrator.kind());
+        let shape_sampling = match kind {
+            IntegratorKind::Bdpt | IntegratorKind::Mlt => ShapeSampling::Area,
+            _ => opts.light_sampling,
+        };
         let geo = Geometry::new(&desc.shapes, base.as_deref(), opts.accel)
             .map_err(|e| RenderError(format!("geometry: {e}")))?
-            .with_shape_sampling(opts.light_sampling);
+            .with_shape_sampling(shape_sampling);
         let lights =
             Lights::new(desc, &geo, scene_radius(desc)).map_err(|e| RenderError(e.to_string()))?;
         let camera = Camera::new(&desc.sensor).map_err(|e| RenderError(format!("camera: {e}")))?;
