@@ -152,18 +152,7 @@ fn light_by_emission<S: BidirectionalScene>(
     if !is_positive(es.pdf_pos) {
         return None;
     }
-    let mut lv = Vertex::new(
-        Kind::Light(es.kind),
-        es.point,
-        Vec3::splat(1.0 / es.pdf_pos),
-        es.pdf_pos,
-    );
-    lv.light = es.light;
-    match es.kind {
-        EmitterKind::Infinite => lv.w_env = -es.dir,
-        EmitterKind::Point => lv.intensity = es.radiance,
-        EmitterKind::Area => {}
-    }
+    let lv = Vertex::from_emission(&es);
     let (w, d2) = pt.dir_to(&lv);
     let le = lv.le(scene, pt);
     let cos_l = if lv.on_surface() {

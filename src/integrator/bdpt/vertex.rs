@@ -2,7 +2,9 @@
 //! area (per steradian toward a light at infinity). `docs/renderer.md`, "Bidirectional path
 //! tracing", derives the conversions.
 
-use crate::integrator::{BidirectionalScene, Bsdf, EmitterKind, Frame, SurfacePoint};
+use crate::integrator::{
+    BidirectionalScene, Bsdf, EmissionSample, EmitterKind, Frame, SurfacePoint,
+};
 use glam::{Vec2, Vec3};
 
 /// Which way a subpath carries its quantity: radiance (camera subpaths) or importance
@@ -89,6 +91,24 @@ impl Vertex {
             w_prev: Vec3::ZERO,
             d2_prev: 0.0,
         }
+    }
+
+    /// The light vertex an emitted ray starts from: throughput `1/pdf_pos`, forward density
+    /// `pdf_pos`.
+    pub(crate) fn from_emission(es: &EmissionSample) -> Self {
+        let mut v = Self::new(
+            Kind::Light(es.kind),
+            es.point,
+            Vec3::splat(1.0 / es.pdf_pos),
+            es.pdf_pos,
+        );
+        v.light = es.light;
+        match es.kind {
+            EmitterKind::Infinite => v.w_env = -es.dir,
+            EmitterKind::Point => v.intensity = es.radiance,
+            EmitterKind::Area => {}
+        }
+        v
     }
 
     #[inline]

@@ -76,19 +76,7 @@ pub(crate) fn light_subpath<S: BidirectionalScene, R: SampleSource>(
     if !(is_positive(es.pdf_pos) && is_positive(es.pdf_dir) && es.radiance.is_finite()) {
         return;
     }
-    let mut v = Vertex::new(
-        Kind::Light(es.kind),
-        es.point,
-        Vec3::splat(1.0 / es.pdf_pos),
-        es.pdf_pos,
-    );
-    v.light = es.light;
-    match es.kind {
-        EmitterKind::Infinite => v.w_env = -es.dir,
-        EmitterKind::Point => v.intensity = es.radiance,
-        EmitterKind::Area => {}
-    }
-    path.push(v);
+    path.push(Vertex::from_emission(&es));
     let cos = if es.kind == EmitterKind::Area {
         es.point.ng.dot(es.dir).abs()
     } else {
