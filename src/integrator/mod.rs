@@ -38,6 +38,24 @@ pub fn is_positive(x: f32) -> bool {
     x > 0.0
 }
 
+/// Samples `bsdf` at `wo`, drawing the component choice `u1` from `rng` only when the
+/// BSDF reads it (`0.5` otherwise), then the direction `u2`: the one sampling step of every
+/// estimator's random walk.
+#[inline(always)]
+pub(crate) fn sample_bsdf<B: Bsdf, R: SampleSource>(
+    bsdf: &B,
+    wo: glam::Vec3,
+    rng: &mut R,
+) -> Option<BsdfSample> {
+    let u1 = if bsdf.samples_component() {
+        rng.next_1d()
+    } else {
+        0.5
+    };
+    let u2 = rng.next_2d();
+    bsdf.sample(wo, u1, u2)
+}
+
 /// An estimator, chosen at run time from the scene's `integrator` element.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Integrator {

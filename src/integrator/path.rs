@@ -135,13 +135,7 @@ impl PathTracer {
                     out.radiance += throughput * self.nee(scene, bsdf, &sp, wo, &ls, &mut out.rays);
                 }
             }
-            let u1 = if bsdf.samples_component() {
-                rng.next_1d()
-            } else {
-                0.5
-            };
-            let u2 = rng.next_2d();
-            let Some(bs) = bsdf.sample(wo, u1, u2) else {
+            let Some(bs) = super::sample_bsdf(bsdf, wo, rng) else {
                 break;
             };
             throughput *= bs.weight;

@@ -166,13 +166,7 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
         let bsdf = scene.bsdf(&sp);
         let wo_world = -dir;
         let wo = sp.frame.to_local(wo_world);
-        let u1 = if bsdf.samples_component() {
-            rng.next_1d()
-        } else {
-            0.5
-        };
-        let u2 = rng.next_2d();
-        let Some(bs) = bsdf.sample(wo, u1, u2) else {
+        let Some(bs) = crate::integrator::sample_bsdf(bsdf, wo, rng) else {
             return;
         };
         let wi_world = sp.frame.to_world(bs.wi);
