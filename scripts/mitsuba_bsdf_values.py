@@ -63,6 +63,20 @@ CASES = [
      '<bsdf type="roughconductor"><string name="material" value="Au"/>'
      '<string name="distribution" value="ggx"/><float name="alpha" value="0.2"/></bsdf>'),
     ("conductor-cu", False, '<bsdf type="conductor"><string name="material" value="Cu"/></bsdf>'),
+    ("blendbsdf-diffuse-roughconductor", False,
+     '<bsdf type="blendbsdf"><float name="weight" value="0.3"/>'
+     '<bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf>'
+     '<bsdf type="roughconductor"><string name="material" value="Au"/>'
+     '<string name="distribution" value="ggx"/><float name="alpha" value="0.3"/></bsdf></bsdf>'),
+    ("blendbsdf-plastic-roughdielectric", True,
+     '<bsdf type="blendbsdf"><float name="weight" value="0.6"/>'
+     '<bsdf type="plastic"/><bsdf type="roughdielectric"><string name="distribution" value="ggx"/>'
+     '<float name="alpha" value="0.2"/></bsdf></bsdf>'),
+    ("mask-diffuse", True,
+     '<bsdf type="mask"><float name="opacity" value="0.3"/>'
+     '<bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.5, 0.2"/></bsdf></bsdf>'),
+    ("mask-twosided-roughplastic", True,
+     '<bsdf type="mask"><bsdf type="twosided"><bsdf type="roughplastic"/></bsdf></bsdf>'),
 ]
 
 WO_DEGREES = [(5.0, 10.0), (30.0, 200.0), (60.0, 45.0), (80.0, 300.0)]
@@ -109,7 +123,7 @@ def main() -> None:
         "# e MODE wo.xyz wi.xyz f.rgb pdf     (MODE r: radiance, i: importance; f includes |cos wi|)",
         "# s wo.xyz u1 wi.xyz pdf weight.rgb eta   (a sample that chose a Dirac component)",
     ]
-    sphere = [v / np.linalg.norm(v) for v in rng.normal(size=(24, 3))]
+    sphere = [v / np.linalg.norm(v) for v in rng.normal(size=(16, 3))]
     for name, transmits, xml in CASES:
         bsdf = mi.load_string(xml.replace("<bsdf ", '<bsdf version="3.0.0" ', 1))
         params = mi.traverse(bsdf)
@@ -125,10 +139,10 @@ def main() -> None:
             si.sh_frame = mi.Frame3f(si.n)
             si.wi = mi.Vector3f(*wo)
             mirror = np.array([-wo[0], -wo[1], wo[2]])
-            wis = list(sphere) + [mirror] + around(mirror, rng, 0.15, 6)
+            wis = list(sphere) + [mirror] + around(mirror, rng, 0.15, 4)
             t = refract(wo, eta) if transmits else None
             if t is not None:
-                wis += [t] + around(t, rng, 0.15, 6)
+                wis += [t] + around(t, rng, 0.15, 4)
             modes = [("r", mi.TransportMode.Radiance)]
             if transmits:
                 modes.append(("i", mi.TransportMode.Importance))

@@ -8,7 +8,8 @@
 //!
 //! The coated and thin materials: a white plastic sphere (ρ = 1) returns 1, a thin glass
 //! sphere 1, rough glass nearly 1 at α = 0.01; rough glass at α = 0.3 and white rough
-//! plastic, which lose energy, what Mitsuba 3 returns in the same scene.
+//! plastic, which lose energy, what Mitsuba 3 returns in the same scene; a blend of white
+//! materials and a mask over a white two-sided one return 1.
 //!
 //! Tolerance: the image mean must be within 4 standard errors (from the render's own
 //! per-pixel variance) and within 1% of the expected value. Fixed seed; 32×32 pixels.
@@ -217,7 +218,11 @@ fn rough_glass(alpha: f32) -> BsdfDesc {
 #[test]
 fn nearly_smooth_rough_glass_sphere_returns_one() {
     // At α = 0.01 the microfacet model's single-scattering loss is below 0.1%.
-    check("rough glass α = 0.01", furnace(rough_glass(0.01), 64), Vec3::ONE);
+    check(
+        "rough glass α = 0.01",
+        furnace(rough_glass(0.01), 64),
+        Vec3::ONE,
+    );
 }
 
 /// Furnace values of materials that lose energy, as Mitsuba 3.9.1 renders the same scene
@@ -235,7 +240,12 @@ fn lossy_spheres_return_what_mitsuba_returns() {
         nonlinear: false,
     };
     let cases = [
-        ("rough glass, GGX α = 0.3", rough_glass(0.3), 0.85456, 0.0001),
+        (
+            "rough glass, GGX α = 0.3",
+            rough_glass(0.3),
+            0.85456,
+            0.0001,
+        ),
         (
             "white rough plastic, Beckmann α = 0.1",
             rough_plastic(MicrofacetKind::Beckmann, 0.1),
@@ -260,4 +270,29 @@ fn lossy_spheres_return_what_mitsuba_returns() {
             );
         }
     }
+}
+
+#[test]
+fn blend_and_mask_of_lossless_materials_return_one() {
+    let white = BsdfDesc::Diffuse {
+        reflectance: Vec3::ONE,
+    };
+    let blend = BsdfDesc::Blend {
+        weight: 0.4,
+        first: Box::new(white.clone()),
+        second: Box::new(BsdfDesc::Plastic {
+            int_ior: 1.49,
+            ext_ior: 1.000277,
+            diffuse_reflectance: Vec3::ONE,
+            specular_reflectance: Vec3::ONE,
+            nonlinear: false,
+        }),
+    };
+    check("blend of white materials", furnace(blend, 64), Vec3::ONE);
+    // Two-sided, so that light that passed the front is reflected by the back from inside.
+    let mask = BsdfDesc::Mask {
+        opacity: 0.3,
+        inner: Box::new(BsdfDesc::TwoSided(Box::new(white))),
+    };
+    check("mask over white", furnace(mask, 64), Vec3::ONE);
 }

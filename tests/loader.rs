@@ -278,6 +278,82 @@ fn materials_emitters_and_integrators() {
     assert_eq!(d.emitters.len(), 3);
 }
 
+/// Mitsuba 3's other BSDFs with their defaults (each checked against Mitsuba itself with
+/// `mi.traverse`: plastic's η = 1.49 / 1.000277 = 1.48959, roughdielectric's η = 1.50418,
+/// Beckmann α = 0.1), and a named conductor.
+#[test]
+fn mitsuba3_materials_and_their_defaults() {
+    let xml = r#"<scene version="3.0.0">
+        <shape type="sphere"><bsdf type="plastic"/></shape>
+        <shape type="sphere"><bsdf type="roughplastic"><string name="distribution" value="ggx"/>
+            <float name="alpha" value="0.3"/><boolean name="nonlinear" value="true"/>
+            <boolean name="sample_visible" value="false"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="roughdielectric"/></shape>
+        <shape type="sphere"><bsdf type="thindielectric"><string name="int_ior" value="water"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="conductor"><string name="material" value="Au"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="mask"><bsdf type="blendbsdf">
+            <float name="weight" value="0.25"/><bsdf type="diffuse"/><bsdf type="plastic"/>
+        </bsdf></bsdf></shape>
+    </scene>"#;
+    let d = parse(xml, &[]).unwrap();
+    let (air, one, half) = (1.000277, Vec3::ONE, Vec3::splat(0.5));
+    assert_eq!(
+        d.shapes[0].bsdf,
+        BsdfDesc::Plastic {
+            int_ior: 1.49,
+            ext_ior: air,
+            diffuse_reflectance: half,
+            specular_reflectance: one,
+            nonlinear: false,
+        }
+    );
+    assert_eq!(
+        d.shapes[1].bsdf,
+        BsdfDesc::RoughPlastic {
+            distribution: MicrofacetKind::Ggx,
+            alpha: 0.3,
+            int_ior: 1.49,
+            ext_ior: air,
+            diffuse_reflectance: half,
+            specular_reflectance: one,
+            nonlinear: true,
+        }
+    );
+    assert_eq!(
+        d.shapes[2].bsdf,
+        BsdfDesc::RoughDielectric {
+            distribution: MicrofacetKind::Beckmann,
+            alpha: 0.1,
+            int_ior: 1.5046,
+            ext_ior: air,
+            specular_reflectance: one,
+            specular_transmittance: one,
+        }
+    );
+    assert_eq!(
+        d.shapes[3].bsdf,
+        BsdfDesc::ThinDielectric {
+            int_ior: 1.333,
+            ext_ior: air,
+            specular_reflectance: one,
+            specular_transmittance: one,
+        }
+    );
+    let BsdfDesc::Conductor {
+        fresnel: ConductorFresnel::Complex { eta, k },
+        ..
+    } = d.shapes[4].bsdf
+    else {
+        panic!("{:?}", d.shapes[4].bsdf)
+    };
+    let want = (
+        Vec3::new(0.143036, 0.375307, 1.44205),
+        Vec3::new(3.983, 2.38556, 1.60336),
+    );
+    let err = (eta - want.0).abs().max((k - want.1).abs()).max_element();
+    assert!(err.is_finite() && err < 1e-5, "{eta} {k}");
+}
+
 #[test]
 fn cornell_box_direct_lighting_define() {
     let mut parsed = load(CORNELL, &[("max_depth", "2")]);

@@ -56,7 +56,7 @@ fn unknown_element_attribute_plugin_and_parameter() {
     assert!(matches!(e.kind, SceneErrorKind::UnknownAttribute(_)), "{e}");
     check(&e, 2, "<shape type=\"cube\">", "\"size\"");
 
-    let e = err("\n<bsdf type=\"plastic\"/>");
+    let e = err("\n<bsdf type=\"principled\"/>");
     assert!(
         matches!(e.kind, SceneErrorKind::UnknownPlugin { .. }),
         "{e}"
@@ -64,8 +64,8 @@ fn unknown_element_attribute_plugin_and_parameter() {
     check(
         &e,
         3,
-        "<bsdf type=\"plastic\">",
-        "unknown bsdf plugin type \"plastic\"",
+        "<bsdf type=\"principled\">",
+        "unknown bsdf plugin type \"principled\"",
     );
 
     let e = err("<sensor type=\"perspective\">\n<float name=\"fvo\" value=\"40\"/>\n</sensor>");
@@ -161,7 +161,23 @@ fn missing_or_unreadable_files() {
 
 #[test]
 fn unsupported_and_misplaced() {
-    let cases: [(&str, u32, &str, &str); 8] = [
+    let cases: [(&str, u32, &str, &str); 16] = [
+        ("<bsdf type=\"twosided\">\n<bsdf type=\"dielectric\"/></bsdf>",
+            2, "<bsdf type=\"twosided\">", "lets light through"),
+        ("<bsdf type=\"blendbsdf\"><bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/></bsdf>",
+            2, "<bsdf type=\"blendbsdf\">", "needs a \"weight\""),
+        ("<bsdf type=\"mask\">\n<float name=\"opacity\" value=\"1.5\"/><bsdf type=\"diffuse\"/></bsdf>",
+            2, "<bsdf type=\"mask\">", "[0, 1]"),
+        ("<bsdf type=\"mask\" id=\"m\">\n<ref id=\"m\"/></bsdf>",
+            2, "<bsdf type=\"mask\" id=\"m\">", "nest more than 16"),
+        ("<bsdf type=\"conductor\">\n<string name=\"material\" value=\"Gold\"/></bsdf>",
+            3, "<string name=\"material\">", "\"Gold\" is not a known conductor"),
+        ("<bsdf type=\"roughconductor\"><string name=\"material\" value=\"Au\"/>\n<rgb name=\"eta\" value=\"1\"/></bsdf>",
+            3, "<rgb name=\"eta\">", "cannot be given with material \"Au\""),
+        ("<bsdf type=\"roughdielectric\"><float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.2\"/></bsdf>",
+            2, "<float name=\"alpha_u\">", "anisotropy"),
+        ("<bsdf type=\"plastic\"><boolean name=\"nonlinear\" value=\"true\"/>\n<rgb name=\"diffuse_reflectance\" value=\"1.2, 0.5, 0.5\"/></bsdf>",
+            3, "<rgb name=\"diffuse_reflectance\">", "diverge"),
         ("<integrator type=\"path\"><boolean name=\"hide_emitters\" value=\"true\"/></integrator>",
             2, "<integrator type=\"path\">", "hide_emitters"),
         ("<sensor type=\"perspective\">\n<string name=\"fov_axis\" value=\"diagonal\"/></sensor>",

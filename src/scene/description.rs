@@ -504,8 +504,45 @@ pub enum BsdfDesc {
         /// Whether internal scattering tints the base's colour (default false).
         nonlinear: bool,
     },
+    /// `blendbsdf`: `(1 − weight) · first + weight · second`.
+    Blend {
+        /// Weight of the second material, in [0, 1] (required; a constant, not a texture).
+        weight: f32,
+        /// The first nested material.
+        first: Box<BsdfDesc>,
+        /// The second nested material.
+        second: Box<BsdfDesc>,
+    },
+    /// `mask`: the nested material with opacity `opacity`; light passes the rest of the
+    /// surface unchanged.
+    Mask {
+        /// Opacity in [0, 1] (default 0.5; a constant, not a texture).
+        opacity: f32,
+        /// The nested material.
+        inner: Box<BsdfDesc>,
+    },
     /// `twosided`: the nested BSDF on both sides of the surface.
     TwoSided(Box<BsdfDesc>),
+}
+
+impl BsdfDesc {
+    /// Whether the material lets light through the surface (Mitsuba 3's `twosided` refuses
+    /// such a nested material).
+    pub fn transmits(&self) -> bool {
+        match self {
+            Self::Dielectric { .. }
+            | Self::RoughDielectric { .. }
+            | Self::ThinDielectric { .. }
+            | Self::Mask { .. } => true,
+            Self::Blend { first, second, .. } => first.transmits() || second.transmits(),
+            Self::TwoSided(inner) => inner.transmits(),
+            Self::Diffuse { .. }
+            | Self::Conductor { .. }
+            | Self::RoughConductor { .. }
+            | Self::Plastic { .. }
+            | Self::RoughPlastic { .. } => false,
+        }
+    }
 }
 
 impl Default for BsdfDesc {

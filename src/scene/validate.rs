@@ -335,7 +335,30 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
                 *nonlinear,
             )
         }
+        BsdfDesc::Blend {
+            weight,
+            first,
+            second,
+        } => {
+            unit_interval("weight", *weight)?;
+            bsdf(first)?;
+            bsdf(second)
+        }
+        BsdfDesc::Mask { opacity, inner } => {
+            unit_interval("opacity", *opacity)?;
+            bsdf(inner)
+        }
         BsdfDesc::TwoSided(inner) => bsdf(inner),
+    }
+}
+
+/// A blend weight or an opacity: in [0, 1] (outside, Mitsuba's probabilities would turn
+/// negative).
+fn unit_interval(param: &'static str, v: f32) -> Result<(), Invalid> {
+    if (0.0..=1.0).contains(&v) {
+        Ok(())
+    } else {
+        Err(invalid(param, "must lie in [0, 1]"))
     }
 }
 

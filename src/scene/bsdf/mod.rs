@@ -8,10 +8,12 @@
 //! only is rendered with `Sided<Diffuse>` instead, so no glossy or refraction code is
 //! compiled into its render loop.
 
+mod blend;
 mod conductor;
 mod dielectric;
 mod diffuse;
 mod fresnel;
+mod mask;
 mod named_conductors;
 mod ndf;
 mod plastic;
@@ -20,10 +22,12 @@ mod rough_dielectric;
 mod rough_plastic;
 mod thin_dielectric;
 
+pub use blend::Blend;
 pub use conductor::{Conductor, Fresnel};
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
 pub use fresnel::{fresnel_conductor, fresnel_dielectric, fresnel_diffuse_reflectance};
+pub use mask::Mask;
 pub use named_conductors::{conductor_names, named_conductor};
 pub use ndf::Ndf;
 pub use plastic::Plastic;
@@ -56,6 +60,10 @@ pub enum AnyBsdf {
     Plastic(Plastic),
     /// Diffuse base under a rough coating.
     RoughPlastic(RoughPlastic),
+    /// A blend of two materials.
+    Blend(Blend),
+    /// A material with an opacity.
+    Mask(Mask),
 }
 
 macro_rules! dispatch {
@@ -69,6 +77,8 @@ macro_rules! dispatch {
             AnyBsdf::ThinDielectric($b) => $e,
             AnyBsdf::Plastic($b) => $e,
             AnyBsdf::RoughPlastic($b) => $e,
+            AnyBsdf::Blend($b) => $e,
+            AnyBsdf::Mask($b) => $e,
         }
     };
 }
@@ -270,6 +280,19 @@ impl AnyBsdf {
                 int_ior / ext_ior,
                 *nonlinear,
             )?),
+            BsdfDesc::Blend {
+                weight,
+                first,
+                second,
+            } => AnyBsdf::Blend(Blend {
+                weight: *weight,
+                first: Box::new(Self::from_desc(first)?),
+                second: Box::new(Self::from_desc(second)?),
+            }),
+            BsdfDesc::Mask { opacity, inner } => AnyBsdf::Mask(Mask {
+                opacity: *opacity,
+                inner: Box::new(Self::from_desc(inner)?),
+            }),
         };
         Ok(Sided {
             bsdf,

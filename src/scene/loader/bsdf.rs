@@ -40,12 +40,60 @@ fn resolve<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<&'a Elem> {
     }
 }
 
+/// Deepest nesting of BSDFs inside `blendbsdf`, `mask` and `twosided` (through `ref`s too,
+/// so a cycle of references is an error, not endless recursion).
+const MAX_NESTING: u32 = 16;
+
 /// Reads a `<bsdf>` element.
 pub(crate) fn read_bsdf(ctx: &Ctx, e: &Elem) -> Res<BsdfDesc> {
+    read_nested(ctx, e, 0)
+}
+
+/// Reads a `<bsdf>` element nested `depth` levels deep in other BSDFs.
+fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
+    if depth > MAX_NESTING {
+        return Err(ctx.err(
+            e,
+            SceneErrorKind::InvalidValue(format!(
+                "BSDFs nest more than {MAX_NESTING} deep (a cycle of references?)"
+            )),
+        ));
+    }
     let ty = plugin_type(ctx, e)?;
     let mut p = Props::new(ctx, e)?;
-    if ty == "twosided" {
-        return twosided(ctx, e, p);
+    match ty {
+        "twosided" => return twosided(ctx, e, p, depth),
+        "blendbsdf" => {
+            let weight = p.float("weight")?.ok_or_else(|| {
+                ctx.err(
+                    e,
+                    SceneErrorKind::InvalidValue("blendbsdf needs a \"weight\"".into()),
+                )
+            })?;
+            let [first, second] = nested::<2>(ctx, e, p, depth)?;
+            return checked(
+                ctx,
+                e,
+                BsdfDesc::Blend {
+                    weight,
+                    first: Box::new(first),
+                    second: Box::new(second),
+                },
+            );
+        }
+        "mask" => {
+            let opacity = p.float("opacity")?.unwrap_or(0.5);
+            let [inner] = nested::<1>(ctx, e, p, depth)?;
+            return checked(
+                ctx,
+                e,
+                BsdfDesc::Mask {
+                    opacity,
+                    inner: Box::new(inner),
+                },
+            );
+        }
+        _ => {}
     }
     no_objects(ctx, &p)?;
     let one = Vec3::ONE;
@@ -115,33 +163,76 @@ pub(crate) fn read_bsdf(ctx: &Ctx, e: &Elem) -> Res<BsdfDesc> {
     Ok(desc)
 }
 
-/// `twosided`: exactly one nested BSDF, which must not itself be two-sided.
-fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>) -> Res<BsdfDesc> {
-    let nested: Vec<&Elem> = p.objects.clone();
+/// A blend or mask checked by [`validate::bsdf`], the error at the element.
+fn checked(ctx: &Ctx, e: &Elem, desc: BsdfDesc) -> Res<BsdfDesc> {
+    validate::bsdf(&desc).map_err(|i| ctx.err(e, SceneErrorKind::InvalidValue(i.to_string())))?;
+    Ok(desc)
+}
+
+/// Exactly `N` nested `<bsdf>` or `<ref>` elements of a plugin with parameters `p` (whose
+/// other parameters must all have been read), read in file order.
+fn nested<'a, const N: usize>(
+    ctx: &Ctx<'a>,
+    e: &'a Elem,
+    p: Props<'_, 'a>,
+    depth: u32,
+) -> Res<[BsdfDesc; N]> {
+    let objects: Vec<&Elem> = p.objects.clone();
     p.finish()?;
-    let [inner] = nested.as_slice() else {
+    let ty = e.attr("type").unwrap_or("");
+    if objects.len() != N {
         return Err(ctx.err(
             e,
             SceneErrorKind::Unsupported(format!(
-                "twosided needs exactly one nested BSDF, found {}",
-                nested.len()
+                "{ty} needs exactly {} nested BSDF{}, found {}",
+                ["no", "one", "two"].get(N).copied().unwrap_or("more"),
+                if N == 1 { "" } else { "s" },
+                objects.len()
             )),
         ));
-    };
-    if inner.tag != "bsdf" && inner.tag != "ref" {
+    }
+    let mut out = Vec::with_capacity(N);
+    for inner in objects {
+        if inner.tag != "bsdf" && inner.tag != "ref" {
+            return Err(ctx.err(
+                inner,
+                SceneErrorKind::Misplaced(format!("<{}> inside a {ty} BSDF", inner.tag)),
+            ));
+        }
+        out.push(read_nested(ctx, resolve(ctx, inner)?, depth + 1)?);
+    }
+    out.try_into().map_err(|_| {
+        ctx.err(
+            e,
+            SceneErrorKind::Unsupported(format!("{ty} needs exactly {N} nested BSDFs")),
+        )
+    })
+}
+
+/// `twosided`: exactly one nested BSDF, which must not itself be two-sided nor let light
+/// through (Mitsuba 3 refuses both).
+fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>, depth: u32) -> Res<BsdfDesc> {
+    if let Some(inner) = p.objects.iter().find(|o| o.tag == "bsdf" || o.tag == "ref") {
+        let target = resolve(ctx, inner)?;
+        if target.attr("type") == Some("twosided") {
+            return Err(ctx.err(
+                inner,
+                SceneErrorKind::InvalidValue("a twosided BSDF cannot nest another".into()),
+            ));
+        }
+    }
+    let [inner] = nested::<1>(ctx, e, p, depth)?;
+    if inner.transmits() {
         return Err(ctx.err(
-            inner,
-            SceneErrorKind::Misplaced(format!("<{}> inside a twosided BSDF", inner.tag)),
+            e,
+            SceneErrorKind::InvalidValue(
+                "twosided cannot nest a material that lets light through (dielectric, \
+                 roughdielectric, thindielectric, mask, or a blend with one), as in Mitsuba 3"
+                    .into(),
+            ),
         ));
     }
-    let target = resolve(ctx, inner)?;
-    if target.attr("type") == Some("twosided") {
-        return Err(ctx.err(
-            inner,
-            SceneErrorKind::InvalidValue("a twosided BSDF cannot nest another".into()),
-        ));
-    }
-    Ok(BsdfDesc::TwoSided(Box::new(read_bsdf(ctx, target)?)))
+    Ok(BsdfDesc::TwoSided(Box::new(inner)))
 }
 
 /// Mitsuba's default interior index of a dielectric, BK7 glass.

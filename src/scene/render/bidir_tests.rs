@@ -1,14 +1,16 @@
 //! The bidirectional estimators' multiple-importance weights on the built-in scene: for
-//! random paths of random scenes (diffuse, glass, mirror; area, point and environment
-//! lights), the weights of every strategy that can make a path sum to 1, and the weight the
-//! estimator computes from its own subpaths equals the one recomputed from scratch.
+//! random paths of random scenes (diffuse, glass, mirror; smooth plastic, rough glass and a
+//! mask, whose vertices may scatter by a Dirac part or by a density; area, point and
+//! environment lights), the weights of every strategy that can make a path sum to 1, and
+//! the weight the estimator computes from its own subpaths equals the one recomputed from
+//! scratch.
 
 use super::{RenderOptions, Renderer};
 use crate::integrator::bdpt::{camera_subpath, connect, light_subpath, mis_weight, Heuristic};
 use crate::integrator::bdpt::{Kind, Vertex, WalkLimits};
 use crate::integrator::{EmitterKind, SampleSource};
 use crate::scene::description::{
-    BsdfDesc, ConductorFresnel, EmitterDesc, SceneDescription, ShapeDesc, ShapeKind,
+    BsdfDesc, ConductorFresnel, EmitterDesc, MicrofacetKind, SceneDescription, ShapeDesc, ShapeKind,
 };
 use glam::{Vec2, Vec3};
 use rand_core::{RngCore, SeedableRng};
@@ -49,13 +51,63 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
     mixed.emitters.push(EmitterDesc::Constant {
         radiance: Vec3::splat(0.2),
     });
-    vec![("cornell", cornell), ("caustic", caustic), ("mixed", mixed)]
+    let mut materials = cornell.clone();
+    let sphere = |x: f32, bsdf: BsdfDesc| {
+        let mut s = ShapeDesc::new(ShapeKind::Sphere {
+            center: Vec3::new(x, -0.7, 0.1),
+            radius: 0.25,
+        });
+        s.bsdf = bsdf;
+        s
+    };
+    materials.shapes.push(sphere(
+        -0.5,
+        BsdfDesc::Plastic {
+            int_ior: 1.49,
+            ext_ior: 1.0,
+            diffuse_reflectance: Vec3::new(0.8, 0.4, 0.1),
+            specular_reflectance: Vec3::ONE,
+            nonlinear: false,
+        },
+    ));
+    materials.shapes.push(sphere(
+        0.0,
+        BsdfDesc::RoughDielectric {
+            distribution: MicrofacetKind::Ggx,
+            alpha: 0.3,
+            int_ior: 1.5,
+            ext_ior: 1.0,
+            specular_reflectance: Vec3::ONE,
+            specular_transmittance: Vec3::ONE,
+        },
+    ));
+    materials.shapes.push(sphere(
+        0.5,
+        BsdfDesc::Mask {
+            opacity: 0.5,
+            inner: Box::new(BsdfDesc::TwoSided(Box::new(BsdfDesc::Diffuse {
+                reflectance: Vec3::splat(0.6),
+            }))),
+        },
+    ));
+    vec![
+        ("cornell", cornell),
+        ("caustic", caustic),
+        ("mixed", mixed),
+        ("materials", materials),
+    ]
 }
 
-/// The full path `light[..s] + camera[..t]` reversed, light end first.
+/// The full path `light[..s] + camera[..t]` reversed, light end first. The connection's
+/// endpoints scatter along the connection, not by the Dirac part their own walk may have
+/// gone on by: in this path they are not delta.
 fn full_path(light: &[Vertex], camera: &[Vertex], s: usize, t: usize) -> Vec<Vertex> {
     let mut p: Vec<Vertex> = light[..s].to_vec();
     p.extend(camera[..t].iter().rev());
+    if s > 0 {
+        p[s - 1] = p[s - 1].as_endpoint();
+    }
+    p[s] = p[s].as_endpoint();
     p
 }
 
@@ -87,11 +139,14 @@ fn resplit<S: crate::integrator::BidirectionalScene>(
     if q[0].kind == Kind::Surface {
         q[0].kind = Kind::Light(EmitterKind::Area);
     }
-    // Densities from the light side (pdf_fwd of light vertices).
+    // Densities from the light side (pdf_fwd of light vertices); a direction a vertex
+    // scattered into by a Dirac part has no density (the estimators store 0, whatever
+    // density the BSDF's other parts give that direction).
     let from_light: Vec<f32> = (0..n)
         .map(|i| match i {
             0 => q[0].pdf_light_origin(scene, &q[1]),
             1 => q[0].pdf_light(scene, &q[1]),
+            _ if q[i - 1].delta => 0.0,
             _ => q[i - 1].pdf(scene, Some(&q[i - 2]), &q[i]),
         })
         .collect();
@@ -102,6 +157,8 @@ fn resplit<S: crate::integrator::BidirectionalScene>(
                 1.0
             } else if i == n - 2 {
                 q[n - 1].pdf(scene, None, &q[n - 2])
+            } else if q[i + 1].delta {
+                0.0
             } else {
                 q[i + 1].pdf(scene, Some(&q[i + 2]), &q[i])
             }
