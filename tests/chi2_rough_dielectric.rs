@@ -25,7 +25,10 @@ fn wo_at(deg: f32) -> Vec3 {
 
 fn check(name: &str, b: &RoughDielectric, wo: Vec3) {
     let out = chi2(sphere(), name).run_weighted(
-        |u| b.sample(wo, third_value(u), u).map(|s| (s.wi, s.weight.max_element())),
+        |u| {
+            b.sample(wo, third_value(u), u)
+                .map(|s| (s.wi, s.weight.max_element()))
+        },
         |wi| b.pdf(wo, wi),
     );
     assert!(out.passed(), "{}", out.report());
@@ -74,5 +77,9 @@ fn rough_dielectric_from_inside() {
 
 #[test]
 fn narrow_rough_dielectric() {
-    check("roughdielectric-ggx-0.1-out-30", &glass(true, 0.1), wo_at(30.0));
+    check(
+        "roughdielectric-ggx-0.1-out-30",
+        &glass(true, 0.1),
+        wo_at(30.0),
+    );
 }

@@ -6,7 +6,12 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 use std::path::Path;
 
-const SCENES: [&str; 2] = ["tests/data/cornell-box.xml", "tests/data/veach-mis.xml"];
+const SCENES: [&str; 4] = [
+    "tests/data/cornell-box.xml",
+    "tests/data/veach-mis.xml",
+    "tests/data/cornell-box-plastic.xml",
+    "tests/data/cornell-box-blend-mask.xml",
+];
 
 /// One edit of the text.
 #[derive(Debug, Clone)]

@@ -1,8 +1,14 @@
 //! The renderer against Mitsuba 3's references (`tests/data/*.exr`, 16384 or 4096 spp, box
 //! filter) on the same scene files, at full resolution and low spp (64 for the Cornell box,
-//! 32 otherwise) so that it fits CI (about 15 s of CPU).
+//! 128 for the 128×128 material scenes, 32 otherwise) so that it fits CI (about 30 s of
+//! CPU).
+//! The material scenes are the Cornell box with Mitsuba 3's other BSDFs: rough and thin
+//! glass (`cornell-box-glass.xml`), smooth and rough plastic (`cornell-box-plastic.xml`),
+//! named conductors (`cornell-box-metals.xml`), and a blend and a mask
+//! (`cornell-box-blend-mask.xml`).
 //!
-//! For each scene: no NaN or infinite pixel; a z-test on 16×16 block means (blocks brighter
+//! For each scene: no NaN or infinite pixel; a z-test on 16×16 block means (for the
+//! material scenes 32×32, each allowed 1% beyond the noise: see `check_material_scene`; blocks brighter
 //! than 5% of the image mean) with the render's own per-pixel variance plus the reference's
 //! (lights are sampled as Mitsuba does, so that is ours × spp / reference spp),
 //! Šidák-corrected over blocks and channels to a family-wise α = 0.01; and a bias bound on the image mean: within
@@ -52,7 +58,78 @@ fn reference_spp(reference: &str) -> u32 {
     }
 }
 
-fn run(scene: &str, defines: &[(&str, &str)], reference: &str, spp: u32, block: u32) -> Outcome {
+/// How blocks are compared: their size, the fewest bright blocks the image must have, and
+/// the bias each block may show beyond the noise, relative to the reference.
+#[derive(Clone, Copy)]
+struct Blocks {
+    size: u32,
+    min_count: usize,
+    allowance: f64,
+}
+
+/// The largest `(|mean − ref| − allowance·ref) / σ` over bright blocks and channels (the
+/// blocks and σ of `compare_blocks`).
+#[allow(clippy::too_many_arguments)]
+fn worst_z_beyond(
+    img: &[Vec3],
+    var: &[Vec3],
+    reference: &[Vec3],
+    ref_var: &[Vec3],
+    w: u32,
+    h: u32,
+    b: u32,
+    allowance: f64,
+) -> f64 {
+    let n = img.len() as f64;
+    let ref_mean = reference
+        .iter()
+        .map(|v| v.element_sum() as f64)
+        .sum::<f64>()
+        / (3.0 * n);
+    let mut worst = 0.0f64;
+    for by in 0..h / b {
+        for bx in 0..w / b {
+            let (mut m, mut r, mut v) = ([0.0f64; 3], [0.0f64; 3], [0.0f64; 3]);
+            for y in by * b..(by + 1) * b {
+                for x in bx * b..(bx + 1) * b {
+                    let i = (y * w + x) as usize;
+                    for c in 0..3 {
+                        m[c] += f64::from(img[i][c]);
+                        r[c] += f64::from(reference[i][c]);
+                        v[c] += f64::from(var[i][c] + ref_var[i][c]);
+                    }
+                }
+            }
+            let k = f64::from(b * b);
+            if r.iter().sum::<f64>() / (3.0 * k) <= 0.05 * ref_mean {
+                continue;
+            }
+            for c in 0..3 {
+                let dev = ((m[c] - r[c]).abs() - allowance * r[c].abs()).max(0.0) / k;
+                let z = dev / (v[c] / (k * k)).sqrt();
+                worst = if z.is_nan() {
+                    f64::INFINITY
+                } else {
+                    worst.max(z)
+                };
+            }
+        }
+    }
+    worst
+}
+
+fn run(
+    scene: &str,
+    defines: &[(&str, &str)],
+    reference: &str,
+    spp: u32,
+    blocks: Blocks,
+) -> Outcome {
+    let Blocks {
+        size: block,
+        min_count: min_blocks,
+        allowance,
+    } = blocks;
     let desc = load(scene, defines);
     // Lights sampled as Mitsuba samples them (rectangles by area, spheres by cone), so the
     // reference's own variance is ours scaled by spp / reference spp. (Solid-angle sampling
@@ -77,13 +154,22 @@ fn run(scene: &str, defines: &[(&str, &str)], reference: &str, spp: u32, block: 
     let ref_var: Vec<Vec3> = var.iter().map(|v| *v * scale).collect();
     let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, block, 0.05, 0.01);
     assert_eq!(r.non_finite, 0, "{scene}: NaN or infinite pixels");
-    assert!(r.blocks > 20, "{scene}: only {} blocks compared", r.blocks);
+    assert!(
+        r.blocks >= min_blocks,
+        "{scene}: only {} blocks compared",
+        r.blocks
+    );
+    let worst_z = if allowance > 0.0 {
+        worst_z_beyond(&img, &var, &rf, &ref_var, w, h, block, allowance)
+    } else {
+        r.worst_z
+    };
     let n = img.len() as f32;
     let ref_mean = rf.iter().copied().sum::<Vec3>() / n;
     let var_mean = var.iter().copied().sum::<Vec3>() / (n * n);
     let se = Vec3::new(var_mean.x.sqrt(), var_mean.y.sqrt(), var_mean.z.sqrt()) / ref_mean;
     Outcome {
-        worst_z: r.worst_z,
+        worst_z,
         z_critical: r.z_critical,
         worst_block: r.worst_relative,
         mean_ratio: r.mean_ratio,
@@ -92,9 +178,37 @@ fn run(scene: &str, defines: &[(&str, &str)], reference: &str, spp: u32, block: 
 }
 
 fn check_low_spp(scene: &str, defines: &[(&str, &str)], reference: &str, spp: u32) {
-    let o = run(scene, defines, reference, spp, 16);
+    let blocks = Blocks {
+        size: 16,
+        min_count: 21,
+        allowance: 0.0,
+    };
+    check_blocks(scene, defines, reference, spp, blocks);
+}
+
+/// The block test for the 128×128 material scenes, whose specular parts cast caustics that
+/// a path tracer finds only by BSDF sampling: their rare, bright samples skew block means
+/// at test sample counts (below the mean, mostly, with a variance estimate too small), so
+/// that a pure z-test fails for many seeds even on 32×32 blocks at 256 spp. So 32×32 blocks
+/// at 128 spp, each allowed 1% beyond the noise, as the bidirectional tests allow
+/// (`tests/bidirectional.rs`): a bias above about 3% of a block still fails (σ of a block
+/// is about 0.4%), and `tests/bsdf_mitsuba_values.rs` checks the materials themselves to
+/// 10⁻³. (Over seeds 1, 2, 3 and 2024, the worst block is then at most 1.5 σ beyond the
+/// allowance.)
+fn check_material_scene(scene: &str, reference: &str) {
+    let blocks = Blocks {
+        size: 32,
+        min_count: 12,
+        allowance: 0.01,
+    };
+    check_blocks(scene, &[], reference, 128, blocks);
+}
+
+fn check_blocks(scene: &str, defines: &[(&str, &str)], reference: &str, spp: u32, blocks: Blocks) {
+    let o = run(scene, defines, reference, spp, blocks);
+    let block = blocks.size;
     println!(
-        "{scene} {defines:?}: worst |z| {:.2} (critical {:.2}), worst 16×16 block {:.1}%, mean ratio {}",
+        "{scene} {defines:?}: worst |z| {:.2} (critical {:.2}), worst {block}×{block} block {:.1}%, mean ratio {}",
         o.worst_z,
         o.z_critical,
         100.0 * o.worst_block,
@@ -135,4 +249,24 @@ fn cornell_box_direct_matches_mitsuba() {
 #[test]
 fn veach_mis_matches_mitsuba() {
     check_low_spp("veach-mis.xml", &[], "veach-mis.exr", 32);
+}
+
+#[test]
+fn rough_and_thin_glass_match_mitsuba() {
+    check_material_scene("cornell-box-glass.xml", "cornell-box-glass.exr");
+}
+
+#[test]
+fn smooth_and_rough_plastic_match_mitsuba() {
+    check_material_scene("cornell-box-plastic.xml", "cornell-box-plastic.exr");
+}
+
+#[test]
+fn named_conductors_match_mitsuba() {
+    check_material_scene("cornell-box-metals.xml", "cornell-box-metals.exr");
+}
+
+#[test]
+fn blend_and_mask_match_mitsuba() {
+    check_material_scene("cornell-box-blend-mask.xml", "cornell-box-blend-mask.exr");
 }

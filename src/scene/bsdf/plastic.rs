@@ -47,16 +47,19 @@ pub(super) fn coated_albedo(rho: Vec3, internal_reflectance: f32, nonlinear: boo
 }
 
 /// A Lambertian base of albedo ρ under a smooth dielectric of relative index η (Weidlich and
-/// Wilkie 2007, "Arbitrarily Layered Micro-Facet Surfaces", GRAPHITE, with the internal
-/// scattering of Kelemen and Szirmay-Kalos 2001 as in Mitsuba 3):
+/// Wilkie 2007, "Arbitrarily Layered Micro-Facet Surfaces", GRAPHITE, with the bounces
+/// between base and coating summed as Mitsuba 3 sums them):
 ///
 /// - a Dirac reflection of weight `F(θ_o)` times `specular_reflectance`;
-/// - a diffuse part `(1 − F(θ_o)) (1 − F(θ_i)) ρ' / (π η²)` with ρ' the albedo of
-///   [`coated_albedo`]: light refracts in, scatters at the base, and refracts out, its
-///   radiance scaled by 1/η² on the way.
+/// - a diffuse part `(1 − F(θ_o)) (1 − F(θ_i)) ρ' / (π η²)`: light refracts in, scatters
+///   at the base, and refracts out, its radiance scaled by 1/η² on the way. The coating
+///   sends back the fraction `F_dr` of the light leaving the base (the hemispherical
+///   Fresnel reflectance from inside), and the bounces sum to `ρ' = ρ / (1 − ρ F_dr)`
+///   (`nonlinear`) or, Mitsuba's default, `ρ' = ρ / (1 − F_dr)`.
 ///
-/// Sampling picks the reflection with [`specular_probability`] of `F(θ_o)`, else draws a
-/// cosine-weighted direction. One-sided: black from below. Derivations:
+/// Sampling picks the reflection with Mitsuba's probability `F s / (F s + (1 − F)(1 − s))`,
+/// `F = F(θ_o)` and `s` the mean specular reflectance over the sum of the mean specular and
+/// diffuse ones, else draws a cosine-weighted direction. One-sided: black from below. Derivations:
 /// `docs/bsdf-models.md`, "Plastic".
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Plastic {

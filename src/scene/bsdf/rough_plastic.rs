@@ -20,14 +20,14 @@ const TABLE: usize = 64;
 ///   times `specular_reflectance`;
 /// - a diffuse part `T(θ_o) T(θ_i) ρ' / (π η²)`, with `T(θ)` the fraction of light from
 ///   direction θ that the rough interface transmits (tabulated at 64 cosines and
-///   interpolated linearly) and ρ' the albedo after internal scattering
-///   ([`coated_albedo`](super::plastic) with the interface's hemispherical reflectance seen
-///   from inside).
+///   interpolated linearly) and ρ' the albedo after internal scattering, as for
+///   [`Plastic`](super::Plastic) but with the rough interface's hemispherical reflectance
+///   seen from inside.
 ///
 /// Both tables are integrals over the visible normals (Heitz 2018, JCGT 7(4)) of Fresnel
 /// times Smith masking of the outgoing direction, by a composite Gauss–Legendre rule in
 /// the warp's unit square. Sampling picks the specular lobe (visible normals) with
-/// [`specular_probability`](super::plastic) of `1 − T(θ_o)`, else a cosine-weighted
+/// [`Plastic`](super::Plastic)'s specular probability of `1 − T(θ_o)`, else a cosine-weighted
 /// direction; the weight is the whole `f cos θ_i / pdf` of the mixture. One-sided.
 /// Derivations: `docs/bsdf-models.md`, "Rough plastic".
 #[derive(Debug, Clone, PartialEq)]
