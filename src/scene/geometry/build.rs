@@ -1,7 +1,7 @@
 //! Turning [`ShapeDesc`]s into world-space primitives and per-shape data.
 
 use super::error::GeometryError;
-use super::intersect::TriSoa;
+use super::query::TriSoa;
 use crate::sampling::distribution::AliasTable;
 use crate::sampling::warp::RectangleFrame;
 use crate::scene::description::{ShapeDesc, ShapeKind};
