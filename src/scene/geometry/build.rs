@@ -2,8 +2,8 @@
 
 use super::error::GeometryError;
 use super::query::TriSoa;
+use super::sample::{front_normal, RectangleSampler};
 use crate::sampling::distribution::AliasTable;
-use crate::sampling::warp::RectangleFrame;
 use crate::scene::description::{ShapeDesc, ShapeKind};
 use crate::scene::obj::read_obj;
 use glam::{Affine3A, Mat3, Vec3};
@@ -40,11 +40,8 @@ pub(crate) struct MeshData {
     pub(crate) pick: Option<AliasTable>,
     /// Total area.
     pub(crate) area: f32,
-    /// A rectangle's corner and edges (world space), for spherical-rectangle sampling.
-    pub(crate) parallelogram: Option<[Vec3; 3]>,
-    /// The same rectangle prepared for spherical-rectangle sampling (`None` when the warp
-    /// rejects it, e.g. zero area).
-    pub(crate) rect_frame: Option<Box<RectangleFrame>>,
+    /// A `rectangle` shape's sampler (it is sampled as a whole, not by triangles).
+    pub(crate) rectangle: Option<RectangleSampler>,
 }
 
 /// A world-space disk.
@@ -148,8 +145,8 @@ fn shape_data(
                 mirrored,
             )?;
             let (corner, ex, ey) = (p[0], p[1] - p[0], p[3] - p[0]);
-            mesh.parallelogram = Some([corner, ex, ey]);
-            mesh.rect_frame = RectangleFrame::new(corner, ex, ey).ok().map(Box::new);
+            let n = front_normal(&mesh, mesh.indices[0].map(|v| mesh.positions[v as usize]));
+            mesh.rectangle = Some(RectangleSampler::new([corner, ex, ey], n, mesh.area));
             ShapeData::Mesh(mesh)
         }
         ShapeKind::Cube => {
@@ -250,8 +247,7 @@ pub(crate) fn mesh(
         flip,
         pick: AliasTable::new(&areas).ok(),
         area: areas.iter().map(|&a| f64::from(a)).sum::<f64>() as f32,
-        parallelogram: None,
-        rect_frame: None,
+        rectangle: None,
     })
 }
 

@@ -54,6 +54,7 @@ mod sample;
 pub use crate::scene::accel::AccelKind;
 pub use error::GeometryError;
 pub use offset::{offset_origin, spawn_ray, spawn_ray_to};
+pub(crate) use sample::RectangleSampler;
 pub use sample::ShapeSampling;
 
 use crate::scene::accel::Aabb;

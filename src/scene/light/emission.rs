@@ -11,7 +11,7 @@
 use super::{Light, Lights};
 use crate::integrator::{is_positive, EmissionSample, EmitterKind, SurfacePoint};
 use crate::sampling::warp::{CosineHemisphere, UniformDiskConcentric, UniformSphere, Warp};
-use crate::scene::render::geo::Geometry;
+use crate::scene::geometry::Geometry;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 

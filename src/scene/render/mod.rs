@@ -32,13 +32,7 @@ mod view;
 pub use effects::Effects;
 pub use view::SceneView;
 
-/// The geometry and camera the renderer uses (one place to switch implementations).
-pub(crate) mod geo {
-    pub use crate::scene::camera::Camera;
-    pub use crate::scene::geometry::*;
-}
-
-pub use geo::{AccelKind, ShapeSampling};
+pub use crate::scene::geometry::{AccelKind, ShapeSampling};
 
 use crate::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
 use crate::sampling::sampler::{
@@ -47,12 +41,13 @@ use crate::sampling::sampler::{
 };
 use crate::sampling::SamplingError;
 use crate::scene::bsdf::{AnyBsdf, Sided};
+use crate::scene::camera::Camera;
 use crate::scene::description::{
     IntegratorDesc, IntegratorKind, SamplerKind, SceneDescription, ShapeKind,
 };
 use crate::scene::film::{write_exr, write_png, Film, ImageError, PixelFilter};
+use crate::scene::geometry::Geometry;
 use crate::scene::light::Lights;
-use geo::{Camera, Geometry};
 use glam::{Vec3, Vec4Swizzles};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;

@@ -3,9 +3,9 @@
 //! The cancel flag is read before every pixel sample, so cancelling takes effect within
 //! one pixel sample (bounded by the loader's limits on per-sample work).
 
-use super::geo::Camera;
 use crate::integrator::{Integrator, Scene};
 use crate::sampling::sampler::{AnySampler, Sampler};
+use crate::scene::camera::Camera;
 use crate::scene::film::{Film, PixelAccum, PixelFilter};
 use glam::Vec2;
 use rayon::prelude::*;

@@ -2,8 +2,9 @@
 //! [`crate::integrator::Scene`], specialised at compile time on the material type and on
 //! whether the scene has delta lights and an environment.
 
-use super::geo::{offset_origin, Geometry, Hit, Ray};
 use crate::integrator::{Bsdf, Frame, LightSample, Scene, SurfacePoint};
+use crate::scene::camera::Camera;
+use crate::scene::geometry::{offset_origin, Geometry, Hit, Ray};
 use crate::scene::light::Lights;
 use glam::{Vec2, Vec3};
 
@@ -18,7 +19,7 @@ pub struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
     pub(crate) bsdfs: Vec<B>,
     pub(crate) lights: &'a Lights,
     /// The camera, for the bidirectional estimators' camera endpoint.
-    pub(crate) camera: &'a super::geo::Camera,
+    pub(crate) camera: &'a Camera,
     /// The scene's bounding sphere (centre, radius): where lights at infinity emit from.
     pub(crate) world: (Vec3, f32),
     /// The pixel filter, by which the camera places its film samples.

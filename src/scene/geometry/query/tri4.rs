@@ -179,8 +179,8 @@ fn edges_f64(e: &mut [Vec4; 3], lanes: u32, x: [Vec4; 3], y: [Vec4; 3]) {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use super::super::scalar::{TriRay, TriSoa};
+    use super::*;
 
     /// The one-triangle test on each lane's triangle against the same bound; the nearest
     /// hit wins, the lowest lane on a tie. (A scalar loop that lowers the bound after each
