@@ -41,7 +41,7 @@ impl Lights {
                 }
                 EmitterDesc::Constant { radiance } => {
                     if env.is_some() {
-                        return Err(LightError("more than one environment emitter".into()));
+                        return Err(LightError::SeveralEnvironments);
                     }
                     env = Some(lights.len() as u32);
                     power.push(4.0 * PI * PI * radius * radius * mean(*radiance).max(0.0));
@@ -55,10 +55,14 @@ impl Lights {
                     to_world,
                 } => {
                     if env.is_some() {
-                        return Err(LightError("more than one environment emitter".into()));
+                        return Err(LightError::SeveralEnvironments);
                     }
-                    let map = EnvMap::load(filename, *scale, *to_world)
-                        .map_err(|e| LightError(format!("{}: {e}", filename.display())))?;
+                    let map = EnvMap::load(filename, *scale, *to_world).map_err(|reason| {
+                        LightError::EnvMap {
+                            path: filename.clone(),
+                            reason,
+                        }
+                    })?;
                     env = Some(lights.len() as u32);
                     power.push(PI * radius * radius * map.integral());
                     lights.push(Light::EnvMap(Box::new(map)));

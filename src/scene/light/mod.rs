@@ -7,12 +7,14 @@ mod build;
 mod choice;
 mod emission;
 mod envmap;
+mod error;
 #[cfg(test)]
 mod tests;
 
 use choice::LightChoice;
 
 pub use envmap::EnvMap;
+pub use error::LightError;
 
 use crate::integrator::{is_positive, LightSample, SurfacePoint};
 use crate::sampling::warp::{UniformSphere, Warp};
@@ -45,18 +47,6 @@ pub enum Light {
     /// An environment map.
     EnvMap(Box<EnvMap>),
 }
-
-/// Why the lights of a scene could not be set up.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct LightError(pub String);
-
-impl std::fmt::Display for LightError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "light setup: {}", self.0)
-    }
-}
-
-impl std::error::Error for LightError {}
 
 /// All lights of a scene with the distribution that chooses among them.
 #[derive(Debug, Clone)]

@@ -25,12 +25,14 @@ mod bidir;
 mod bidir_tests;
 mod bidir_view;
 mod effects;
+mod error;
 mod mlt_loop;
 mod tiles;
 mod view;
 
 pub use effects::Effects;
-pub use view::SceneView;
+pub use error::RenderError;
+pub(crate) use view::SceneView;
 
 pub use crate::scene::geometry::{AccelKind, ShapeSampling};
 
@@ -52,18 +54,6 @@ use glam::{Vec3, Vec4Swizzles};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
-
-/// A scene could not be prepared for rendering.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct RenderError(pub String);
-
-impl std::fmt::Display for RenderError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for RenderError {}
 
 /// Overrides of what the scene file says.
 #[derive(Debug, Clone, PartialEq)]
@@ -116,7 +106,7 @@ impl Default for RenderOptions {
 
 /// A scene ready to render.
 pub struct Renderer {
-    geo: Geometry,
+    geometry: Geometry,
     lights: Lights,
     bsdfs: Vec<Sided<AnyBsdf>>,
     camera: Camera,
@@ -196,7 +186,7 @@ impl Renderer {
     /// refuses (with `opts.spp` in place of the file's sample count, if given).
     pub fn new(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {
         let spp = opts.spp.unwrap_or(desc.sensor.sampler.sample_count);
-        crate::scene::validate::scene(desc, spp).map_err(RenderError)?;
+        crate::scene::validate::scene(desc, spp).map_err(RenderError::Invalid)?;
         let base: Option<PathBuf> = desc
             .source
             .as_ref()
@@ -210,18 +200,20 @@ impl Renderer {
             _ => opts.light_sampling,
         };
         let geo = Geometry::new(&desc.shapes, base.as_deref(), opts.accel)
-            .map_err(|e| RenderError(format!("geometry: {e}")))?
+            .map_err(RenderError::Geometry)?
             .with_shape_sampling(shape_sampling);
-        let lights =
-            Lights::new(desc, &geo, scene_radius(desc)).map_err(|e| RenderError(e.to_string()))?;
-        let camera = Camera::new(&desc.sensor).map_err(|e| RenderError(format!("camera: {e}")))?;
+        let lights = Lights::new(desc, &geo, scene_radius(desc)).map_err(RenderError::Lights)?;
+        let camera = Camera::new(&desc.sensor).map_err(RenderError::Camera)?;
         let bsdfs = desc
             .shapes
             .iter()
             .enumerate()
             .map(|(i, s)| {
-                AnyBsdf::from_desc(&s.bsdf)
-                    .map_err(|e| RenderError(format!("material of shape {i} ({:?}): {e}", s.id)))
+                AnyBsdf::from_desc(&s.bsdf).map_err(|error| RenderError::Material {
+                    shape: i,
+                    id: s.id.clone(),
+                    error,
+                })
             })
             .collect::<Result<Vec<_>, _>>()?;
         let strategy = opts.strategy.unwrap_or_default();
@@ -274,26 +266,27 @@ impl Renderer {
         };
         if matches!(integrator, Integrator::Bdpt(_) | Integrator::Mlt(_)) {
             if !camera.is_similarity() {
-                return Err(RenderError(format!(
-                    "{}: the camera's to_world must be a rotation, uniform scale and \
-                     translation (its importance is exact only then)",
-                    integrator.name()
-                )));
+                return Err(RenderError::Unsupported {
+                    integrator: integrator.name(),
+                    reason: "the camera's to_world must be a rotation, uniform scale and \
+                             translation (its importance is exact only then)",
+                });
             }
             if matches!(strategy, Strategy::BsdfOnly | Strategy::LightOnly)
                 && matches!(integrator, Integrator::Mlt(_))
             {
-                return Err(RenderError(
-                    "mlt weighs its strategies by MIS: use --strategy balance or power".into(),
-                ));
+                return Err(RenderError::Unsupported {
+                    integrator: "mlt",
+                    reason: "it weighs its strategies by MIS: use --strategy balance or power",
+                });
             }
         }
         let film = &desc.sensor.film;
         if film.width == 0 || film.height == 0 {
-            return Err(RenderError(format!(
-                "film size {}×{} is empty",
-                film.width, film.height
-            )));
+            return Err(RenderError::EmptyFilm {
+                width: film.width,
+                height: film.height,
+            });
         }
         let effects = Effects::of(&bsdfs, &lights, &integrator);
         let file_spp = match integrator {
@@ -303,10 +296,9 @@ impl Renderer {
         let spp = opts.spp.unwrap_or(file_spp);
         let seed = opts.seed.unwrap_or(desc.sensor.sampler.seed);
         let kind = opts.sampler.unwrap_or(desc.sensor.sampler.kind);
-        let sampler =
-            make_sampler(kind, spp, seed).map_err(|e| RenderError(format!("sampler: {e}")))?;
+        let sampler = make_sampler(kind, spp, seed).map_err(RenderError::Sampler)?;
         Ok(Self {
-            geo,
+            geometry: geo,
             lights,
             bsdfs,
             camera,
@@ -408,13 +400,13 @@ impl Renderer {
                     two_sided: b.two_sided,
                 })
                 .collect();
-            self.run_flags(bsdfs, p)
+            self.run_specialised(bsdfs, p)
         } else {
-            self.run_flags(self.bsdfs.clone(), p)
+            self.run_specialised(self.bsdfs.clone(), p)
         }
     }
 
-    fn run_flags<B: crate::integrator::Bsdf + Sync>(
+    fn run_specialised<B: crate::integrator::Bsdf + Sync>(
         &self,
         bsdfs: Vec<B>,
         p: &tiles::LoopParams<'_>,
@@ -433,11 +425,11 @@ impl Renderer {
         bsdfs: Vec<B>,
     ) -> SceneView<'_, B, DELTA, ENV> {
         SceneView {
-            geo: &self.geo,
+            geometry: &self.geometry,
             bsdfs,
             lights: &self.lights,
             camera: &self.camera,
-            world: self.geo.bounding_sphere(),
+            world: self.geometry.bounding_sphere(),
             filter: &self.filter,
         }
     }

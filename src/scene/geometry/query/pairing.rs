@@ -152,9 +152,9 @@ pub(crate) fn units(built: &Built) -> Vec<Unit> {
 
 /// Greedy pairing of the triangles `range` of one mesh through a sorted list of their edges
 /// (vertex positions' bits, each with its triangle): the triangles that share an edge are
-/// neighbours in the list, in input order. Sorting one flat list allocates once, where a map
-/// of edge to triangles allocated per edge (twice the BVH build time on a 100 000-triangle
-/// soup); each triangle finds its edges' places in the list by index, not by search.
+/// neighbours in the list, in input order. Sorting one flat list allocates once (a map of
+/// edge to triangles would allocate per edge); each triangle finds its edges' places in the
+/// list by index, not by search.
 fn pair_range(
     prims: &[Prim],
     range: std::ops::Range<usize>,
