@@ -187,7 +187,7 @@ impl Camera {
 /// on the plane one unit in front, `θ` the angle to the viewing axis; the importance that
 /// makes `∫ W L dω` the image's mean pixel value is the same function. Exact when
 /// `to_world` is a similarity (rotation, reflection, uniform scale, translation), which
-/// [`Camera::is_similarity`] tells.
+/// `Camera::is_similarity` tells.
 impl Camera {
     /// Unit direction the camera looks along.
     pub fn forward(&self) -> Vec3 {
@@ -195,7 +195,7 @@ impl Camera {
     }
 
     /// Whether `to_world`'s linear part preserves angles (orthogonal columns of one length).
-    pub fn is_similarity(&self) -> bool {
+    pub(crate) fn is_similarity(&self) -> bool {
         let m = self.to_world.matrix3;
         let (x, y, z) = (
             Vec3::from(m.x_axis),
@@ -243,7 +243,7 @@ impl Camera {
     /// The film position of the direction `dir` (anywhere on the image plane, inside the
     /// image or not) and `1/(A cos³θ)`, the density per steradian that a film position
     /// uniform over the image would give there; `None` behind the camera.
-    pub fn direction_density(&self, dir: Vec3) -> Option<(Vec2, f32)> {
+    pub(crate) fn direction_density(&self, dir: Vec3) -> Option<(Vec2, f32)> {
         let q = self.to_camera.transform_vector3(dir);
         let len = q.length();
         let r = self.raster_of_local(q)?;
@@ -262,7 +262,7 @@ impl Camera {
     }
 
     /// [`Camera::raster_of`] without the image's bounds (a pixel filter reaches past them).
-    pub fn raster_of_unbounded(&self, p: Vec3) -> Option<Vec2> {
+    pub(crate) fn raster_of_unbounded(&self, p: Vec3) -> Option<Vec2> {
         let q = self.to_camera.transform_point3(p);
         if !(q.z >= self.near && q.z <= self.far) {
             return None;

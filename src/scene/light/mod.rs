@@ -130,12 +130,12 @@ impl Lights {
     /// Whether [`Lights::sample`] reads its `u_pick` argument: there are several lights to
     /// choose from, or the light is a triangle mesh (a triangle to choose). With a single
     /// rectangle, sphere, disk, point or environment light it does not.
-    pub fn reads_pick(&self) -> bool {
+    pub(crate) fn reads_pick(&self) -> bool {
         self.reads_pick
     }
 
     /// Whether any light is a point light.
-    pub fn has_delta(&self) -> bool {
+    pub(crate) fn has_delta(&self) -> bool {
         self.has_delta
     }
 
@@ -146,7 +146,7 @@ impl Lights {
 
     /// Emitted radiance of shape `shape` if it is an area light.
     #[inline]
-    pub fn area_radiance(&self, shape: u32) -> Option<Vec3> {
+    pub(crate) fn area_radiance(&self, shape: u32) -> Option<Vec3> {
         *self.shape_radiance.get(shape as usize)?
     }
 
@@ -299,7 +299,7 @@ impl Lights {
     }
 
     /// The same for the environment along `dir`.
-    pub fn pdf_environment(&self, from: &SurfacePoint, dir: Vec3) -> f32 {
+    pub(crate) fn pdf_environment(&self, from: &SurfacePoint, dir: Vec3) -> f32 {
         match self.env {
             Some(i) => match &self.lights[i as usize] {
                 Light::EnvMap(m) => self.pmf(from.p, i) * m.pdf(dir),
