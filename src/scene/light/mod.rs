@@ -18,7 +18,7 @@ pub use error::LightError;
 
 use crate::integrator::{is_positive, LightSample, SurfacePoint};
 use crate::sampling::warp::{UniformSphere, Warp};
-use crate::scene::geometry::{Geometry, Hit, RectangleSampler, ShapeSample, ShapeSampling};
+use crate::scene::geometry::{Geometry, RectangleSampler, ShapeSample, ShapeSampling};
 use glam::{Vec2, Vec3};
 
 /// One light.
@@ -286,16 +286,7 @@ impl Lights {
         let Some(Some(i)) = self.shape_light.get(hit.shape as usize) else {
             return 0.0;
         };
-        let h = Hit {
-            t: hit.t,
-            p: hit.p,
-            ng: hit.ng,
-            ns: hit.frame.n,
-            uv: hit.uv,
-            shape: hit.shape,
-            prim: hit.prim,
-        };
-        geo.shape_pdf(hit.shape, from.p, &h) * self.pmf(from.p, *i)
+        geo.shape_pdf_at(hit.shape, from.p, (hit.p, hit.ng, hit.prim)) * self.pmf(from.p, *i)
     }
 
     /// The same for the environment along `dir`.

@@ -6,7 +6,7 @@
 use super::{area_to_solid_angle, ShapeSampling};
 use crate::sampling::warp::{SphericalTriangle, Warp};
 use crate::scene::geometry::build::MeshData;
-use crate::scene::geometry::{Hit, ShapeSample};
+use crate::scene::geometry::ShapeSample;
 use glam::{Vec2, Vec3};
 
 /// The spherical warp, if solid-angle sampling is asked for and the warp can be built.
@@ -79,11 +79,17 @@ pub(super) fn sample_area(m: &MeshData, u_pick: f32, u: Vec2) -> Option<(Vec3, V
     Some((uniform_point(tri, u), front_normal(m, tri)))
 }
 
-pub(super) fn pdf(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) -> Option<f32> {
+/// The density of [`sample`] at point `p` (front normal `ng`) of triangle `prim`.
+pub(super) fn pdf(
+    m: &MeshData,
+    how: ShapeSampling,
+    reference: Vec3,
+    (p, ng, prim): (Vec3, Vec3, u32),
+) -> Option<f32> {
     if let Some(r) = &m.rectangle {
-        return r.pdf(how, reference, hit.p);
+        return r.pdf(how, reference, p);
     }
-    let k = hit.prim as usize;
+    let k = prim as usize;
     if k >= m.indices.len() {
         return None;
     }
@@ -92,8 +98,8 @@ pub(super) fn pdf(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) 
     let pdf = match solid_angle(how, || {
         SphericalTriangle::new(reference, tri[0], tri[1], tri[2])
     }) {
-        Some(st) => st.pdf((hit.p - reference).normalize_or_zero()),
-        None => area_to_solid_angle(1.0 / triangle_area(tri), reference, hit.p, hit.ng)?,
+        Some(st) => st.pdf((p - reference).normalize_or_zero()),
+        None => area_to_solid_angle(1.0 / triangle_area(tri), reference, p, ng)?,
     };
     Some(pmf * pdf)
 }

@@ -184,12 +184,18 @@ impl Geometry {
         if hit.shape != shape {
             return 0.0;
         }
+        self.shape_pdf_at(shape, reference, (hit.p, hit.ng, hit.prim))
+    }
+
+    /// [`Geometry::shape_pdf`] at point `p` with front normal `ng` of primitive `prim` of
+    /// shape `shape` (what the estimators' surface points carry).
+    pub(crate) fn shape_pdf_at(&self, shape: u32, reference: Vec3, at: (Vec3, Vec3, u32)) -> f32 {
         let pdf = match self.shapes.get(shape as usize) {
-            Some(ShapeData::Mesh(m)) => mesh::pdf(m, self.shape_sampling, reference, hit),
+            Some(ShapeData::Mesh(m)) => mesh::pdf(m, self.shape_sampling, reference, at),
             Some(&ShapeData::Sphere { center, radius, .. }) => {
-                sphere::pdf(center, radius, reference, hit)
+                sphere::pdf(center, radius, reference, at.0)
             }
-            Some(ShapeData::Disk(d)) => area_to_solid_angle(1.0 / d.area, reference, hit.p, hit.ng),
+            Some(ShapeData::Disk(d)) => area_to_solid_angle(1.0 / d.area, reference, at.0, at.1),
             None => None,
         };
         pdf.unwrap_or(0.0)
