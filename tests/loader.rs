@@ -269,6 +269,7 @@ fn materials_emitters_and_integrators() {
     let ShapeKind::Obj {
         filename,
         face_normals,
+        ..
     } = &d.shapes[2].kind
     else {
         panic!()
@@ -300,6 +301,7 @@ fn obj_shapes_resolve_against_the_scene_folder_and_read() {
     let ShapeKind::Obj {
         filename,
         face_normals,
+        ..
     } = &d.shapes[0].kind
     else {
         panic!("{:?}", d.shapes[0].kind)

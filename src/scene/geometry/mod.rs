@@ -47,6 +47,7 @@
 
 mod build;
 mod error;
+mod file_mesh;
 mod intersect;
 mod leaves;
 mod offset;
@@ -54,6 +55,7 @@ mod packet;
 mod pair;
 mod quad;
 mod sample;
+mod vertex_attributes;
 
 pub use crate::scene::accel::AccelKind;
 pub use error::GeometryError;
