@@ -6,7 +6,12 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 use std::path::Path;
 
-const SCENES: [&str; 2] = ["tests/data/cornell-box.xml", "tests/data/veach-mis.xml"];
+const SCENES: [&str; 4] = [
+    "tests/data/cornell-box.xml",
+    "tests/data/veach-mis.xml",
+    "tests/data/meshes.xml",
+    "tests/data/tent-crop.xml",
+];
 
 /// One edit of the text.
 #[derive(Debug, Clone)]
@@ -147,7 +152,7 @@ proptest! {
 
     #[test]
     fn mutated_scenes_never_panic(
-        scene in 0..2usize,
+        scene in 0..SCENES.len(),
         mutations in prop::collection::vec(mutation(), 1..5),
     ) {
         check(scene, &mutations)?;

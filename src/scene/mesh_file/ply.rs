@@ -55,6 +55,19 @@ pub fn parse_ply(bytes: &[u8], path: Option<&Path>) -> Result<TriangleMesh, Scen
         .map_err(|e| fail(e.line(), Some("header".into()), e.to_string()))?;
     check_budget(&header, bytes.len()).map_err(|m| fail(None, Some("header".into()), m))?;
     let ascii = header.encoding == Encoding::Ascii;
+    // Layouts first, so that a wrong header is reported before any data is read.
+    let mut layout = VertexLayout {
+        normals: false,
+        uvs: false,
+    };
+    for (name, def) in &header.elements {
+        let at = || Some(format!("element \"{name}\""));
+        match name.as_str() {
+            "vertex" => layout = VertexLayout::of(def).map_err(|m| fail(None, at(), m))?,
+            "face" => face_layout(def).map_err(|m| fail(None, at(), m))?,
+            _ => {}
+        }
+    }
     let mut mesh = TriangleMesh::default();
     let (mut has_vertex, mut has_face) = (false, false);
     for (name, def) in &header.elements {
@@ -70,7 +83,6 @@ pub fn parse_ply(bytes: &[u8], path: Option<&Path>) -> Result<TriangleMesh, Scen
         match name.as_str() {
             "vertex" if !has_vertex => {
                 has_vertex = true;
-                let layout = VertexLayout::of(def).map_err(|m| fail(None, Some(place(None)), m))?;
                 let rows = Parser::<VertexRow>::new()
                     .read_payload_for_element(&mut reader, def, &header)
                     .map_err(locate)?;
@@ -84,7 +96,6 @@ pub fn parse_ply(bytes: &[u8], path: Option<&Path>) -> Result<TriangleMesh, Scen
             }
             "face" if !has_face => {
                 has_face = true;
-                face_layout(def).map_err(|m| fail(None, Some(place(None)), m))?;
                 let rows = Parser::<FaceRow>::new()
                     .read_payload_for_element(&mut reader, def, &header)
                     .map_err(locate)?;
