@@ -307,6 +307,47 @@ mod tests {
     }
 
     #[test]
+    fn a_crop_window_is_exactly_that_part_of_the_image() {
+        let full = sensor(50.0, FovAxis::X, 120, 90);
+        let mut cropped = full.clone();
+        cropped.film.crop = Some(crate::scene::description::CropWindow {
+            offset_x: 30,
+            offset_y: 20,
+            width: 40,
+            height: 25,
+        });
+        let (a, b) = (Camera::new(&full).unwrap(), Camera::new(&cropped).unwrap());
+        assert_eq!((b.width(), b.height()), (40, 25));
+        let off = Vec2::new(30.0, 20.0);
+        for p in [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(12.3, 7.9),
+            Vec2::new(39.9, 24.9),
+        ] {
+            let (ra, rb) = (a.generate_ray(p + off), b.generate_ray(p));
+            assert!((ra.dir - rb.dir).abs().max_element() < 1e-6, "{p}");
+            let back = b.direction_density(rb.dir).unwrap();
+            assert!((back.0 - p).abs().max_element() < 1e-3, "{p}: {}", back.0);
+            // Uniform over a window of 1000/10800 of the image: density 10.8× the full one.
+            let full_pdf = a.direction_density(ra.dir).unwrap().1;
+            let ratio = back.1 / full_pdf;
+            assert!(ratio.is_finite() && (ratio - 10.8).abs() < 1e-3, "{ratio}");
+        }
+        assert_eq!(
+            b.direction_pdf(a.generate_ray(Vec2::new(5.0, 5.0)).dir),
+            0.0
+        );
+        let mut past = cropped.clone();
+        past.film.crop = Some(crate::scene::description::CropWindow {
+            offset_x: 100,
+            offset_y: 0,
+            width: 40,
+            height: 10,
+        });
+        assert!(Camera::new(&past).is_err());
+    }
+
+    #[test]
     fn fov_axes_follow_mitsuba() {
         let wide = |a| Camera::new(&sensor(60.0, a, 200, 100)).unwrap().fov_x();
         let y_to_x = 2.0 * (30f32.to_radians().tan() * 2.0).atan().to_degrees();
