@@ -380,6 +380,7 @@ fn obj_meshes_load_relative_to_the_base_dir() {
         let mut s = ShapeDesc::new(ShapeKind::Obj {
             filename: "quad.obj".into(),
             face_normals,
+            flip_tex_coords: true,
         });
         s.to_world = Mat4::from_translation(Vec3::new(0.0, 0.0, -1.0));
         s
@@ -405,6 +406,7 @@ fn obj_meshes_load_relative_to_the_base_dir() {
     missing.kind = ShapeKind::Obj {
         filename: "nope.obj".into(),
         face_normals: false,
+        flip_tex_coords: true,
     };
     let err = Geometry::new(&[missing], Some(&dir), AccelKind::Bvh).unwrap_err();
     assert!(err.to_string().contains("nope.obj"), "{err}");

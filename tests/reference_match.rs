@@ -45,10 +45,9 @@ struct Outcome {
 
 /// Samples per pixel of each reference (tests/data/REFERENCES.md).
 fn reference_spp(reference: &str) -> u32 {
-    if reference == "cornell-box-direct.exr" {
-        4096
-    } else {
-        16384
+    match reference {
+        "cornell-box-direct.exr" | "meshes.exr" | "tent-crop.exr" => 4096,
+        _ => 16384,
     }
 }
 
@@ -92,9 +91,13 @@ fn run(scene: &str, defines: &[(&str, &str)], reference: &str, spp: u32, block: 
 }
 
 fn check_low_spp(scene: &str, defines: &[(&str, &str)], reference: &str, spp: u32) {
-    let o = run(scene, defines, reference, spp, 16);
+    check_blocks(scene, defines, reference, spp, 16);
+}
+
+fn check_blocks(scene: &str, defines: &[(&str, &str)], reference: &str, spp: u32, block: u32) {
+    let o = run(scene, defines, reference, spp, block);
     println!(
-        "{scene} {defines:?}: worst |z| {:.2} (critical {:.2}), worst 16×16 block {:.1}%, mean ratio {}",
+        "{scene} {defines:?}: worst |z| {:.2} (critical {:.2}), worst {block}×{block} block {:.1}%, mean ratio {}",
         o.worst_z,
         o.z_critical,
         100.0 * o.worst_block,
@@ -135,4 +138,18 @@ fn cornell_box_direct_matches_mitsuba() {
 #[test]
 fn veach_mis_matches_mitsuba() {
     check_low_spp("veach-mis.xml", &[], "veach-mis.exr", 32);
+}
+
+/// PLY (binary little and big endian, ASCII) and `serialized` meshes, smooth shading from
+/// the file's normals and from computed ones, face normals, `<include>` and spectral
+/// colours (reference: `scripts/make_mesh_data.py --render`).
+#[test]
+fn mesh_files_match_mitsuba() {
+    check_low_spp("meshes.xml", &[], "meshes.exr", 64);
+}
+
+/// The tent filter and a crop window (80 × 64 of 128 × 128): 8×8 blocks.
+#[test]
+fn tent_filter_and_crop_window_match_mitsuba() {
+    check_blocks("tent-crop.xml", &[], "tent-crop.exr", 64, 8);
 }

@@ -11,6 +11,7 @@ pub mod film;
 pub mod geometry;
 pub mod light;
 pub mod loader;
+pub mod mesh_file;
 pub mod obj;
 pub mod render;
 pub mod validate;

@@ -47,9 +47,11 @@
 
 mod build;
 mod error;
+mod file_mesh;
 mod offset;
 mod query;
 mod sample;
+mod vertex_attributes;
 
 pub use crate::scene::accel::AccelKind;
 pub use error::GeometryError;

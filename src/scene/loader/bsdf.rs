@@ -160,7 +160,8 @@ fn fresnel(ctx: &Ctx, e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
             )),
         ));
     }
-    let (eta, k) = (p.rgb("eta")?, p.rgb("k")?);
+    let unbounded = super::spectrum::SpectrumUse::Unbounded;
+    let (eta, k) = (p.colour("eta", unbounded)?, p.colour("k", unbounded)?);
     if eta.is_none() && k.is_none() {
         return Ok(ConductorFresnel::Perfect);
     }

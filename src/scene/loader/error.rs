@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum SceneErrorKind {
-    /// A file (the scene itself, an OBJ mesh or an EXR environment map) is missing or
+    /// A file (the scene itself, a mesh or an EXR environment map) is missing or
     /// cannot be read.
     Io {
         /// The file that could not be read.
@@ -66,6 +66,10 @@ pub enum SceneErrorKind {
     Misplaced(String),
     /// A malformed line of an OBJ file.
     Obj(String),
+    /// A malformed PLY file (header, element data or mesh).
+    Ply(String),
+    /// A malformed Mitsuba `serialized` mesh file.
+    Serialized(String),
 }
 
 impl fmt::Display for SceneErrorKind {
@@ -103,6 +107,8 @@ impl fmt::Display for SceneErrorKind {
             Self::DuplicateId(id) => write!(f, "duplicate id \"{id}\""),
             Self::Misplaced(m) => write!(f, "misplaced element: {m}"),
             Self::Obj(m) => write!(f, "malformed OBJ: {m}"),
+            Self::Ply(m) => write!(f, "malformed PLY: {m}"),
+            Self::Serialized(m) => write!(f, "malformed serialized mesh: {m}"),
         }
     }
 }
@@ -196,6 +202,8 @@ impl SceneErrorKind {
             Self::DuplicateId(m) => Self::DuplicateId(c(m)),
             Self::Misplaced(m) => Self::Misplaced(c(m)),
             Self::Obj(m) => Self::Obj(c(m)),
+            Self::Ply(m) => Self::Ply(c(m)),
+            Self::Serialized(m) => Self::Serialized(c(m)),
         }
     }
 }

@@ -288,6 +288,8 @@ impl Renderer {
                 height: film.height,
             });
         }
+        // The rendered window: the whole film, or its crop window (the camera maps it).
+        let (width, height) = (camera.width(), camera.height());
         let effects = Effects::of(&bsdfs, &lights, &integrator);
         let file_spp = match integrator {
             Integrator::Mlt(m) => m.mutations_per_pixel,
@@ -304,8 +306,8 @@ impl Renderer {
             camera,
             integrator,
             filter: PixelFilter::from_desc(&film.filter),
-            width: film.width,
-            height: film.height,
+            width,
+            height,
             spp: sampler.samples_per_pixel(),
             sampler,
             threads: opts.threads,
