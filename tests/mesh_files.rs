@@ -353,3 +353,15 @@ fn a_damaged_mesh_file_fails_the_render_naming_the_file() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A scene given by a path relative to the working directory finds its mesh files once: the
+/// loader resolves them against the scene's folder and the renderer does not join it again.
+#[test]
+fn a_scene_by_relative_path_finds_its_meshes() {
+    use mcrt::scene::loader::load_scene;
+    use mcrt::scene::render::{RenderOptions, Renderer};
+    // `cargo test` runs in the package root, where tests/data lies.
+    let desc = load_scene(Path::new("tests/data/meshes.xml"), &[]).expect("loads");
+    let r = Renderer::new(&desc, &RenderOptions::default());
+    assert!(r.is_ok(), "{:?}", r.err().map(|e| e.to_string()));
+}

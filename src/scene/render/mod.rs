@@ -51,7 +51,7 @@ use crate::scene::film::{write_exr, write_png, Film, ImageError, PixelFilter};
 use crate::scene::geometry::Geometry;
 use crate::scene::light::Lights;
 use glam::{Vec3, Vec4Swizzles};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
@@ -187,10 +187,6 @@ impl Renderer {
     pub fn new(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {
         let spp = opts.spp.unwrap_or(desc.sensor.sampler.sample_count);
         crate::scene::validate::scene(desc, spp).map_err(RenderError::Invalid)?;
-        let base: Option<PathBuf> = desc
-            .source
-            .as_ref()
-            .and_then(|p| p.parent().map(Path::to_path_buf));
         // The bidirectional estimators' s = 1 strategy samples rectangles and triangles by
         // area: their other strategies cover what solid-angle sampling adds near a light,
         // at a fraction of its cost (spheres keep cone sampling either way).
@@ -199,7 +195,9 @@ impl Renderer {
             IntegratorKind::Bdpt | IntegratorKind::Mlt => ShapeSampling::Area,
             _ => opts.light_sampling,
         };
-        let geo = Geometry::new(&desc.shapes, base.as_deref(), opts.accel)
+        // The loader has resolved mesh file names against the scene file's folder already
+        // (a description built in code names them relative to the working directory).
+        let geo = Geometry::new(&desc.shapes, None, opts.accel)
             .map_err(RenderError::Geometry)?
             .with_shape_sampling(shape_sampling);
         let lights = Lights::new(desc, &geo, scene_radius(desc)).map_err(RenderError::Lights)?;
