@@ -308,10 +308,10 @@ fn obj_shapes_resolve_against_the_scene_folder_and_read() {
     };
     assert!(*face_normals);
     assert_eq!(filename, &dir.join("meshes/quad.obj"));
-    let mesh = mcrt::scene::obj::read_obj(filename).unwrap();
+    let mesh = mcrt::scene::mesh_file::obj::read_obj(filename).unwrap();
     assert_eq!(mesh.indices, vec![[0, 1, 2], [0, 2, 3]]);
     assert_eq!(mesh.normals, vec![Vec3::Z; 4]);
-    let missing = mcrt::scene::obj::read_obj(&dir.join("nope.obj")).unwrap_err();
+    let missing = mcrt::scene::mesh_file::obj::read_obj(&dir.join("nope.obj")).unwrap_err();
     assert!(missing.to_string().contains("nope.obj"), "{missing}");
     std::fs::remove_dir_all(&dir).ok();
 }

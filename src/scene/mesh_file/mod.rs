@@ -1,4 +1,4 @@
-//! Triangle meshes read from files: Wavefront OBJ ([`crate::scene::obj`]), PLY ([`ply`])
+//! Triangle meshes read from files: Wavefront OBJ ([`obj`]), PLY ([`ply`])
 //! and Mitsuba's `serialized` format ([`serialized`]), all into one [`TriangleMesh`].
 //!
 //! Every reader takes only a regular file of at most [`MAX_MESH_BYTES`], never allocates
@@ -7,6 +7,7 @@
 //! [`SceneError`] naming the file and, where the format has them, the line (ASCII) or the
 //! element and its index (binary).
 
+pub mod obj;
 pub mod ply;
 pub mod serialized;
 

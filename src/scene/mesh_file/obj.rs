@@ -26,7 +26,7 @@ pub fn read_obj(path: &Path) -> Result<ObjMesh, SceneError> {
 /// Parses OBJ text; `path` is used in messages.
 ///
 /// ```
-/// use mcrt::scene::obj::parse_obj;
+/// use mcrt::scene::mesh_file::obj::parse_obj;
 /// let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
 /// let mesh = parse_obj(text, None).unwrap();
 /// assert_eq!(mesh.positions.len(), 4);
