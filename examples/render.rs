@@ -278,7 +278,9 @@ fn builtin(defines: &[(String, String)]) -> Result<SceneDescription, String> {
             "max_depth" => max_depth = v.parse().map_err(|_| bad())?,
             _ => {
                 return Err(format!(
-                    "-D {k}: the Cornell box has no parameter '{k}' (spp, res, max_depth)"
+                    "the built-in Cornell box: unknown define: -D {k}={v}: the scene neither \
+                     declares nor uses a parameter \"{k}\" (its <default> parameters: spp, \
+                     res, max_depth)"
                 ))
             }
         }
