@@ -170,7 +170,7 @@ fn render_example() -> PathBuf {
     let p = profile_dir.join("examples").join("render");
     assert!(
         p.is_file(),
-        "{} is missing: run `cargo test` (it builds the examples) or `cargo build --example render`",
+        "{} is missing: run `cargo test --release` (it builds the examples) or `cargo build --release --example render`",
         p.display()
     );
     p
