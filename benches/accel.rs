@@ -1,7 +1,7 @@
 //! Ray-query throughput of the acceleration structures (`mcrt::scene::geometry::AccelKind`),
 //! single thread, on pre-generated rays (fixed seeds) so criterion reports rays per second.
 //!
-//! Run: `cargo bench --bench accel`.
+//! Run: `cargo bench --features bench --bench accel`.
 //!
 //! - `accel/cornell_box`: closest-hit and occlusion (`t_max = 1`) queries for the BVH, the
 //!   grid and brute force on the shapes of `tests/data/cornell-box.xml`, random rays from

@@ -1,6 +1,6 @@
 //! Build time and ns per sample of the distributions in `mcrt::sampling::distribution`.
 //!
-//! Run: `cargo bench --bench distributions`. Sample benchmarks time `BATCH` calls per
+//! Run: `cargo bench --features bench --bench distributions`. Sample benchmarks time `BATCH` calls per
 //! iteration on pre-generated sample values (time per iteration / `BATCH` = ns per call); build
 //! benchmarks time one construction per iteration. The alias table is timed at 10³ and 10⁶
 //! entries to show that its cost per sample does not grow with the table (O(1)), while the

@@ -1,6 +1,6 @@
 //! Scene loading time on large ordinary files: the loader must be linear in the file size.
 //!
-//! Run: `cargo bench --bench loader`.
+//! Run: `cargo bench --features bench --bench loader`.
 //!
 //! - `loader/spheres_20k`: 20 000 spheres, each with a radius, a translation and a diffuse
 //!   BSDF (3.6 MB of XML, one shape per line), parsed from memory.

@@ -11,7 +11,7 @@
 //! starting exactly on a surface, whether that surface is hit again at `t ≈ 0` (below
 //! 10⁻⁵) depends on rounding, which differs between the quad and the triangle test.
 //!
-//! Throughput and build time are measured in `benches/accel.rs` (`cargo bench --bench accel`).
+//! Throughput and build time are measured in `benches/accel.rs` (`cargo bench --features bench --bench accel`).
 
 use mcrt::glam::{Mat4, Vec3};
 use mcrt::scene::description::{ShapeDesc, ShapeKind};

@@ -7,7 +7,7 @@ use mcrt::scene::description::{
     BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
     SceneDescription, ShapeKind,
 };
-use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError};
+use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError, SceneErrorKind};
 use std::path::Path;
 
 const CORNELL: &str = "tests/data/cornell-box.xml";
@@ -204,8 +204,20 @@ fn substitution_works_in_any_attribute_and_defines_win() {
             reflectance: Vec3::new(0.5, 0.75, 0.5)
         }
     );
-    // A define unused by the file is harmless.
-    assert!(parse(xml, &[("unused", "1")]).is_ok());
+    // A define the file neither declares nor uses is refused (a misspelt -D is never
+    // silently ignored), naming the file and the parameters it declares.
+    let e = parse(xml, &[("r", "0.5"), ("unused", "1")]).unwrap_err();
+    assert!(matches!(e.kind, SceneErrorKind::UnknownDefine(_)), "{e}");
+    let msg = e.to_string();
+    assert!(msg.starts_with("tests/data/inline.xml: "), "{msg}");
+    assert!(
+        msg.contains("-D unused=1") && msg.contains("kind, r, rr"),
+        "{msg}"
+    );
+    // A define that only a `$name` uses (no <default>) is a parameter.
+    let uses = r#"<scene version="3.0.0"><shape type="sphere"><float name="radius" value="$rad"/></shape></scene>"#;
+    assert!(parse(uses, &[("rad", "2")]).is_ok());
+    assert!(parse(uses, &[("rad", "2"), ("ra", "1")]).is_err());
 }
 
 #[test]

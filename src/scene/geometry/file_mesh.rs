@@ -5,8 +5,8 @@
 use super::build::{mesh, smooth_normals, MeshData};
 use super::error::GeometryError;
 use crate::scene::description::ShapeKind;
-use crate::scene::mesh_file::{ply::read_ply, serialized::read_serialized, TriangleMesh};
 use crate::scene::mesh_file::obj::read_obj;
+use crate::scene::mesh_file::{ply::read_ply, serialized::read_serialized, TriangleMesh};
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 use std::path::{Path, PathBuf};
 

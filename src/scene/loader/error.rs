@@ -58,6 +58,8 @@ pub enum SceneErrorKind {
     InvalidValue(String),
     /// `$name` with no `<default>` or define.
     UndefinedParameter(String),
+    /// A define (`-D name=value`) that no `<default>` declares and no `$name` uses.
+    UnknownDefine(String),
     /// `ref` to an id that does not exist or names the wrong kind of object.
     UndefinedReference(String),
     /// Two objects with the same `id`.
@@ -103,6 +105,7 @@ impl fmt::Display for SceneErrorKind {
             Self::Malformed(m) => write!(f, "malformed value: {m}"),
             Self::InvalidValue(m) => write!(f, "invalid value: {m}"),
             Self::UndefinedParameter(m) => write!(f, "undefined parameter: {m}"),
+            Self::UnknownDefine(m) => write!(f, "unknown define: {m}"),
             Self::UndefinedReference(m) => write!(f, "bad reference: {m}"),
             Self::DuplicateId(id) => write!(f, "duplicate id \"{id}\""),
             Self::Misplaced(m) => write!(f, "misplaced element: {m}"),
@@ -198,6 +201,7 @@ impl SceneErrorKind {
             Self::Malformed(m) => Self::Malformed(c(m)),
             Self::InvalidValue(m) => Self::InvalidValue(c(m)),
             Self::UndefinedParameter(m) => Self::UndefinedParameter(c(m)),
+            Self::UnknownDefine(m) => Self::UnknownDefine(c(m)),
             Self::UndefinedReference(m) => Self::UndefinedReference(c(m)),
             Self::DuplicateId(m) => Self::DuplicateId(c(m)),
             Self::Misplaced(m) => Self::Misplaced(c(m)),

@@ -119,10 +119,41 @@ pub(crate) fn read_tree(
             "missing \"version\" attribute".into(),
         )),
         Some(v) => match check_version(v) {
-            Ok(()) => Ok(root),
+            Ok(()) => check_defines(&reader.params, file, defines).map(|()| root),
             Err(m) => err(SceneErrorKind::Version(m)),
         },
     }
+}
+
+/// Refuses a define that is none of the scene's parameters (see [`Params`]).
+fn check_defines(
+    params: &Params,
+    file: Option<&Path>,
+    defines: &[(String, String)],
+) -> Result<(), SceneError> {
+    let Some(name) = params.unused_defines().first().copied() else {
+        return Ok(());
+    };
+    let value = defines
+        .iter()
+        .find(|(n, _)| n == name)
+        .map_or("", |(_, v)| v.as_str());
+    let declared = params.default_names();
+    let list = if declared.is_empty() {
+        "it declares no <default> parameter".to_string()
+    } else {
+        format!("its <default> parameters: {}", declared.join(", "))
+    };
+    Err(SceneError::new(
+        file,
+        None,
+        None,
+        None,
+        SceneErrorKind::UnknownDefine(format!(
+            "-D {name}={value}: the scene neither declares nor uses a parameter \"{name}\" \
+             ({list})"
+        )),
+    ))
 }
 
 /// The byte offset of the first start tag nested deeper than [`MAX_DEPTH`] or with more
@@ -293,7 +324,7 @@ impl Reader<'_> {
                 SceneErrorKind::InvalidValue("<default> needs a non-empty name".into()),
             ));
         }
-        self.params.add(name, value);
+        self.params.declare(name, value);
         Ok(())
     }
 

@@ -38,6 +38,8 @@ pub enum RenderError {
         /// What it needs.
         reason: &'static str,
     },
+    /// `--samples` or `--crop` cannot be applied (the message says why).
+    Split(String),
     /// The film has no pixels.
     EmptyFilm {
         /// Width in pixels.
@@ -50,7 +52,7 @@ pub enum RenderError {
 impl fmt::Display for RenderError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            RenderError::Invalid(m) => f.write_str(m),
+            RenderError::Invalid(m) | RenderError::Split(m) => f.write_str(m),
             RenderError::Geometry(e) => write!(f, "geometry: {e}"),
             RenderError::Lights(e) => write!(f, "{e}"),
             RenderError::Camera(e) => write!(f, "camera: {e}"),

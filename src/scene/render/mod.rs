@@ -27,6 +27,7 @@ mod bidir_view;
 mod effects;
 mod error;
 mod mlt_loop;
+mod split;
 mod tiles;
 mod view;
 
@@ -47,7 +48,7 @@ use crate::scene::camera::Camera;
 use crate::scene::description::{
     IntegratorDesc, IntegratorKind, SamplerKind, SceneDescription, ShapeKind,
 };
-use crate::scene::film::{write_exr, write_png, Film, ImageError, PixelFilter};
+use crate::scene::film::{write_exr, write_png, Crop, Film, ImageError, PixelFilter, SampleRange};
 use crate::scene::geometry::Geometry;
 use crate::scene::light::Lights;
 use glam::{Vec3, Vec4Swizzles};
@@ -85,6 +86,13 @@ pub struct RenderOptions {
     /// runs the general loop (every material type, point lights and environment checked at
     /// run time); for benchmarks and tests of the specialisation.
     pub specialize: bool,
+    /// Render only the pixel samples with these indices (`render --samples START..END`),
+    /// exactly those a render of every sample draws for them; else all of them. Not with
+    /// `mlt`, whose Markov chains are not divided by pixel sample.
+    pub samples: Option<SampleRange>,
+    /// Render only these pixels (`render --crop x0,y0,x1,y1`); else the whole image. Not
+    /// with `mlt`.
+    pub crop: Option<Crop>,
 }
 
 impl Default for RenderOptions {
@@ -100,6 +108,8 @@ impl Default for RenderOptions {
             specialize: true,
             integrator: None,
             bdpt_only: None,
+            samples: None,
+            crop: None,
         }
     }
 }
@@ -120,6 +130,9 @@ pub struct Renderer {
     effects: Effects,
     specialize: bool,
     seed: u64,
+    samples: SampleRange,
+    crop: Crop,
+    identity: u64,
 }
 
 /// A finished (or cancelled) render.
@@ -297,6 +310,24 @@ impl Renderer {
         let seed = opts.seed.unwrap_or(desc.sensor.sampler.seed);
         let kind = opts.sampler.unwrap_or(desc.sensor.sampler.kind);
         let sampler = make_sampler(kind, spp, seed).map_err(RenderError::Sampler)?;
+        let spp = sampler.samples_per_pixel();
+        let (samples, crop) = split::window(opts, &integrator, spp, width, height)?;
+        let mut resolved = desc.clone();
+        resolved.integrator = integrator_desc;
+        resolved.sensor.sampler = crate::scene::description::SamplerDesc {
+            kind,
+            sample_count: spp,
+            seed,
+        };
+        let identity = split::render_identity(
+            &resolved,
+            None,
+            &format!(
+                "{integrator:?} {:?} {shape_sampling:?} {}",
+                opts.accel, opts.specialize
+            ),
+        )
+        .map_err(RenderError::Invalid)?;
         Ok(Self {
             geometry: geo,
             lights,
@@ -306,12 +337,15 @@ impl Renderer {
             filter: PixelFilter::from_desc(&film.filter),
             width,
             height,
-            spp: sampler.samples_per_pixel(),
+            spp,
             sampler,
             threads: opts.threads,
             effects,
             specialize: opts.specialize,
             seed,
+            samples,
+            crop,
+            identity,
         })
     }
 
@@ -340,9 +374,10 @@ impl Renderer {
         &self.integrator
     }
 
-    /// Renders; `progress(done, total)` is called with sample counts from worker threads,
-    /// and setting `cancel` stops early, keeping every sample taken (pixels then report
-    /// their own counts).
+    /// Renders the sample range and crop; `progress(done, total)` is called with sample
+    /// counts from worker threads, and setting `cancel` stops early, keeping every sample
+    /// taken (pixels then report their own counts). The film is the whole image; pixels
+    /// outside the crop hold no sample.
     pub fn render(
         &self,
         progress: &(dyn Fn(u64, u64) + Sync),
@@ -356,6 +391,8 @@ impl Renderer {
             width: self.width,
             height: self.height,
             spp: self.spp,
+            samples: self.samples,
+            window: self.crop,
             sampler: &self.sampler,
             seed: self.seed,
             t_max: f32::INFINITY,
