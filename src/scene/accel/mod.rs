@@ -1,7 +1,7 @@
 //! Acceleration structures over primitives given by their bounding boxes: a SAH BVH (built
 //! binary, [`Bvh`], then collapsed to 4-wide nodes, [`Bvh4`], which is what
-//! [`AccelKind::Bvh`] uses), a uniform grid ([`Grid`]) and brute force, selected by
-//! [`AccelKind`].
+//! [`AccelKind::Bvh`] uses), a uniform grid ([`Grid`]), an SAH kd-tree ([`KdTree`]) and
+//! brute force, selected by [`AccelKind`].
 //!
 //! They know nothing of the primitives themselves: a query calls back with primitive
 //! indices and the caller intersects them. The primitives must be stored in the order
@@ -16,7 +16,7 @@
 //!     Aabb { min: Vec3::new(0.0, -0.5, -0.5), max: Vec3::new(1.0, 0.5, 0.5) },
 //!     Aabb { min: Vec3::new(2.0, -0.5, -0.5), max: Vec3::new(3.0, 0.5, 0.5) },
 //! ];
-//! for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::BruteForce] {
+//! for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::KdTree, AccelKind::BruteForce] {
 //!     let accel = Accel::build(kind, &boxes);
 //!     let stored = accel.order().to_vec();
 //!     // "Intersect" a box at its lower x face.
@@ -32,12 +32,14 @@ mod aabb;
 mod bvh;
 mod bvh4;
 mod grid;
+mod kdtree;
 mod traverse;
 
 pub use aabb::{Aabb, RayBoxTest};
 pub use bvh::{Bvh, BINS, MAX_LEAF};
 pub use bvh4::Bvh4;
 pub use grid::{Grid, DENSITY, MAX_RES};
+pub use kdtree::{KdTree, KdTreeStats, EMPTY_BONUS, INTERSECTION_COST, MAX_DEPTH, TRAVERSAL_COST};
 
 use glam::Vec3;
 
@@ -50,6 +52,8 @@ pub enum AccelKind {
     Bvh,
     /// A uniform grid traversed with a 3D DDA.
     Grid,
+    /// A kd-tree built with the surface area heuristic in O(N log N) ([`KdTree`]).
+    KdTree,
     /// No structure: every primitive is tested (for reference and tests).
     BruteForce,
 }
@@ -65,6 +69,7 @@ pub struct Accel {
 enum Imp {
     Bvh(Bvh4),
     Grid(Grid),
+    KdTree(KdTree),
     BruteForce(u32),
 }
 
@@ -85,6 +90,10 @@ impl Accel {
                 imp: Imp::Grid(Grid::build(bounds)),
                 order: identity(),
             },
+            AccelKind::KdTree => Self {
+                imp: Imp::KdTree(KdTree::build(bounds)),
+                order: identity(),
+            },
             AccelKind::BruteForce => Self {
                 imp: Imp::BruteForce(bounds.len() as u32),
                 order: identity(),
@@ -97,6 +106,7 @@ impl Accel {
         match self.imp {
             Imp::Bvh(_) => AccelKind::Bvh,
             Imp::Grid(_) => AccelKind::Grid,
+            Imp::KdTree(_) => AccelKind::KdTree,
             Imp::BruteForce(_) => AccelKind::BruteForce,
         }
     }
@@ -129,6 +139,7 @@ impl Accel {
         match &self.imp {
             Imp::Bvh(b) => b.closest(origin, dir, t_max, test),
             Imp::Grid(g) => g.closest(origin, dir, t_max, test),
+            Imp::KdTree(k) => k.closest(origin, dir, t_max, test),
             Imp::BruteForce(n) => {
                 let mut best = None;
                 let mut bound = t_max;
@@ -155,6 +166,7 @@ impl Accel {
         match &self.imp {
             Imp::Bvh(b) => b.any(origin, dir, t_max, test),
             Imp::Grid(g) => g.any(origin, dir, t_max, test),
+            Imp::KdTree(k) => k.any(origin, dir, t_max, test),
             Imp::BruteForce(n) => (0..*n).any(|i| test(i, t_max)),
         }
     }
