@@ -5,7 +5,7 @@
 //!     [-o out.exr|out.png] [--threads N] [--seed S] [--variance]
 //!     [--strategy bsdf|light|balance|power]
 //!     [--sampler independent|stratified|sobol|halton|r2]
-//!     [--accel bvh|grid] [--light-sampling solid-angle|area]
+//!     [--accel bvh|grid|kdtree] [--light-sampling solid-angle|area]
 //!     [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]
 //!     [--samples START..END] [--crop x0,y0,x1,y1]
 //! ```
@@ -158,13 +158,14 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "accel",
         short: None,
-        value: Some("bvh|grid"),
+        value: Some("bvh|grid|kdtree"),
         help: "acceleration structure [default: bvh]",
         apply: |a, v| {
             a.opts.accel = match v {
                 "bvh" => AccelKind::Bvh,
                 "grid" => AccelKind::Grid,
-                _ => return Err(format!("--accel {v}: expected bvh or grid")),
+                "kdtree" => AccelKind::KdTree,
+                _ => return Err(format!("--accel {v}: expected bvh, grid or kdtree")),
             };
             Ok(())
         },

@@ -1,6 +1,6 @@
 //! Acceleration structures over primitives given by their bounding boxes: a SAH BVH (built
-//! binary, then collapsed to 4-wide nodes), a uniform grid and brute force, selected by
-//! [`AccelKind`] and built as an [`Accel`].
+//! binary, then collapsed to 4-wide nodes), a uniform grid, an SAH kd-tree and brute force,
+//! selected by [`AccelKind`] and built as an [`Accel`].
 //!
 //! They know nothing of the primitives themselves: a query calls back with the index of a
 //! primitive (its position in the bounds given to [`Accel::build`]) and the caller
@@ -16,7 +16,7 @@
 //!     Aabb { min: Vec3::new(0.0, -0.5, -0.5), max: Vec3::new(1.0, 0.5, 0.5) },
 //!     Aabb { min: Vec3::new(2.0, -0.5, -0.5), max: Vec3::new(3.0, 0.5, 0.5) },
 //! ];
-//! for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::BruteForce] {
+//! for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::KdTree, AccelKind::BruteForce] {
 //!     let accel = Accel::build(kind, &boxes);
 //!     // "Intersect" a box at its lower x face.
 //!     let t = accel.closest(Vec3::new(-1.0, 0.0, 0.0), Vec3::X, f32::INFINITY, |i, t_max| {
@@ -31,11 +31,13 @@ mod aabb;
 mod bvh;
 mod bvh4;
 mod grid;
+mod kdtree;
 mod traverse;
 
 pub use aabb::Aabb;
 pub(crate) use bvh4::Bvh4;
 use grid::Grid;
+use kdtree::KdTree;
 
 use glam::Vec3;
 
@@ -48,6 +50,8 @@ pub enum AccelKind {
     Bvh,
     /// A uniform grid traversed with a 3D DDA.
     Grid,
+    /// A kd-tree built with the surface area heuristic in O(N log N) (Wald & Havran 2006; `docs/geometry.md`).
+    KdTree,
     /// No structure: every primitive is tested (for reference and tests).
     BruteForce,
 }
@@ -65,6 +69,7 @@ pub struct Accel {
 enum Structure {
     Bvh(Bvh4),
     Grid(Grid),
+    KdTree(KdTree),
     BruteForce(u32),
 }
 
@@ -85,6 +90,10 @@ impl Accel {
                 structure: Structure::Grid(Grid::build(bounds)),
                 order: identity(),
             },
+            AccelKind::KdTree => Self {
+                structure: Structure::KdTree(KdTree::build(bounds)),
+                order: identity(),
+            },
             AccelKind::BruteForce => Self {
                 structure: Structure::BruteForce(bounds.len() as u32),
                 order: identity(),
@@ -97,6 +106,7 @@ impl Accel {
         match self.structure {
             Structure::Bvh(_) => AccelKind::Bvh,
             Structure::Grid(_) => AccelKind::Grid,
+            Structure::KdTree(_) => AccelKind::KdTree,
             Structure::BruteForce(_) => AccelKind::BruteForce,
         }
     }
@@ -118,6 +128,7 @@ impl Accel {
                 b.closest(origin, dir, t_max, |i, t| test(order[i as usize], t))
             }
             Structure::Grid(g) => g.closest(origin, dir, t_max, test),
+            Structure::KdTree(k) => k.closest(origin, dir, t_max, test),
             Structure::BruteForce(n) => {
                 let mut best = None;
                 let mut bound = t_max;
@@ -147,6 +158,7 @@ impl Accel {
                 b.any(origin, dir, t_max, |i, t| test(order[i as usize], t))
             }
             Structure::Grid(g) => g.any(origin, dir, t_max, test),
+            Structure::KdTree(k) => k.any(origin, dir, t_max, test),
             Structure::BruteForce(n) => (0..*n).any(|i| test(i, t_max)),
         }
     }
