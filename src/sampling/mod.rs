@@ -9,9 +9,11 @@ pub mod jacobian;
 pub mod mis;
 mod reservoir;
 pub mod sampler;
+pub(crate) mod unit;
 mod variance;
 pub mod warp;
 
 pub use error::SamplingError;
 pub use reservoir::WeightedReservoir;
+pub use unit::ONE_MINUS_EPSILON;
 pub use variance::VarianceEstimator;

@@ -235,7 +235,7 @@ impl InvertibleWarp for PiecewiseConstant2D {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::distribution::piecewise_1d::ONE_MINUS_EPSILON;
+    use crate::sampling::ONE_MINUS_EPSILON;
 
     #[test]
     fn rejects_bad_tables() {

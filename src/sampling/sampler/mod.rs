@@ -78,8 +78,9 @@ pub use r2::R2Sampler;
 pub use sobol::SobolSampler;
 pub use stratified::StratifiedSampler;
 
-/// The largest `f32` below 1, `1 − 2⁻²⁴`: every sample value is at most this.
-pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+/// The largest `f32` below 1, `1 − 2⁻²⁴`: every sample value is at most this (the same
+/// constant as [`crate::sampling::ONE_MINUS_EPSILON`]).
+pub use super::unit::ONE_MINUS_EPSILON;
 
 /// A source of sample values in `[0,1)^d` for the pixel samples of an image.
 ///
@@ -129,13 +130,6 @@ fn check_spp(spp: u32) -> Result<u32, SamplingError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn one_minus_epsilon_is_the_largest_f32_below_one() {
-        let below_one = ONE_MINUS_EPSILON;
-        assert!(below_one < 1.0);
-        assert_eq!(f32::from_bits(ONE_MINUS_EPSILON.to_bits() + 1), 1.0);
-    }
 
     #[test]
     fn zero_spp_is_rejected() {

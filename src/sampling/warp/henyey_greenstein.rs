@@ -1,8 +1,9 @@
 //! The Henyey–Greenstein phase function as a warp onto the sphere.
 
-use super::sphere::polar::{azimuth_to_unit, clamp_unit, clamp_unit2, direction, sin2_theta};
 use super::{InvertibleWarp, Warp};
 use crate::sampling::error::check_param;
+use crate::sampling::unit::{clamp_unit, clamp_unit2};
+use crate::sampling::warp::polar::{azimuth_to_unit, direction, sin2_theta};
 use crate::sampling::SamplingError;
 use glam::{Vec2, Vec3};
 use std::f64::consts::PI;
