@@ -13,7 +13,7 @@ use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use rand::{Rng, SeedableRng};
 
-const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
+use mcrt::sampling::ONE_MINUS_EPSILON as ONE_MINUS_EPS;
 
 fn config(cases: u32) -> ProptestConfig {
     ProptestConfig {
