@@ -34,7 +34,7 @@ pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, SampleSource, Scene, 
 
 /// `x > 0`, false for NaN: the guard in front of every division by a density.
 #[inline]
-pub fn is_positive(x: f32) -> bool {
+pub(crate) fn is_positive(x: f32) -> bool {
     x > 0.0
 }
 
