@@ -17,16 +17,16 @@
 pub(crate) mod bdpt;
 mod bidirectional;
 mod direct;
-mod frame;
 mod mlt;
 mod path;
 mod strategy;
 mod traits;
 
+/// The z-up shading frame of a [`SurfacePoint`] (the same type as [`crate::sampling::Frame`]).
+pub use crate::sampling::Frame;
 pub use bdpt::{Bdpt, BdptBuffers, Splat, StrategyStats};
 pub use bidirectional::{BidirectionalScene, CameraConnection, EmissionSample, EmitterKind};
 pub use direct::DirectIntegrator;
-pub use frame::Frame;
 pub use mlt::{brightness as mlt_brightness, Mlt, MltChain, MltPath, PrimarySamples};
 pub use path::{PathResult, PathTracer};
 pub use strategy::Strategy;

@@ -1,7 +1,7 @@
 //! The small traits a renderer implements so that the estimators can run on its geometry,
 //! materials and lights.
 
-use super::Frame;
+use crate::sampling::Frame;
 use glam::{Vec2, Vec3};
 
 /// A point where a ray met a surface.

@@ -5,6 +5,7 @@
 
 pub mod distribution;
 mod error;
+mod frame;
 pub mod jacobian;
 pub mod mis;
 mod reservoir;
@@ -14,6 +15,7 @@ mod variance;
 pub mod warp;
 
 pub use error::SamplingError;
+pub use frame::Frame;
 pub use reservoir::WeightedReservoir;
 pub use unit::ONE_MINUS_EPSILON;
 pub use variance::VarianceEstimator;

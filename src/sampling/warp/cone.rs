@@ -35,7 +35,8 @@ const RIM_SLACK: f32 = 1e-6;
 ///
 /// Directions passed to [`Warp::pdf`] and [`InvertibleWarp::invert`] are expected to be unit
 /// length; other finite vectors give finite, meaningless values. To sample a cone about
-/// another axis, rotate the samples into a frame built around that axis.
+/// another axis, rotate the samples into a frame built around that axis
+/// ([`Frame::to_world`](crate::sampling::Frame::to_world)).
 ///
 /// ```
 /// use mcrt::glam::Vec2;

@@ -36,7 +36,7 @@ pub(crate) fn one_minus_and_plus_cos(w: Vec3) -> (f64, f64) {
 /// Astrophysical Journal 93. Derivation: `docs/derivations.md`.
 ///
 /// To use it as a phase function `p(ω_o, ω_i)` with `cos θ = ω_o · ω_i`, rotate the sample
-/// into a frame about `ω_o` (pbrt's convention, where `g > 0` scatters forward, takes the frame
+/// into a frame about `ω_o` ([`Frame`](crate::sampling::Frame)) (pbrt's convention, where `g > 0` scatters forward, takes the frame
 /// about `−ω_o`).
 ///
 /// ```
