@@ -22,6 +22,7 @@ mod path;
 mod strategy;
 mod traits;
 
+pub use crate::sampling::sampler::SampleSource;
 /// The z-up shading frame of a [`SurfacePoint`] (the same type as [`crate::sampling::Frame`]).
 pub use crate::sampling::Frame;
 pub use bdpt::{Bdpt, BdptBuffers, Splat, StrategyStats};
@@ -30,7 +31,7 @@ pub use direct::DirectIntegrator;
 pub use mlt::{brightness as mlt_brightness, Mlt, MltChain, MltPath, PrimarySamples};
 pub use path::{PathResult, PathTracer};
 pub use strategy::Strategy;
-pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, SampleSource, Scene, SurfacePoint};
+pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, Scene, SurfacePoint};
 
 /// `x > 0`, false for NaN: the guard in front of every division by a density.
 #[inline]

@@ -113,25 +113,6 @@ pub struct LightSample {
     pub delta: bool,
 }
 
-/// A source of uniform sample values in `[0,1)` for one pixel sample. Every
-/// [`crate::sampling::sampler::Sampler`] is one (positioned on its pixel sample first).
-pub trait SampleSource {
-    /// One value in `[0,1)`.
-    fn next_1d(&mut self) -> f32;
-    /// Two values in `[0,1)²`.
-    fn next_2d(&mut self) -> Vec2 {
-        let x = self.next_1d();
-        Vec2::new(x, self.next_1d())
-    }
-    /// Switches to the sample stream `stream` (the bidirectional estimators draw the camera
-    /// subpath from stream 0, the light subpath from 1 and connections from 2). Sources
-    /// without streams ignore it (the default); Metropolis sampling keeps one stream per
-    /// role so that a path's primary sample coordinates keep their meaning when its length
-    /// changes (Hachisuka et al. 2014).
-    #[inline]
-    fn start_stream(&mut self, _stream: u32) {}
-}
-
 /// What the estimators need from a scene: ray casting, materials and lights.
 pub trait Scene {
     /// The material type; an enum or a single concrete type (the latter lets the compiler
@@ -189,26 +170,4 @@ pub trait Scene {
 
     /// The same for the environment, seen from `from` along `dir`.
     fn environment_pdf(&self, from: &SurfacePoint, dir: Vec3) -> f32;
-}
-
-/// Dimensions between the starts of two sample streams of a [`Sampler`] (the first stream
-/// starts after the pixel filter's dimension).
-const STREAM_DIMENSIONS: u32 = 1024;
-
-impl<S: crate::sampling::sampler::Sampler> SampleSource for S {
-    #[inline]
-    fn start_stream(&mut self, stream: u32) {
-        crate::sampling::sampler::Sampler::skip_to_dimension(
-            self,
-            1 + stream.saturating_mul(STREAM_DIMENSIONS),
-        );
-    }
-    #[inline]
-    fn next_1d(&mut self) -> f32 {
-        crate::sampling::sampler::Sampler::next_1d(self)
-    }
-    #[inline]
-    fn next_2d(&mut self) -> Vec2 {
-        crate::sampling::sampler::Sampler::next_2d(self)
-    }
 }
