@@ -58,7 +58,7 @@ fn check_n<W, D>(
     }
     if let Some(settings) = jac {
         let j = check_warp_jacobian(warp, settings);
-        if !j.passed {
+        if !j.passed() {
             f.0.push(format!("{name}: {}", j.report()));
         }
     }
@@ -70,7 +70,7 @@ where
     W::Point: StatPoint,
 {
     let c = check_warp_inverse(warp, 64, tol);
-    if !c.passed {
+    if !c.passed() {
         f.0.push(format!("{name}: {}", c.report()));
     }
 }

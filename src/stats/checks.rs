@@ -13,8 +13,8 @@ use glam::Vec2;
 pub struct CheckOutcome {
     /// What was checked.
     pub check: &'static str,
-    /// Whether it passed.
-    pub passed: bool,
+    /// Whether it passed ([`CheckOutcome::passed`]).
+    passed: bool,
     /// The largest error found (its meaning depends on the check).
     pub worst_error: f64,
     /// The `u` (or point) where the worst error occurred, when there is one.
@@ -28,6 +28,12 @@ pub struct CheckOutcome {
 }
 
 impl CheckOutcome {
+    /// Whether the check passed (a method, as [`Chi2Outcome::passed`](super::Chi2Outcome::passed)).
+    #[must_use]
+    pub fn passed(&self) -> bool {
+        self.passed
+    }
+
     /// A one-paragraph report.
     pub fn report(&self) -> String {
         format!(
