@@ -179,6 +179,17 @@ fn hemispheres_and_sphere() {
     f.finish();
 }
 
+/// The latitude–longitude map of environment maps: density `1/(2π² sin θ)`, infinite (but
+/// integrable) at the poles, which the sphere's rings refined toward +z and the quadrature
+/// resolve.
+#[test]
+fn lat_long() {
+    let mut f = Failures::default();
+    check(&mut f, "LatLong", &LatLong, sphere(), jac());
+    check_inverse(&mut f, "LatLong", &LatLong, 1e-4);
+    f.finish();
+}
+
 #[test]
 fn cones() {
     let mut f = Failures::default();

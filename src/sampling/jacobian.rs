@@ -80,7 +80,9 @@ pub fn solid_angle_pdf_from_spherical(pdf_theta_phi: f32, sin_theta: f32) -> f32
 
 /// Latitude–longitude image coordinates → solid angle: with `u = φ / 2π` and `v = θ / π`,
 /// `p(ω) = p(u, v) / (2π² sin θ)`. 0 at the poles. (The environment-map case of
-/// [`PiecewiseConstant2D`](crate::sampling::distribution::PiecewiseConstant2D).)
+/// [`PiecewiseConstant2D`](crate::sampling::distribution::PiecewiseConstant2D); the map
+/// itself, direction ↔ `(u, v)`, and a conversion that stays positive at the poles are
+/// [`LatLong`](crate::sampling::warp::LatLong).)
 #[must_use]
 pub fn solid_angle_pdf_from_lat_long(pdf_uv: f32, sin_theta: f32) -> f32 {
     let two_pi_sq = 2.0 * std::f64::consts::PI * std::f64::consts::PI;

@@ -24,7 +24,9 @@ use crate::sampling::SamplingError;
 /// the density of the direction per unit solid angle is `p(ω) = p(u, v) / (2π² sin θ)`
 /// ([`crate::sampling::jacobian::solid_angle_pdf_from_lat_long`]). Weight each row's values
 /// by `sin θ` of its centre before building the table, so that sampling follows the
-/// radiance per solid angle.
+/// radiance per solid angle. [`LatLong`](crate::sampling::warp::LatLong) maps directions to
+/// `(u, v) ∈ [0,1)²` and back (the south pole stays on the last row: at `v = 1` this
+/// table's pdf is 0).
 ///
 /// Reference: Pharr, Jakob & Humphreys, 2023, *Physically Based Rendering* (4th ed.),
 /// section A.5.2, "Piecewise-constant 2D distributions".
