@@ -33,6 +33,31 @@ pub use path::{PathResult, PathTracer};
 pub use strategy::Strategy;
 pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, Scene, SurfacePoint};
 
+/// The relative shortening of every shadow ray: the estimators ask [`Scene::occluded`] about
+/// `dist · (1 − SHADOW_EPSILON)` when they want to know whether the point at distance `dist`
+/// is visible, so that the surface of that point (a light, a vertex of the other subpath)
+/// cannot hide itself.
+pub const SHADOW_EPSILON: f32 = 1e-3;
+
+/// Whether something hides the point at distance `dist` along `dir` from `from` (a light at
+/// infinity when `dist` is infinite): [`Scene::occluded`] over the distance shortened by
+/// [`SHADOW_EPSILON`]. Every estimator's visibility test goes through here. A distance that
+/// is not finite (infinite, or NaN from a caller's bug) tests the whole ray.
+#[inline(always)]
+pub(crate) fn occluded<S: Scene + ?Sized>(
+    scene: &S,
+    from: &SurfacePoint,
+    dir: glam::Vec3,
+    dist: f32,
+) -> bool {
+    let t_max = if dist.is_finite() {
+        dist * (1.0 - SHADOW_EPSILON)
+    } else {
+        f32::INFINITY
+    };
+    scene.occluded(from, dir, t_max)
+}
+
 /// `x > 0`, false for NaN: the guard in front of every division by a density.
 #[inline]
 pub(crate) fn is_positive(x: f32) -> bool {
