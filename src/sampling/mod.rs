@@ -1,7 +1,8 @@
 //! The sampling core: warps, distributions, change of variables, MIS weights and samplers,
-//! and two streaming utilities ([`WeightedReservoir`], [`VarianceEstimator`]).
+//! the [`Frame`] that turns directions sampled about `+z` toward any axis, and two streaming
+//! utilities ([`WeightedReservoir`], [`VarianceEstimator`]).
 //!
-//! Needs only [`glam`] (and `rand_core` for the independent sampler).
+//! Needs only [`glam`] (and `rand_core` with `rand_pcg` for the independent sampler).
 
 pub mod distribution;
 mod error;
