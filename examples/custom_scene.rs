@@ -168,7 +168,7 @@ impl Scene for GlowingSphere {
         let q = UniformSphere.sample(u);
         let to_light = q - from.p;
         let dist = to_light.length();
-        if !(dist > 0.0) {
+        if dist <= 0.0 || dist.is_nan() {
             return None;
         }
         let wi = to_light / dist;

@@ -86,7 +86,7 @@ fn two_strategies<const POWER: bool>(n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32)
     // `n_g, pdf_g ≥ 0` separately: a negative input times 0 would pass as `g = −0`.
     let valid_g = n_g >= 0.0 && pdf_g >= 0.0 && g < f32::INFINITY;
     // `f > 0` with `pdf_f > 0` also means `n_f > 0` (two negatives would multiply to f > 0).
-    if pdf_f > 0.0 && f >= f32::MIN_POSITIVE && f < f32::INFINITY && valid_g {
+    if pdf_f > 0.0 && (f32::MIN_POSITIVE..f32::INFINITY).contains(&f) && valid_g {
         let r = g / f;
         // r = ∞ (f underflowing against g) gives 0, as the f64 formula does to f32 precision.
         return 1.0 / (1.0 + if POWER { r * r } else { r });
