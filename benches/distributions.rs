@@ -110,12 +110,12 @@ fn piecewise_2d(c: &mut Criterion) {
         b.iter(|| PiecewiseConstant2D::new(black_box(&values), width, height).unwrap())
     });
     let d = PiecewiseConstant2D::new(&values, width, height).unwrap();
-    let ps: Vec<_> = us.iter().map(|&u| d.sample(u).0).collect();
+    let ps: Vec<_> = us.iter().map(|&u| d.sample_cell(u).0).collect();
     group.throughput(Throughput::Elements(BATCH as u64));
     group.bench_function(BenchmarkId::new("sample", "1024x512"), |b| {
         b.iter(|| {
             us.iter()
-                .map(|&u| black_box(d.sample(black_box(u))).1)
+                .map(|&u| black_box(d.sample_cell(black_box(u))).1)
                 .sum::<f32>()
         })
     });

@@ -1,7 +1,7 @@
 //! Direct lighting: emitters seen from the camera plus light arriving at the first hit, by a
 //! fixed number of light and BSDF samples (Mitsuba 3's `direct`).
 
-use super::{is_positive, Bsdf, PathResult, SampleSource, Scene, Strategy};
+use super::{is_positive, occluded, Bsdf, PathResult, SampleSource, Scene, Strategy};
 use glam::{Vec2, Vec3};
 
 /// Direct-lighting estimator with `emitter_samples` light samples and `bsdf_samples` BSDF
@@ -98,7 +98,7 @@ impl DirectIntegrator {
                 continue;
             }
             out.rays += 1;
-            if scene.occluded(&sp, ls.wi, ls.dist) {
+            if occluded(scene, &sp, ls.wi, ls.dist) {
                 continue;
             }
             let w = if ls.delta {

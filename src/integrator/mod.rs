@@ -17,24 +17,50 @@
 pub(crate) mod bdpt;
 mod bidirectional;
 mod direct;
-mod frame;
 mod mlt;
 mod path;
 mod strategy;
 mod traits;
 
+pub use crate::sampling::sampler::SampleSource;
+/// The z-up shading frame of a [`SurfacePoint`] (the same type as [`crate::sampling::Frame`]).
+pub use crate::sampling::Frame;
 pub use bdpt::{Bdpt, BdptBuffers, Splat, StrategyStats};
 pub use bidirectional::{BidirectionalScene, CameraConnection, EmissionSample, EmitterKind};
 pub use direct::DirectIntegrator;
-pub use frame::Frame;
 pub use mlt::{brightness as mlt_brightness, Mlt, MltChain, MltPath, PrimarySamples};
 pub use path::{PathResult, PathTracer};
 pub use strategy::Strategy;
-pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, SampleSource, Scene, SurfacePoint};
+pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, Scene, SurfacePoint};
+
+/// The relative shortening of every shadow ray: the estimators ask [`Scene::occluded`] about
+/// `dist · (1 − SHADOW_EPSILON)` when they want to know whether the point at distance `dist`
+/// is visible, so that the surface of that point (a light, a vertex of the other subpath)
+/// cannot hide itself.
+pub const SHADOW_EPSILON: f32 = 1e-3;
+
+/// Whether something hides the point at distance `dist` along `dir` from `from` (a light at
+/// infinity when `dist` is infinite): [`Scene::occluded`] over the distance shortened by
+/// [`SHADOW_EPSILON`]. Every estimator's visibility test goes through here. A distance that
+/// is not finite (infinite, or NaN from a caller's bug) tests the whole ray.
+#[inline(always)]
+pub(crate) fn occluded<S: Scene + ?Sized>(
+    scene: &S,
+    from: &SurfacePoint,
+    dir: glam::Vec3,
+    dist: f32,
+) -> bool {
+    let t_max = if dist.is_finite() {
+        dist * (1.0 - SHADOW_EPSILON)
+    } else {
+        f32::INFINITY
+    };
+    scene.occluded(from, dir, t_max)
+}
 
 /// `x > 0`, false for NaN: the guard in front of every division by a density.
 #[inline]
-pub fn is_positive(x: f32) -> bool {
+pub(crate) fn is_positive(x: f32) -> bool {
     x > 0.0
 }
 

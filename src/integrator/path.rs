@@ -1,7 +1,7 @@
 //! Unidirectional path tracing with next-event estimation, multiple importance sampling and
 //! Russian roulette.
 
-use super::{is_positive, Bsdf, SampleSource, Scene, Strategy, SurfacePoint};
+use super::{is_positive, occluded, Bsdf, SampleSource, Scene, Strategy, SurfacePoint};
 use glam::{Vec2, Vec3};
 
 /// A path tracer with Mitsuba 3's `path` semantics.
@@ -187,7 +187,7 @@ impl PathTracer {
             return Vec3::ZERO;
         }
         *rays += 1;
-        if scene.occluded(sp, ls.wi, ls.dist) {
+        if occluded(scene, sp, ls.wi, ls.dist) {
             return Vec3::ZERO;
         }
         let w = if ls.delta {

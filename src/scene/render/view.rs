@@ -8,9 +8,6 @@ use crate::scene::geometry::{offset_origin, Geometry, Hit, Ray};
 use crate::scene::light::Lights;
 use glam::{Vec2, Vec3};
 
-/// Relative shortening of shadow rays, so the light's own surface does not occlude itself.
-const SHADOW_EPSILON: f32 = 1e-3;
-
 /// A scene specialised on its material type `B` and on whether delta lights (`DELTA`) and
 /// an environment (`ENV`) may be present: when a flag is `false` the code paths for it are
 /// constant false and compiled out; when `true` the lights are asked at run time.
@@ -60,12 +57,7 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
     #[inline(always)]
     fn occluded(&self, from: &SurfacePoint, dir: Vec3, dist: f32) -> bool {
         let origin = offset_origin(from.p, from.ng, dir);
-        let t_max = if dist.is_finite() {
-            dist * (1.0 - SHADOW_EPSILON)
-        } else {
-            f32::INFINITY
-        };
-        self.geometry.occluded(&Ray { origin, dir }, t_max)
+        self.geometry.occluded(&Ray { origin, dir }, dist)
     }
 
     #[inline]
