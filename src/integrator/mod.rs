@@ -64,21 +64,21 @@ pub(crate) fn is_positive(x: f32) -> bool {
     x > 0.0
 }
 
-/// Samples `bsdf` at `wo`, drawing the component choice `u1` from `rng` only when the
+/// Samples `bsdf` at `wo`, drawing the component choice `u1` from `samples` only when the
 /// BSDF reads it (`0.5` otherwise), then the direction `u2`: the one sampling step of every
 /// estimator's random walk.
 #[inline(always)]
 pub(crate) fn sample_bsdf<B: Bsdf, R: SampleSource>(
     bsdf: &B,
     wo: glam::Vec3,
-    rng: &mut R,
+    samples: &mut R,
 ) -> Option<BsdfSample> {
     let u1 = if bsdf.samples_component() {
-        rng.next_1d()
+        samples.next_1d()
     } else {
         0.5
     };
-    let u2 = rng.next_2d();
+    let u2 = samples.next_2d();
     bsdf.sample(wo, u1, u2)
 }
 
@@ -107,11 +107,11 @@ impl Integrator {
         origin: glam::Vec3,
         dir: glam::Vec3,
         t_max: f32,
-        rng: &mut R,
+        samples: &mut R,
     ) -> PathResult {
         match self {
-            Integrator::Path(p) => p.li(scene, origin, dir, t_max, rng),
-            Integrator::Direct(d) => d.li(scene, origin, dir, t_max, rng),
+            Integrator::Path(p) => p.li(scene, origin, dir, t_max, samples),
+            Integrator::Direct(d) => d.li(scene, origin, dir, t_max, samples),
             Integrator::Bdpt(_) | Integrator::Mlt(_) => PathResult::default(),
         }
     }

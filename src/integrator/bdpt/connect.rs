@@ -29,7 +29,7 @@ pub(crate) struct Connection {
 }
 
 /// Connects `light[..s]` with `camera[..t]`; `None` when the strategy cannot make a path
-/// here (or the contribution is zero). `s = 1` samples a fresh light point from `rng`,
+/// here (or the contribution is zero). `s = 1` samples a fresh light point from `samples`,
 /// `t = 1` connects to the camera. Shadow rays are added to `rays`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
@@ -39,7 +39,7 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
     s: usize,
     t: usize,
     heuristic: Heuristic,
-    rng: &mut R,
+    samples: &mut R,
     rays: &mut u32,
 ) -> Option<Connection> {
     if t == 0 || t > camera.len() || s > light.len() {
@@ -93,8 +93,8 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
         if !pt.connectible() {
             return None;
         }
-        let u_pick = rng.next_2d();
-        let u = rng.next_2d();
+        let u_pick = samples.next_2d();
+        let u = samples.next_2d();
         let (v, lv) = if scene.has_delta_lights() {
             light_by_emission(scene, pt, u_pick, u, rays)?
         } else {

@@ -46,7 +46,7 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
     scene: &S,
     p: &LoopParams<'_>,
     bdpt: &Bdpt,
-    mut rng: R,
+    mut sampler: R,
     (x0, y0, x1, y1): (u32, u32, u32, u32),
     (s0, s1): (u32, u32),
 ) -> TileOut {
@@ -67,8 +67,8 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
                     out.pixels.push((index, acc));
                     return out;
                 }
-                rng.start_pixel_sample([x, y], s);
-                let off = p.filter.sample(rng.next_2d());
+                sampler.start_pixel_sample([x, y], s);
+                let off = p.filter.sample(sampler.next_2d());
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
                 let (ray, t_max) = p.camera.generate_ray_with_tmax(film);
                 let r = bdpt.sample(
@@ -76,7 +76,7 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
                     ray.origin,
                     ray.dir,
                     t_max.min(p.t_max),
-                    &mut rng,
+                    &mut sampler,
                     &mut buf,
                     &mut out.splats,
                     Some(&mut out.stats),
