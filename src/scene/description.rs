@@ -452,7 +452,8 @@ pub enum MicrofacetKind {
 pub enum ConductorFresnel {
     /// Mitsuba's `material = "none"` (its default): a 100% reflecting mirror.
     Perfect,
-    /// A complex index of refraction per RGB channel.
+    /// A complex index of refraction per RGB channel (given as `eta` and `k`, or by a
+    /// named `material`, see [`named_conductor`](crate::scene::bsdf::named_conductor)).
     Complex {
         /// Real part η.
         eta: Vec3,
@@ -497,6 +498,64 @@ pub enum BsdfDesc {
         specular_reflectance: Vec3,
         /// Scale on transmission (default 1).
         specular_transmittance: Vec3,
+    },
+    /// `roughdielectric`: microfacet glass that reflects and refracts, sampled with
+    /// visible normals.
+    RoughDielectric {
+        /// The normal distribution (default Beckmann).
+        distribution: MicrofacetKind,
+        /// Roughness α (default 0.1). Isotropic only.
+        alpha: f32,
+        /// Interior index of refraction (default 1.5046, BK7).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Scale on reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Scale on transmission (default 1).
+        specular_transmittance: Vec3,
+    },
+    /// `thindielectric`: a pane of glass of negligible thickness (reflects, or lets light
+    /// through undeflected).
+    ThinDielectric {
+        /// Index of refraction of the pane (default 1.5046, BK7).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Scale on reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Scale on transmission (default 1).
+        specular_transmittance: Vec3,
+    },
+    /// `plastic`: a diffuse base under a smooth dielectric coating.
+    Plastic {
+        /// Index of refraction of the coating (default 1.49, polypropylene).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Albedo of the base (default 0.5).
+        diffuse_reflectance: Vec3,
+        /// Scale on the coating's reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Whether internal scattering tints the base's colour (default false).
+        nonlinear: bool,
+    },
+    /// `roughplastic`: a diffuse base under a rough dielectric coating.
+    RoughPlastic {
+        /// The coating's normal distribution (default Beckmann).
+        distribution: MicrofacetKind,
+        /// Roughness α (default 0.1). Isotropic only.
+        alpha: f32,
+        /// Index of refraction of the coating (default 1.49, polypropylene).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Albedo of the base (default 0.5).
+        diffuse_reflectance: Vec3,
+        /// Scale on the coating's reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Whether internal scattering tints the base's colour (default false).
+        nonlinear: bool,
     },
     /// `twosided`: the nested BSDF on both sides of the surface.
     TwoSided(Box<BsdfDesc>),

@@ -289,12 +289,7 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             specular_reflectance,
             ..
         } => {
-            if !(MIN_ROUGHNESS..=MAX_ROUGHNESS).contains(alpha) {
-                return Err(invalid(
-                    "alpha",
-                    format!("must lie in [{MIN_ROUGHNESS}, {MAX_ROUGHNESS}]"),
-                ));
-            }
+            roughness(*alpha)?;
             conductor_fresnel(fresnel)?;
             colour("specular_reflectance", *specular_reflectance)
         }
@@ -309,8 +304,107 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             colour("specular_reflectance", *specular_reflectance)?;
             colour("specular_transmittance", *specular_transmittance)
         }
+        BsdfDesc::RoughDielectric {
+            alpha,
+            int_ior,
+            ext_ior,
+            specular_reflectance,
+            specular_transmittance,
+            ..
+        } => {
+            roughness(*alpha)?;
+            ior("int_ior", *int_ior)?;
+            ior("ext_ior", *ext_ior)?;
+            colour("specular_reflectance", *specular_reflectance)?;
+            colour("specular_transmittance", *specular_transmittance)
+        }
+        BsdfDesc::ThinDielectric {
+            int_ior,
+            ext_ior,
+            specular_reflectance,
+            specular_transmittance,
+        } => {
+            ior("int_ior", *int_ior)?;
+            ior("ext_ior", *ext_ior)?;
+            colour("specular_reflectance", *specular_reflectance)?;
+            colour("specular_transmittance", *specular_transmittance)
+        }
+        BsdfDesc::Plastic {
+            int_ior,
+            ext_ior,
+            diffuse_reflectance,
+            specular_reflectance,
+            nonlinear,
+        } => plastic(
+            *int_ior,
+            *ext_ior,
+            *diffuse_reflectance,
+            *specular_reflectance,
+            *nonlinear,
+        ),
+        BsdfDesc::RoughPlastic {
+            alpha,
+            int_ior,
+            ext_ior,
+            diffuse_reflectance,
+            specular_reflectance,
+            nonlinear,
+            ..
+        } => {
+            roughness(*alpha)?;
+            plastic(
+                *int_ior,
+                *ext_ior,
+                *diffuse_reflectance,
+                *specular_reflectance,
+                *nonlinear,
+            )
+        }
         BsdfDesc::TwoSided(inner) => bsdf(inner),
     }
+}
+
+fn roughness(alpha: f32) -> Result<(), Invalid> {
+    if (MIN_ROUGHNESS..=MAX_ROUGHNESS).contains(&alpha) {
+        Ok(())
+    } else {
+        Err(invalid(
+            "alpha",
+            format!("must lie in [{MIN_ROUGHNESS}, {MAX_ROUGHNESS}]"),
+        ))
+    }
+}
+
+/// A coated material. Its diffuse albedo after internal scattering, `ρ / (1 − F_dr)` (or
+/// `ρ / (1 − ρ F_dr)` when `nonlinear`), must stay finite: `F_dr` < 1 for every index
+/// the fits cover, and an albedo above 1 with `nonlinear` could reach the pole, so it is
+/// refused (Mitsuba would render infinities).
+fn plastic(
+    int_ior: f32,
+    ext_ior: f32,
+    diffuse: Vec3,
+    specular: Vec3,
+    nonlinear: bool,
+) -> Result<(), Invalid> {
+    ior("int_ior", int_ior)?;
+    ior("ext_ior", ext_ior)?;
+    colour("diffuse_reflectance", diffuse)?;
+    colour("specular_reflectance", specular)?;
+    if nonlinear && diffuse.max_element() > 1.0 {
+        return Err(invalid(
+            "diffuse_reflectance",
+            "must not exceed 1 with nonlinear (the internal scattering would diverge)",
+        ));
+    }
+    let fdr = crate::scene::bsdf::fresnel_diffuse_reflectance(ext_ior / int_ior);
+    if !(fdr < 1.0 && fdr.is_finite()) {
+        return Err(invalid(
+            "int_ior",
+            "over ext_ior is outside the range where the coating's internal reflectance \
+             is below 1",
+        ));
+    }
+    Ok(())
 }
 
 fn conductor_fresnel(f: &ConductorFresnel) -> Result<(), Invalid> {

@@ -51,3 +51,16 @@ pub fn sphere() -> Directions {
 pub fn jacobian() -> JacobianCheck {
     JacobianCheck::default()
 }
+
+/// A uniform value in [0, 1) from the bits of `u` (SplitMix64 finaliser): a third sample
+/// value for samplers that take three (a BSDF's component choice) when the harness hands
+/// out two; a fixed, deterministic function, uniform and independent of `u` for the
+/// purpose of a test.
+pub fn third_value(u: mcrt::glam::Vec2) -> f32 {
+    let mut z = (u64::from(u.x.to_bits()) << 32 | u64::from(u.y.to_bits()))
+        .wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^= z >> 31;
+    (z >> 40) as f32 / (1u64 << 24) as f32
+}

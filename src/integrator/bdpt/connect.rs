@@ -288,6 +288,22 @@ pub(crate) fn mis_weight<S: BidirectionalScene>(
     } else {
         &camera[t - 1]
     };
+    // An endpoint whose own walk went on by a Dirac delta (a mixed BSDF) is, for this
+    // strategy, a connection: not delta, its density per area.
+    let (qs_end, pt_end);
+    let qs = match qs {
+        Some(q) if q.delta => {
+            qs_end = q.as_endpoint();
+            Some(&qs_end)
+        }
+        q => q,
+    };
+    let pt = if pt.delta {
+        pt_end = pt.as_endpoint();
+        &pt_end
+    } else {
+        pt
+    };
     let pt_prev = (t > 1).then(|| &camera[t - 2]);
     let qs_prev = (s > 1).then(|| &light[s - 2]);
     // Reverse densities of the four vertices next to the connection; `w` runs from `pt` to

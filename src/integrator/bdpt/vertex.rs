@@ -43,6 +43,10 @@ pub(crate) struct Vertex {
     pub beta: Vec3,
     /// Density of this vertex when sampled from its own subpath's side.
     pub pdf_fwd: f32,
+    /// [`Vertex::pdf_fwd`] per unit area, kept when a Dirac delta sampled here re-expressed
+    /// `pdf_fwd` per projected solid angle: a connection that ends here (at a BSDF with
+    /// both kinds of component, such as plastic) sees this vertex as not delta.
+    pub pdf_fwd_area: f32,
     /// Density of this vertex when sampled from the other side.
     pub pdf_rev: f32,
     /// The scattering at this vertex was a Dirac delta (no connection can end here).
@@ -85,6 +89,7 @@ impl Vertex {
             intensity: Vec3::ZERO,
             beta,
             pdf_fwd,
+            pdf_fwd_area: pdf_fwd,
             pdf_rev: 0.0,
             delta: false,
             smooth: true,
@@ -126,6 +131,18 @@ impl Vertex {
     #[inline]
     pub(crate) fn is_delta_light(&self) -> bool {
         self.kind == Kind::Light(EmitterKind::Point)
+    }
+
+    /// This vertex as a connection that ends here sees it: not delta, its forward density
+    /// per unit area (Veach 1997, thesis, section 10.3.5; pbrt-v3 clears the flag the same
+    /// way in its `MISWeight`).
+    #[inline]
+    pub(crate) fn as_endpoint(&self) -> Vertex {
+        Vertex {
+            delta: false,
+            pdf_fwd: self.pdf_fwd_area,
+            ..*self
+        }
     }
 
     /// Whether a connection may end here.

@@ -187,6 +187,7 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
             // This vertex's own density is then per projected solid angle at the previous
             // one (see `Vertex::area_density`).
             path[n - 1].delta = true;
+            path[n - 1].pdf_fwd_area = path[n - 1].pdf_fwd;
             path[n - 1].pdf_fwd = if prev.is_infinite() {
                 pdf_in
             } else {

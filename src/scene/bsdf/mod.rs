@@ -1,5 +1,7 @@
-//! Materials: Mitsuba 3's `diffuse`, `conductor`, `roughconductor`, `dielectric` and
-//! `twosided`, as [`Bsdf`] implementations in the local z-up frame.
+//! Materials: Mitsuba 3's `diffuse`, `conductor`, `roughconductor` (both with the named
+//! materials of [`named_conductor`]), `dielectric`, `roughdielectric`, `thindielectric`,
+//! `plastic`, `roughplastic` and `twosided`, as [`Bsdf`] implementations in the local z-up
+//! frame.
 //!
 //! One-sided BSDFs are black from the back (`wo.z ≤ 0`), as in Mitsuba; [`Sided`] adds the
 //! `twosided` flip. [`AnyBsdf`] dispatches over all of them; a scene made of diffuse surfaces
@@ -10,13 +12,25 @@ mod conductor;
 mod dielectric;
 mod diffuse;
 mod fresnel;
+mod named_conductors;
+mod ndf;
+mod plastic;
 mod rough_conductor;
+mod rough_dielectric;
+mod rough_plastic;
+mod thin_dielectric;
 
 pub use conductor::{Conductor, Fresnel};
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
-pub use fresnel::{fresnel_conductor, fresnel_dielectric};
-pub use rough_conductor::{Ndf, RoughConductor};
+pub use fresnel::{fresnel_conductor, fresnel_dielectric, fresnel_diffuse_reflectance};
+pub use named_conductors::{conductor_names, named_conductor};
+pub use ndf::Ndf;
+pub use plastic::Plastic;
+pub use rough_conductor::RoughConductor;
+pub use rough_dielectric::RoughDielectric;
+pub use rough_plastic::RoughPlastic;
+pub use thin_dielectric::ThinDielectric;
 
 use super::description::{BsdfDesc, ConductorFresnel, MicrofacetKind};
 use crate::integrator::{Bsdf, BsdfFlags, BsdfSample};
@@ -24,7 +38,7 @@ use crate::sampling::SamplingError;
 use glam::{Vec2, Vec3};
 
 /// Any of the supported materials.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum AnyBsdf {
     /// Lambertian.
     Diffuse(Diffuse),
@@ -34,6 +48,14 @@ pub enum AnyBsdf {
     RoughConductor(RoughConductor),
     /// Smooth glass.
     Dielectric(Dielectric),
+    /// Microfacet glass.
+    RoughDielectric(RoughDielectric),
+    /// A thin pane of glass.
+    ThinDielectric(ThinDielectric),
+    /// Diffuse base under a smooth coating.
+    Plastic(Plastic),
+    /// Diffuse base under a rough coating.
+    RoughPlastic(RoughPlastic),
 }
 
 macro_rules! dispatch {
@@ -43,6 +65,10 @@ macro_rules! dispatch {
             AnyBsdf::Conductor($b) => $e,
             AnyBsdf::RoughConductor($b) => $e,
             AnyBsdf::Dielectric($b) => $e,
+            AnyBsdf::RoughDielectric($b) => $e,
+            AnyBsdf::ThinDielectric($b) => $e,
+            AnyBsdf::Plastic($b) => $e,
+            AnyBsdf::RoughPlastic($b) => $e,
         }
     };
 }
@@ -67,6 +93,10 @@ impl Bsdf for AnyBsdf {
     #[inline]
     fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
         dispatch!(self, b => b.sample(wo, u1, u2))
+    }
+    #[inline]
+    fn eval_adjoint(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        dispatch!(self, b => b.eval_adjoint(wo, wi))
     }
     #[inline]
     fn samples_component(&self) -> bool {
@@ -118,6 +148,14 @@ impl<B: Bsdf> Bsdf for Sided<B> {
             Some(s)
         } else {
             self.bsdf.sample(wo, u1, u2)
+        }
+    }
+    #[inline]
+    fn eval_adjoint(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        if self.two_sided && wo.z < 0.0 {
+            self.bsdf.eval_adjoint(flip(wo), flip(wi))
+        } else {
+            self.bsdf.eval_adjoint(wo, wi)
         }
     }
     #[inline]
@@ -180,6 +218,58 @@ impl AnyBsdf {
                 specular_reflectance: *specular_reflectance,
                 specular_transmittance: *specular_transmittance,
             }),
+            BsdfDesc::RoughDielectric {
+                distribution,
+                alpha,
+                int_ior,
+                ext_ior,
+                specular_reflectance,
+                specular_transmittance,
+            } => AnyBsdf::RoughDielectric(RoughDielectric::new(
+                *distribution == MicrofacetKind::Ggx,
+                *alpha,
+                int_ior / ext_ior,
+                *specular_reflectance,
+                *specular_transmittance,
+            )?),
+            BsdfDesc::ThinDielectric {
+                int_ior,
+                ext_ior,
+                specular_reflectance,
+                specular_transmittance,
+            } => AnyBsdf::ThinDielectric(ThinDielectric {
+                eta: int_ior / ext_ior,
+                specular_reflectance: *specular_reflectance,
+                specular_transmittance: *specular_transmittance,
+            }),
+            BsdfDesc::Plastic {
+                int_ior,
+                ext_ior,
+                diffuse_reflectance,
+                specular_reflectance,
+                nonlinear,
+            } => AnyBsdf::Plastic(Plastic::new(
+                *diffuse_reflectance,
+                *specular_reflectance,
+                int_ior / ext_ior,
+                *nonlinear,
+            )),
+            BsdfDesc::RoughPlastic {
+                distribution,
+                alpha,
+                int_ior,
+                ext_ior,
+                diffuse_reflectance,
+                specular_reflectance,
+                nonlinear,
+            } => AnyBsdf::RoughPlastic(RoughPlastic::new(
+                *distribution == MicrofacetKind::Ggx,
+                *alpha,
+                *diffuse_reflectance,
+                *specular_reflectance,
+                int_ior / ext_ior,
+                *nonlinear,
+            )?),
         };
         Ok(Sided {
             bsdf,

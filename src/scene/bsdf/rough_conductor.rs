@@ -2,48 +2,11 @@
 //! GGX or Beckmann normals, sampled with visible normals.
 
 use super::conductor::Fresnel;
+use super::ndf::Ndf;
 use crate::integrator::{is_positive, Bsdf, BsdfFlags, BsdfSample};
-use crate::sampling::warp::{
-    Beckmann, BeckmannVisible, Ggx, GgxVisible, MicrofacetDistribution, Warp,
-};
+use crate::sampling::warp::{BeckmannVisible, GgxVisible, MicrofacetDistribution, Warp};
 use crate::sampling::SamplingError;
 use glam::{Vec2, Vec3};
-
-/// The normal distribution of a rough conductor.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Ndf {
-    /// GGX (Trowbridge–Reitz).
-    Ggx(Ggx),
-    /// Beckmann.
-    Beckmann(Beckmann),
-}
-
-impl Ndf {
-    #[inline]
-    fn d(&self, m: Vec3) -> f32 {
-        match self {
-            Ndf::Ggx(g) => g.d(m),
-            Ndf::Beckmann(b) => b.d(m),
-        }
-    }
-
-    #[inline]
-    fn g(&self, wo: Vec3, wi: Vec3, m: Vec3) -> f32 {
-        match self {
-            Ndf::Ggx(g) => g.g(wo, wi, m),
-            Ndf::Beckmann(b) => b.g(wo, wi, m),
-        }
-    }
-
-    /// Density of the visible normal `m` seen from `wo` (per steradian of m).
-    #[inline]
-    fn pdf_visible(&self, wo: Vec3, m: Vec3) -> f32 {
-        match self {
-            Ndf::Ggx(g) => GgxVisible::new(g.alpha(), wo).map_or(0.0, |v| v.pdf(m)),
-            Ndf::Beckmann(b) => BeckmannVisible::new(b.alpha(), wo).map_or(0.0, |v| v.pdf(m)),
-        }
-    }
-}
 
 /// Microfacet reflection `f = F(wo·h) D(h) G(wo, wi, h) / (4 cos θ_o cos θ_i)` with Mitsuba's
 /// separable Smith `G = G1(wo) G1(wi)`; the half-vector is drawn from the visible normals
@@ -73,13 +36,8 @@ impl RoughConductor {
         fresnel: Fresnel,
         specular_reflectance: Vec3,
     ) -> Result<Self, SamplingError> {
-        let ndf = if ggx {
-            Ndf::Ggx(Ggx::new(alpha)?)
-        } else {
-            Ndf::Beckmann(Beckmann::new(alpha)?)
-        };
         Ok(Self {
-            ndf,
+            ndf: Ndf::new(ggx, alpha)?,
             fresnel,
             specular_reflectance,
         })

@@ -30,13 +30,13 @@ fn smooth_bsdfs() -> Vec<Sided<AnyBsdf>> {
     ];
     let mut v: Vec<_> = list
         .iter()
-        .map(|&bsdf| Sided {
-            bsdf,
+        .map(|bsdf| Sided {
+            bsdf: bsdf.clone(),
             two_sided: false,
         })
         .collect();
     v.push(Sided {
-        bsdf: list[1],
+        bsdf: list[1].clone(),
         two_sided: true,
     });
     v
@@ -118,7 +118,7 @@ fn one_sided_is_black_from_behind_and_twosided_is_not() {
     };
     let two = Sided {
         two_sided: true,
-        ..one
+        ..one.clone()
     };
     assert_eq!(one.eval(below, below), Vec3::ZERO);
     assert!(one.sample(below, 0.5, Vec2::splat(0.5)).is_none());

@@ -1,11 +1,13 @@
-//! `<bsdf>`: `diffuse`, `conductor`, `roughconductor`, `dielectric` and `twosided`, and
-//! `<ref>` to a BSDF declared elsewhere.
+//! `<bsdf>`: `diffuse`, `conductor`, `roughconductor`, `dielectric`, `roughdielectric`,
+//! `thindielectric`, `plastic`, `roughplastic` and `twosided`, and `<ref>` to a BSDF
+//! declared elsewhere.
 
 use super::context::{Ctx, Res};
 use super::error::SceneErrorKind;
 use super::props::{Props, Value};
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
+use crate::scene::bsdf::named_conductor;
 use crate::scene::description::{BsdfDesc, ConductorFresnel, MicrofacetKind};
 use crate::scene::validate::{self, MIN_ROUGHNESS};
 use glam::Vec3;
@@ -52,40 +54,58 @@ pub(crate) fn read_bsdf(ctx: &Ctx, e: &Elem) -> Res<BsdfDesc> {
             reflectance: p.rgb("reflectance")?.unwrap_or(Vec3::splat(0.5)),
         },
         "conductor" => BsdfDesc::Conductor {
-            fresnel: fresnel(ctx, e, &mut p)?,
+            fresnel: fresnel(e, &mut p)?,
             specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
         },
         "roughconductor" => {
-            let distribution = p.string("distribution")?.map(|d| d.to_ascii_lowercase());
-            let distribution = match distribution.as_deref() {
-                None | Some("beckmann") => MicrofacetKind::Beckmann,
-                Some("ggx") => MicrofacetKind::Ggx,
-                Some(other) => {
-                    return Err(p.invalid(
-                        "distribution",
-                        e,
-                        &format!("\"{other}\" is not beckmann or ggx"),
-                    ))
-                }
-            };
-            let alpha = roughness(e, &mut p)?;
-            // Visible-normal sampling only changes the noise, never the expected value.
-            p.bool("sample_visible")?;
+            let (distribution, alpha) = microfacet(e, &mut p)?;
             BsdfDesc::RoughConductor {
                 distribution,
                 alpha,
-                fresnel: fresnel(ctx, e, &mut p)?,
+                fresnel: fresnel(e, &mut p)?,
                 specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
             }
         }
-        "dielectric" => {
-            let int_ior = ior(e, &mut p, "int_ior", 1.5046)?;
-            let ext_ior = ior(e, &mut p, "ext_ior", 1.000277)?;
-            BsdfDesc::Dielectric {
-                int_ior,
-                ext_ior,
+        "dielectric" => BsdfDesc::Dielectric {
+            int_ior: ior(e, &mut p, "int_ior", BK7)?,
+            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+        },
+        "roughdielectric" => {
+            let (distribution, alpha) = microfacet(e, &mut p)?;
+            BsdfDesc::RoughDielectric {
+                distribution,
+                alpha,
+                int_ior: ior(e, &mut p, "int_ior", BK7)?,
+                ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
                 specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
                 specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+            }
+        }
+        "thindielectric" => BsdfDesc::ThinDielectric {
+            int_ior: ior(e, &mut p, "int_ior", BK7)?,
+            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+        },
+        "plastic" => BsdfDesc::Plastic {
+            int_ior: ior(e, &mut p, "int_ior", POLYPROPYLENE)?,
+            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+            diffuse_reflectance: p.rgb("diffuse_reflectance")?.unwrap_or(Vec3::splat(0.5)),
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            nonlinear: p.bool("nonlinear")?.unwrap_or(false),
+        },
+        "roughplastic" => {
+            let (distribution, alpha) = microfacet(e, &mut p)?;
+            BsdfDesc::RoughPlastic {
+                distribution,
+                alpha,
+                int_ior: ior(e, &mut p, "int_ior", POLYPROPYLENE)?,
+                ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+                diffuse_reflectance: p.rgb("diffuse_reflectance")?.unwrap_or(Vec3::splat(0.5)),
+                specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+                nonlinear: p.bool("nonlinear")?.unwrap_or(false),
             }
         }
         other => return Err(unknown_plugin(ctx, e, other)),
@@ -124,6 +144,33 @@ fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>) -> Res<BsdfDesc> {
     Ok(BsdfDesc::TwoSided(Box::new(read_bsdf(ctx, target)?)))
 }
 
+/// Mitsuba's default interior index of a dielectric, BK7 glass.
+const BK7: f32 = 1.5046;
+/// Mitsuba's default interior index of a plastic coating, polypropylene.
+const POLYPROPYLENE: f32 = 1.49;
+/// Mitsuba's default exterior index, air.
+const AIR: f32 = 1.000277;
+
+/// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`], and
+/// `sample_visible`, which only changes the noise, never the expected value.
+fn microfacet(e: &Elem, p: &mut Props) -> Res<(MicrofacetKind, f32)> {
+    let distribution = p.string("distribution")?.map(|d| d.to_ascii_lowercase());
+    let distribution = match distribution.as_deref() {
+        None | Some("beckmann") => MicrofacetKind::Beckmann,
+        Some("ggx") => MicrofacetKind::Ggx,
+        Some(other) => {
+            return Err(p.invalid(
+                "distribution",
+                e,
+                &format!("\"{other}\" is not beckmann or ggx"),
+            ))
+        }
+    };
+    let alpha = roughness(e, p)?;
+    p.bool("sample_visible")?;
+    Ok((distribution, alpha))
+}
+
 /// The isotropic roughness: `alpha`, or `alpha_u` = `alpha_v`. Values in [0, 10⁻⁴) are
 /// raised to 10⁻⁴, as Mitsuba 3 does; negative values and values above 10 are refused.
 fn roughness(e: &Elem, p: &mut Props) -> Res<f32> {
@@ -148,20 +195,34 @@ fn roughness(e: &Elem, p: &mut Props) -> Res<f32> {
 }
 
 /// Mitsuba's conductor rule: `material = "none"` (the default) without `eta` or `k` is a
-/// perfect mirror; `eta`/`k` (defaults 0 and 1) give a complex IOR; named materials are
-/// not supported.
-fn fresnel(ctx: &Ctx, e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
+/// perfect mirror; `eta`/`k` (defaults 0 and 1) give a complex IOR; a named `material`
+/// (Au, Cu, Al, …) gives the RGB values Mitsuba's RGB variants use, and cannot be combined
+/// with `eta` or `k`.
+fn fresnel(e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
     let material = p.string("material")?.unwrap_or_else(|| "none".into());
-    if material != "none" {
-        return Err(ctx.err(
-            e,
-            SceneErrorKind::Unsupported(format!(
-                "conductor material \"{material}\" (give eta and k as rgb values)"
-            )),
-        ));
-    }
     let unbounded = super::spectrum::SpectrumUse::Unbounded;
     let (eta, k) = (p.colour("eta", unbounded)?, p.colour("k", unbounded)?);
+    if material != "none" {
+        if eta.is_some() || k.is_some() {
+            let which = if eta.is_some() { "eta" } else { "k" };
+            return Err(p.invalid(
+                which,
+                e,
+                &format!("cannot be given with material \"{material}\" (give one or the other)"),
+            ));
+        }
+        let Some((eta, k)) = named_conductor(&material) else {
+            return Err(p.invalid(
+                "material",
+                e,
+                &format!(
+                    "\"{material}\" is not a known conductor (names are case-sensitive, \
+                     e.g. Au, Ag, Al, Cu, Cr; docs/scene-format.md lists them)"
+                ),
+            ));
+        };
+        return Ok(ConductorFresnel::Complex { eta, k });
+    }
     if eta.is_none() && k.is_none() {
         return Ok(ConductorFresnel::Perfect);
     }

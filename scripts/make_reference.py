@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Render a Mitsuba 3 reference image for tests/data, the way tests/data/REFERENCES.md
+describes: the mean of independent passes `mi.render(scene, spp=PASS, seed=i)`, i = 0, 1, ...,
+written as linear RGB float32 EXR. Prints the image mean and the render time.
+
+Usage:
+    python3 scripts/make_reference.py tests/data/cornell-box-glass.xml --spp 4096
+    python3 scripts/make_reference.py tests/data/cornell-box.xml -D max_depth=2 \\
+        --spp 4096 --out tests/data/cornell-box-direct.exr
+
+The output defaults to the scene's path with `.exr`. `-D NAME=VALUE` sets a scene
+parameter (repeatable). Needs the packages of scripts/requirements.txt and, for the
+default variant llvm_ad_rgb, libLLVM (see scripts/README.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+from contenders import check_variant, import_mitsuba
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("scene", type=Path)
+    ap.add_argument("--spp", type=int, default=4096, help="total samples per pixel")
+    ap.add_argument("--pass-spp", type=int, default=256, help="samples per pixel per pass")
+    ap.add_argument("--variant", default="llvm_ad_rgb")
+    ap.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME=VALUE")
+    ap.add_argument("--out", type=Path)
+    a = ap.parse_args()
+    if a.spp % a.pass_spp:
+        ap.error("--spp must be a multiple of --pass-spp")
+    mi, _ = import_mitsuba([a.variant])
+    check_variant(mi, a.variant)
+    import numpy as np
+
+    params = dict(d.split("=", 1) for d in a.defines)
+    scene = mi.load_file(str(a.scene), **params)
+    passes = a.spp // a.pass_spp
+    acc = None
+    start = time.perf_counter()
+    for i in range(passes):
+        img = np.array(mi.render(scene, spp=a.pass_spp, seed=i), dtype=np.float64)
+        acc = img if acc is None else acc + img
+    seconds = time.perf_counter() - start
+    mean = (acc / passes).astype(np.float32)[:, :, :3]
+    out = a.out or a.scene.with_suffix(".exr")
+    mi.Bitmap(mean).write(str(out))
+    h, w = mean.shape[:2]
+    m = mean.reshape(-1, 3).mean(axis=0)
+    print(f"{out}: {w}x{h}, {a.spp} spp in {passes} passes, {seconds:.1f} s "
+          f"({w * h * a.spp / seconds / 1e6:.2f} M samples/s); "
+          f"mean {m[0]:.5f}, {m[1]:.5f}, {m[2]:.5f}")
+
+
+if __name__ == "__main__":
+    main()
