@@ -56,7 +56,7 @@ fn unknown_element_attribute_plugin_and_parameter() {
     assert!(matches!(e.kind, SceneErrorKind::UnknownAttribute(_)), "{e}");
     check(&e, 2, "<shape type=\"cube\">", "\"size\"");
 
-    let e = err("\n<bsdf type=\"plastic\"/>");
+    let e = err("\n<bsdf type=\"hair\"/>");
     assert!(
         matches!(e.kind, SceneErrorKind::UnknownPlugin { .. }),
         "{e}"
@@ -64,8 +64,8 @@ fn unknown_element_attribute_plugin_and_parameter() {
     check(
         &e,
         3,
-        "<bsdf type=\"plastic\">",
-        "unknown bsdf plugin type \"plastic\"",
+        "<bsdf type=\"hair\">",
+        "unknown bsdf plugin type \"hair\"",
     );
 
     let e = err("<sensor type=\"perspective\">\n<float name=\"fvo\" value=\"40\"/>\n</sensor>");
