@@ -1,13 +1,13 @@
 //! Ray-query throughput of the acceleration structures (`mcrt::scene::geometry::AccelKind`),
 //! single thread, on pre-generated rays (fixed seeds) so criterion reports rays per second.
 //!
-//! Run: `cargo bench --bench accel`.
+//! Run: `cargo bench --features bench --bench accel`.
 //!
 //! - `accel/cornell_box`: closest-hit and occlusion (`t_max = 1`) queries for the BVH, the
-//!   grid and brute force on the shapes of `tests/data/cornell-box.xml`, random rays from
-//!   inside the box.
-//! - `accel/soup_100k`, `accel/sphere_130k`: build time and closest-hit queries for the BVH
-//!   and the grid on a 100 000-triangle soup (every point of space lies in the boxes of
+//!   grid, the kd-tree and brute force on the shapes of `tests/data/cornell-box.xml`, random
+//!   rays from inside the box.
+//! - `accel/soup_100k`, `accel/sphere_130k`: build time and closest-hit queries for the BVH,
+//!   the grid and the kd-tree on a 100 000-triangle soup (every point of space lies in the boxes of
 //!   hundreds of triangles: a hard case) and a closed 130 560-triangle tessellated sphere (256 × 256),
 //!   random rays from inside. Build throughput is reported in triangles per second.
 //!
@@ -52,7 +52,12 @@ fn cornell(c: &mut Criterion) {
     let mut group = c.benchmark_group("accel/cornell_box");
     group.sampling_mode(SamplingMode::Flat);
     group.throughput(Throughput::Elements(rays.len() as u64));
-    for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::BruteForce] {
+    for kind in [
+        AccelKind::Bvh,
+        AccelKind::Grid,
+        AccelKind::KdTree,
+        AccelKind::BruteForce,
+    ] {
         let g = Geometry::new(&shapes, None, kind).expect("the Cornell box builds");
         group.bench_function(format!("closest_hit/{kind:?}"), |b| {
             b.iter(|| closest_hits(&g, black_box(&rays)))
@@ -78,7 +83,7 @@ fn large_meshes(c: &mut Criterion) {
     ] {
         let mut group = c.benchmark_group(format!("accel/{name}"));
         group.sampling_mode(SamplingMode::Flat);
-        for kind in [AccelKind::Bvh, AccelKind::Grid] {
+        for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::KdTree] {
             // Build throughput in triangles per second.
             group.throughput(Throughput::Elements(triangles));
             group.bench_function(format!("build/{kind:?}"), |b| {

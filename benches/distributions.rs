@@ -1,6 +1,6 @@
 //! Build time and ns per sample of the distributions in `mcrt::sampling::distribution`.
 //!
-//! Run: `cargo bench --bench distributions`. Sample benchmarks time `BATCH` calls per
+//! Run: `cargo bench --features bench --bench distributions`. Sample benchmarks time `BATCH` calls per
 //! iteration on pre-generated sample values (time per iteration / `BATCH` = ns per call); build
 //! benchmarks time one construction per iteration. The alias table is timed at 10³ and 10⁶
 //! entries to show that its cost per sample does not grow with the table (O(1)), while the
@@ -110,12 +110,12 @@ fn piecewise_2d(c: &mut Criterion) {
         b.iter(|| PiecewiseConstant2D::new(black_box(&values), width, height).unwrap())
     });
     let d = PiecewiseConstant2D::new(&values, width, height).unwrap();
-    let ps: Vec<_> = us.iter().map(|&u| d.sample(u).0).collect();
+    let ps: Vec<_> = us.iter().map(|&u| d.sample_cell(u).0).collect();
     group.throughput(Throughput::Elements(BATCH as u64));
     group.bench_function(BenchmarkId::new("sample", "1024x512"), |b| {
         b.iter(|| {
             us.iter()
-                .map(|&u| black_box(d.sample(black_box(u))).1)
+                .map(|&u| black_box(d.sample_cell(black_box(u))).1)
                 .sum::<f32>()
         })
     });

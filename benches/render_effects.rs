@@ -4,7 +4,7 @@
 //! have) against the general loop (every material through `AnyBsdf`, lights checked at run
 //! time). 64×64 pixels, 4 spp, one thread, fixed seed.
 //!
-//! `cargo bench --bench render_effects`
+//! `cargo bench --features bench --bench render_effects`
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use mcrt::scene::render::{RenderOptions, Renderer};

@@ -5,7 +5,7 @@
 //! `scripts/bench_table.py --rate render/` prints M samples/s and M rays/s and the speed-up over
 //! one thread.
 //!
-//! `cargo bench --bench render_threads`
+//! `cargo bench --features bench --bench render_threads`
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use mcrt::scene::render::{RenderOptions, Renderer};

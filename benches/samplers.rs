@@ -1,6 +1,6 @@
 //! ns per 2D and per 1D sample value for each sampler of `mcrt::sampling::sampler`.
 //!
-//! Run: `cargo bench --bench samplers`. Each timed iteration starts `BATCH / 8` pixel samples
+//! Run: `cargo bench --features bench --bench samplers`. Each timed iteration starts `BATCH / 8` pixel samples
 //! and draws 8 2D (or 1D) values from each, so time per iteration / `BATCH` is the cost of one
 //! value including its share of `start_pixel_sample`; `start_pixel_sample` is also timed alone.
 //! On a shared machine only the ratios between samplers within one run mean anything; the

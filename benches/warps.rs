@@ -1,7 +1,7 @@
 //! ns per call of every warp's `sample`, `pdf` and `invert` (and `new` where a warp is built
 //! per shading point), with `rand_distr`'s `UnitDisc` and `UnitSphere` side by side.
 //!
-//! Run: `cargo bench --bench warps`. Every timed iteration makes `BATCH` calls on pre-generated
+//! Run: `cargo bench --features bench --bench warps`. Every timed iteration makes `BATCH` calls on pre-generated
 //! inputs (sample values, or points drawn from the warp beforehand), so time per iteration /
 //! `BATCH` is ns per call. `rand_distr` draws from an RNG, not from `u`, so the comparison group
 //! runs ours on the same RNG (PCG32) and also times the RNG alone.

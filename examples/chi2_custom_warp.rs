@@ -45,7 +45,7 @@ fn main() {
     let inverse = check_warp_inverse(&LinearRamp, 64, 1e-5);
     println!("{}\n{}", jacobian.report(), inverse.report());
 
-    if !(outcome.passed() && jacobian.passed && inverse.passed) {
+    if !(outcome.passed() && jacobian.passed() && inverse.passed()) {
         std::process::exit(1);
     }
 }

@@ -5,22 +5,27 @@
 //!     [-o out.exr|out.png] [--threads N] [--seed S] [--variance]
 //!     [--strategy bsdf|light|balance|power]
 //!     [--sampler independent|stratified|sobol|halton|r2]
-//!     [--accel bvh|grid] [--light-sampling solid-angle|area]
+//!     [--accel bvh|grid|kdtree] [--light-sampling solid-angle|area]
 //!     [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]
+//!     [--samples START..END] [--crop x0,y0,x1,y1]
 //! ```
 //!
 //! `--help` lists every option with its default. Writes a linear float EXR and an sRGB PNG
-//! beside it (the extension of `-o` chooses which name is which; `<name>-variance.exr` with
+//! beside it, by default `renders/SCENE.exr` and `renders/SCENE.png` in the current folder
+//! (the extension of `-o` chooses which name is which; `<name>-variance.exr` with
 //! `--variance`). The output folder is checked before rendering, and files are replaced
 //! atomically. Ctrl-C (or SIGTERM) stops early, writes the image so far as
 //! `NAME.partial.exr` / `NAME.partial.png` (pixels without a sample are NaN in the EXR)
 //! and exits with status 130.
+//!
+//! With `--samples` or `--crop` the output is a *part* of the render, an EXR that the `merge`
+//! example adds to the other parts (see `docs/distributed.md`).
 
 use clap::{Arg, ArgAction, Command};
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrt::integrator::Strategy;
 use mcrt::scene::description::{IntegratorKind, SamplerKind, SceneDescription};
-use mcrt::scene::film::{OutputPlan, EXIT_INTERRUPTED};
+use mcrt::scene::film::{OutputPlan, WindowError, EXIT_INTERRUPTED};
 use mcrt::scene::render::{AccelKind, RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -79,7 +84,8 @@ const OPTIONS: &[Opt] = &[
         short: Some('o'),
         value: Some("FILE"),
         help: "output image, NAME.exr or NAME.png; the other format is written beside it \
-               [default: SCENE.exr in the current folder]",
+               [default: renders/SCENE.exr, the folder made if missing; a part: \
+               renders/SCENE.samples-START-END.crop-X0-Y0-X1-Y1.exr]",
         apply: |a, v| {
             a.out = Some(v.into());
             Ok(())
@@ -152,13 +158,14 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "accel",
         short: None,
-        value: Some("bvh|grid"),
+        value: Some("bvh|grid|kdtree"),
         help: "acceleration structure [default: bvh]",
         apply: |a, v| {
             a.opts.accel = match v {
                 "bvh" => AccelKind::Bvh,
                 "grid" => AccelKind::Grid,
-                _ => return Err(format!("--accel {v}: expected bvh or grid")),
+                "kdtree" => AccelKind::KdTree,
+                _ => return Err(format!("--accel {v}: expected bvh, grid or kdtree")),
             };
             Ok(())
         },
@@ -213,6 +220,38 @@ const OPTIONS: &[Opt] = &[
     },
 ];
 
+/// The options that divide a render (`docs/distributed.md`).
+const SPLIT_OPTIONS: &[Opt] = &[
+    Opt {
+        long: "samples",
+        short: None,
+        value: Some("START..END"),
+        help: "render only the pixel samples with indices in [START, END) of the --spp budget, \
+               exactly those a whole render draws for them, as a part for the merge example \
+               (not with mlt) [default: all]",
+        apply: |a, v| {
+            a.opts.samples = Some(v.parse().map_err(|e: WindowError| format!("--{e}"))?);
+            Ok(())
+        },
+    },
+    Opt {
+        long: "crop",
+        short: None,
+        value: Some("X0,Y0,X1,Y1"),
+        help: "render only the pixels [X0, X1) × [Y0, Y1), from the top left, as a part for \
+               the merge example (not with mlt) [default: the whole image]",
+        apply: |a, v| {
+            a.opts.crop = Some(v.parse().map_err(|e: WindowError| format!("--{e}"))?);
+            Ok(())
+        },
+    },
+];
+
+/// Every option.
+fn all_options() -> impl Iterator<Item = &'static Opt> {
+    OPTIONS.iter().chain(SPLIT_OPTIONS)
+}
+
 fn num<T: std::str::FromStr>(flag: &str, v: &str) -> Result<T, String> {
     v.parse()
         .map_err(|_| format!("{flag}: '{v}' is not a valid number"))
@@ -223,12 +262,16 @@ fn command() -> Command {
     let scene = Arg::new("scene")
         .value_name("SCENE.xml")
         .help("Mitsuba 3 XML scene [default: the built-in Cornell box]");
-    OPTIONS.iter().fold(
+    all_options().fold(
         Command::new("render")
             .about("Renders a Mitsuba 3 XML scene with mcrt's path tracer.")
             .after_help(
-                "Ctrl-C or SIGTERM stops early: the image so far is written as \
-                 NAME.partial.exr / NAME.partial.png and the exit status is 130.",
+                "Images go to the folder renders/ of the current folder unless -o names a \
+                 file. Ctrl-C or SIGTERM stops early: the image so far is written as \
+                 NAME.partial.exr / NAME.partial.png and the exit status is 130. \
+                 --samples and --crop write a part of the render; \
+                 `cargo run --release --example merge -- OUT.exr PARTS.exr...` adds the parts \
+                 into the image one render would give (docs/distributed.md).",
             )
             .arg(scene),
         |cmd, o| {
@@ -253,7 +296,7 @@ fn parse_args() -> Result<Args, clap::Error> {
         ..Args::default()
     };
     let usage = |e: String| command().error(clap::error::ErrorKind::ValueValidation, e);
-    for o in OPTIONS {
+    for o in all_options() {
         match o.value {
             None if m.get_flag(o.long) => (o.apply)(&mut a, "").map_err(usage)?,
             None => {}
@@ -278,7 +321,9 @@ fn builtin(defines: &[(String, String)]) -> Result<SceneDescription, String> {
             "max_depth" => max_depth = v.parse().map_err(|_| bad())?,
             _ => {
                 return Err(format!(
-                    "-D {k}: the Cornell box has no parameter '{k}' (spp, res, max_depth)"
+                    "the built-in Cornell box: unknown define: -D {k}={v}: the scene neither \
+                     declares nor uses a parameter \"{k}\" (its <default> parameters: spp, \
+                     res, max_depth)"
                 ))
             }
         }
@@ -301,10 +346,26 @@ fn run(args: Args) -> Result<bool, String> {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_else(|| "scene".into()),
     };
+    let split = args.opts.samples.is_some() || args.opts.crop.is_some();
+    if split && args.variance {
+        return Err(
+            "--variance with --samples or --crop: a part keeps the sums of squares, \
+                    and `merge --variance` writes the variance of the merged image"
+                .into(),
+        );
+    }
+    if split && !ends_in_exr(args.out.as_deref()) {
+        return Err("a part (--samples, --crop) is an EXR file: -o must end in .exr".into());
+    }
     // Decide and check the output before any work, so that a bad name fails at once.
+    let stem = if split {
+        format!("{name}{}", part_suffix(&args.opts))
+    } else {
+        name.clone()
+    };
     let plan = OutputPlan::new(
         args.out.as_deref(),
-        &name,
+        &stem,
         args.scene.as_deref(),
         args.variance,
     )
@@ -342,7 +403,15 @@ fn run(args: Args) -> Result<bool, String> {
         renderer.integrator().strategy().name(),
         renderer.effects().describe()
     );
-    let total = renderer.spp() as u64 * w as u64 * h as u64;
+    if split {
+        println!(
+            "part: samples {} of {}, pixels {} (x0,y0,x1,y1) of {w}×{h}",
+            renderer.samples(),
+            renderer.spp(),
+            renderer.crop()
+        );
+    }
+    let total = renderer.work();
     let bar = ProgressBar::new(total);
     bar.set_style(
         ProgressStyle::with_template("{bar:40} {percent:>3}% {elapsed_precise} eta {eta}")
@@ -380,19 +449,42 @@ fn run(args: Args) -> Result<bool, String> {
             .collect();
         println!("bdpt, by strategy (s,t) (above 0.1%): {}", strat.join(", "));
     }
-    let written = plan
-        .write(&result.film, interrupted)
-        .map_err(|e| e.to_string())?;
+    let written = if split {
+        let info = renderer.part_info(&name);
+        vec![plan
+            .write_part(&result.film, &info, interrupted)
+            .map_err(|e| e.to_string())?]
+    } else {
+        plan.write(&result.film, interrupted)
+            .map_err(|e| e.to_string())?
+    };
     let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
     println!("wrote {}", names.join(", "));
     if interrupted {
         let (lo, hi) = result.film.count_range();
         println!(
             "interrupted: pixels have {lo}..{hi} of {} samples each (NaN in the EXR where none)",
-            renderer.spp()
+            renderer.samples().len()
         );
     }
     Ok(interrupted)
+}
+
+/// Whether `-o` is absent or names an EXR file.
+fn ends_in_exr(out: Option<&std::path::Path>) -> bool {
+    out.is_none_or(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")))
+}
+
+/// The default name's suffix for a part: `.samples-START-END` and `.crop-X0-Y0-X1-Y1`.
+fn part_suffix(opts: &RenderOptions) -> String {
+    let mut s = String::new();
+    if let Some(r) = opts.samples {
+        s += &format!(".samples-{}-{}", r.start, r.end);
+    }
+    if let Some(c) = opts.crop {
+        s += &format!(".crop-{}-{}-{}-{}", c.x0, c.y0, c.x1, c.y1);
+    }
+    s
 }
 
 fn main() -> ExitCode {

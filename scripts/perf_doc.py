@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Fills the generated tables of docs/performance.md from target/criterion.
 
-Usage: scripts/perf_doc.py   (after the three `cargo bench --bench ...`; scripts/run_benches.sh
+Usage: scripts/perf_doc.py   (after the three `cargo bench --features bench --bench ...`; scripts/run_benches.sh
 runs all of it)
 
 Replaces the text between `<!-- table:NAME -->` and `<!-- end -->` markers with the output of

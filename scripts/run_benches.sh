@@ -5,10 +5,10 @@ set -e
 cd "$(dirname "$0")/.."
 mkdir -p target/criterion
 { printf 'start %s: ' "$(date -u +%H:%M)"; cut -d' ' -f1-3 /proc/loadavg; } > target/criterion/loadavg.txt
-cargo bench --bench warps
-cargo bench --bench distributions
-cargo bench --bench samplers
-cargo bench --bench render_threads
-cargo bench --bench accel
+cargo bench --features bench --bench warps
+cargo bench --features bench --bench distributions
+cargo bench --features bench --bench samplers
+cargo bench --features bench --bench render_threads
+cargo bench --features bench --bench accel
 { printf 'end %s: ' "$(date -u +%H:%M)"; cut -d' ' -f1-3 /proc/loadavg; } >> target/criterion/loadavg.txt
 python3 scripts/perf_doc.py

@@ -12,9 +12,58 @@
 //! | [`sampling::jacobian`] | change of variables between measures, numerical Jacobians of any warp | always |
 //! | [`sampling::mis`] | balance and power heuristics | always |
 //! | [`sampling::sampler`] | independent, stratified and low-discrepancy (Sobol, Halton, R2) sample generators | always (Sobol needs `sobol`) |
-//! | `stats` | the public chi-square goodness-of-fit harness and pdf-integration checks | `stats` |
-//! | [`integrator`] | path tracing and direct lighting estimators of the light transport equation | always |
-//! | `scene` | the reference scene, its Mitsuba 3 XML loader, and the renderer | `render` |
+#![cfg_attr(
+    feature = "stats",
+    doc = "| [`stats`] | the public chi-square goodness-of-fit harness and pdf-integration checks | `stats` |"
+)]
+#![cfg_attr(
+    not(feature = "stats"),
+    doc = "| `stats` | the public chi-square goodness-of-fit harness and pdf-integration checks | `stats` |"
+)]
+//! | [`integrator`] | path tracing, direct lighting, bidirectional path tracing and Metropolis light transport, over small traits ([`integrator::Scene`], [`integrator::Bsdf`]) that any renderer implements | always |
+#![cfg_attr(
+    feature = "render",
+    doc = "| [`scene`] | the reference scene, its Mitsuba 3 XML loader, and the renderer | `render` |"
+)]
+#![cfg_attr(
+    not(feature = "render"),
+    doc = "| `scene` | the reference scene, its Mitsuba 3 XML loader, and the renderer | `render` |"
+)]
+//!
+//! ## A first example
+//!
+//! The irradiance under a uniform sky of radiance 1 is `∫ cos θ dω = π`: cosine-weighted
+//! directions about `+z`, turned about a surface normal by a [`sampling::Frame`], estimate
+//! it (exactly, since `cos θ / pdf = π` for every sample), with the values of a
+//! [`sampling::sampler::Sampler`].
+//!
+//! ```
+//! use mcrt::glam::{Vec2, Vec3};
+//! use mcrt::sampling::sampler::{IndependentSampler, SampleSource, Sampler};
+//! use mcrt::sampling::warp::{CosineHemisphere, InvertibleWarp, Warp};
+//! use mcrt::sampling::Frame;
+//!
+//! let frame = Frame::from_normal(Vec3::new(0.0, 0.6, 0.8));
+//! let mut sampler = IndependentSampler::new(64, 7).unwrap();
+//! let mut sum = 0.0;
+//! for i in 0..64 {
+//!     sampler.start_pixel_sample([0, 0], i);
+//!     let (local, pdf) = CosineHemisphere.sample_with_pdf(sampler.next_2d());
+//!     let w = frame.to_world(local); // a direction about the normal
+//!     sum += w.dot(frame.n) / pdf; // radiance · cos θ / pdf
+//! }
+//! assert!((sum / 64.0 - std::f32::consts::PI).abs() < 1e-4);
+//!
+//! // Every warp has its pdf beside it and, where one exists, its inverse.
+//! let u = Vec2::new(0.3, 0.8);
+//! assert!((CosineHemisphere.invert(CosineHemisphere.sample(u)) - u).length() < 1e-5);
+//! ```
+//!
+//! To run the estimators on geometry, materials and lights of your own, implement
+//! [`integrator::Scene`] and [`integrator::Bsdf`]: `examples/custom_scene.rs` does so for a
+//! glowing sphere and prints the path tracer's estimate next to the analytic answer
+//! (`cargo run --release --example custom_scene`). `examples/chi2_custom_warp.rs` tests a
+//! warp of your own with the chi-square harness.
 //!
 //! ## Conventions
 //!

@@ -1,6 +1,8 @@
-//! The BVH and the uniform grid against brute force, on random rays over random triangle
-//! soups, spheres and disks, the Cornell box, a closed tessellated sphere, and degenerate
-//! cases (axis-parallel rays, rays starting on surfaces, zero-area triangles).
+//! The BVH, the uniform grid and the kd-tree against brute force, on random rays over random
+//! triangle soups, spheres and disks, the Cornell box, a closed tessellated sphere, and
+//! degenerate cases (axis-parallel rays, rays starting on surfaces, zero-area triangles; for
+//! all structures, and in `kdtree_degenerate_scenes` one primitive, primitives with one
+//! common box, flat primitives in a few planes, coordinates from 10⁻³ to 10⁶).
 //!
 //! For every ray: the same nearest `t` (relative 1e-4), the same shape and primitive (unless
 //! two primitives tie at the same `t`, e.g. on a shared edge), and the same occlusion answer
@@ -11,7 +13,7 @@
 //! starting exactly on a surface, whether that surface is hit again at `t ≈ 0` (below
 //! 10⁻⁵) depends on rounding, which differs between the quad and the triangle test.
 //!
-//! Throughput and build time are measured in `benches/accel.rs` (`cargo bench --bench accel`).
+//! Throughput and build time are measured in `benches/accel.rs` (`cargo bench --features bench --bench accel`).
 
 use mcrt::glam::{Mat4, Vec3};
 use mcrt::scene::description::{ShapeDesc, ShapeKind};
@@ -98,11 +100,12 @@ fn same_hit(a: &Option<Hit>, b: &Option<Hit>, what: &str, ray: &Ray, stats: &mut
     }
 }
 
-/// Checks BVH and grid against brute force on the given rays.
+/// Checks BVH, grid and kd-tree against brute force on the given rays.
 fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
     let brute = Geometry::new(shapes, None, AccelKind::BruteForce).unwrap();
     let bvh = Geometry::new(shapes, None, AccelKind::Bvh).unwrap();
     let grid = Geometry::new(shapes, None, AccelKind::Grid).unwrap();
+    let kd = Geometry::new(shapes, None, AccelKind::KdTree).unwrap();
     let mut r = rng(seed);
     let mut stats = Stats {
         rays: 0,
@@ -125,6 +128,13 @@ fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
             ray,
             &mut stats,
         );
+        same_hit(
+            &kd.intersect(ray, f32::INFINITY),
+            &want,
+            "kdtree",
+            ray,
+            &mut stats,
+        );
         let t_max = r.random_range(0.0f32..4.0);
         let occ = brute.occluded(ray, t_max);
         let bvh_occ = bvh.occluded(ray, t_max);
@@ -144,6 +154,11 @@ fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
             occ,
             "grid occlusion {ray:?} t_max {t_max}"
         );
+        assert_eq!(
+            kd.occluded(ray, t_max),
+            occ,
+            "kdtree occlusion {ray:?} t_max {t_max}"
+        );
         // Occlusion agrees with the nearest hit (away from the exact hit distance).
         if let Some(h) = &want {
             if (h.t - t_max).abs() > 1e-4 * h.t {
@@ -152,7 +167,7 @@ fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
         }
         stats.rays += 1;
     }
-    stats.hits /= 2;
+    stats.hits /= 3;
     // Rare on random rays; rays running inside the Cornell box's face planes meet the other
     // faces exactly at their borders, so up to a tenth there.
     assert!(
@@ -297,7 +312,12 @@ fn closed_tessellated_sphere_is_watertight() {
         });
     }
     rays.extend(random_rays(&mut r, 2000, 0.5));
-    for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::BruteForce] {
+    for kind in [
+        AccelKind::Bvh,
+        AccelKind::Grid,
+        AccelKind::KdTree,
+        AccelKind::BruteForce,
+    ] {
         let g = Geometry::new(&shapes, None, kind).unwrap();
         for ray in &rays {
             assert!(
@@ -321,7 +341,12 @@ fn planar_scene_and_empty_scene() {
     let mut rays = random_rays(&mut r, 2000, 1.5);
     rays.extend(axis_rays(&mut r, 600, 1.0));
     compare(&shapes, &rays, 10);
-    for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::BruteForce] {
+    for kind in [
+        AccelKind::Bvh,
+        AccelKind::Grid,
+        AccelKind::KdTree,
+        AccelKind::BruteForce,
+    ] {
         let g = Geometry::new(&[], None, kind).unwrap();
         let ray = Ray {
             origin: Vec3::ZERO,
@@ -329,6 +354,129 @@ fn planar_scene_and_empty_scene() {
         };
         assert!(g.intersect(&ray, f32::INFINITY).is_none() && !g.occluded(&ray, 1.0));
     }
+}
+
+/// Rays from near the origin aimed at `target` give or take `spread` in each coordinate.
+fn aimed_rays(r: &mut Pcg64, n: usize, target: Vec3, spread: f32) -> Vec<Ray> {
+    (0..n)
+        .map(|_| {
+            let origin = point(r, 1.0);
+            Ray {
+                origin,
+                dir: target + point(r, spread) - origin,
+            }
+        })
+        .collect()
+}
+
+/// The kd-tree (with BVH and grid) against brute force where a kd-tree build is easily
+/// fooled: one primitive; sixty triangles with the same box (the unit cube) and ten exact
+/// duplicates among them, so no plane separates anything and hits tie; axis-aligned squares
+/// and triangles in five parallel planes (boxes flat along z, many sharing a plane); small
+/// triangles near the origin beside large ones 10⁶ away (huge coordinate range). No panic,
+/// and the same answers as brute force.
+#[test]
+fn kdtree_degenerate_scenes() {
+    let mut r = rng(15);
+    let tri = |a: Vec3, b: Vec3, c: Vec3| mesh(vec![a, b, c], vec![[0, 1, 2]]);
+    // One primitive.
+    let one = vec![tri(
+        Vec3::new(-0.5, -0.5, 0.2),
+        Vec3::new(0.6, -0.4, -0.1),
+        Vec3::new(0.0, 0.7, 0.0),
+    )];
+    let mut rays = random_rays(&mut r, 1500, 1.5);
+    rays.extend(aimed_rays(&mut r, 500, Vec3::ZERO, 0.5));
+    compare(&one, &rays, 16);
+    compare(&[sphere(Vec3::new(0.2, 0.0, 0.0), 0.5)], &rays, 17);
+    // Sixty triangles whose boxes are all [0, 1]³ (a vertex on x = 0 and y = 1, one on
+    // x = 1 and z = 1, one on y = 0 and z = 0), ten of them repeated exactly.
+    let mut pos = Vec::new();
+    for k in 0..60 {
+        let v = if k % 6 == 5 {
+            [pos[pos.len() - 3], pos[pos.len() - 2], pos[pos.len() - 1]]
+        } else {
+            let u = |r: &mut Pcg64| r.random_range(0.0f32..1.0);
+            [
+                Vec3::new(0.0, 1.0, u(&mut r)),
+                Vec3::new(1.0, u(&mut r), 1.0),
+                Vec3::new(u(&mut r), 0.0, 0.0),
+            ]
+        };
+        pos.extend(v);
+    }
+    let idx = (0..60u32).map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect();
+    let same_box = vec![mesh(pos, idx)];
+    let mut rays = random_rays(&mut r, 2000, 1.5);
+    rays.extend(aimed_rays(&mut r, 1000, Vec3::splat(0.5), 0.5));
+    rays.extend(axis_rays(&mut r, 600, 1.2));
+    compare(&same_box, &rays, 18);
+    // Flat along z: squares filling [-1, 1]² at z = -0.5 … 0.5, and 200 small triangles,
+    // each in one of those planes.
+    let mut flat = Vec::new();
+    for k in 0..5 {
+        let z = -0.5 + 0.25 * k as f32;
+        let mut sq = ShapeDesc::new(ShapeKind::Rectangle);
+        sq.to_world = Mat4::from_translation(Vec3::new(0.0, 0.0, z))
+            * Mat4::from_scale(Vec3::new(0.3 + 0.15 * k as f32, 1.0, 1.0));
+        flat.push(sq);
+    }
+    for _ in 0..200 {
+        let z = -0.5 + 0.25 * r.random_range(0..5) as f32;
+        let c = point(&mut r, 1.0) * Vec3::new(1.0, 1.0, 0.0) + Vec3::new(0.0, 0.0, z);
+        let v = |r: &mut Pcg64| c + point(r, 0.1) * Vec3::new(1.0, 1.0, 0.0);
+        flat.push(tri(v(&mut r), v(&mut r), v(&mut r)));
+    }
+    let mut rays = random_rays(&mut r, 2000, 1.2);
+    rays.extend(axis_rays(&mut r, 600, 1.0));
+    // Rays running inside the planes of the squares.
+    for k in 0..300 {
+        let mut o = point(&mut r, 1.0);
+        o.z = -0.5 + 0.25 * (k % 5) as f32;
+        let mut d = unit_vec(&mut r);
+        d.z = 0.0;
+        rays.push(Ray { origin: o, dir: d });
+    }
+    compare(&flat, &rays, 19);
+    // Small triangles (edges ~10⁻³) near the origin and large ones (edges ~10⁵) at
+    // distance 10⁶ along ±x and +y.
+    let mut wide: Vec<ShapeDesc> = (0..300)
+        .map(|_| {
+            let c = point(&mut r, 0.5);
+            tri(
+                c + point(&mut r, 1e-3),
+                c + point(&mut r, 1e-3),
+                c + point(&mut r, 1e-3),
+            )
+        })
+        .collect();
+    let far = [1e6 * Vec3::X, -1e6 * Vec3::X, 1e6 * Vec3::Y];
+    for c in far {
+        for _ in 0..20 {
+            let c = c + point(&mut r, 1e5);
+            wide.push(tri(
+                c + point(&mut r, 1e5),
+                c + point(&mut r, 1e5),
+                c + point(&mut r, 1e5),
+            ));
+        }
+    }
+    let mut rays = random_rays(&mut r, 1000, 0.6);
+    for c in far {
+        rays.extend(aimed_rays(&mut r, 500, c, 1e5));
+    }
+    // Rays leaving the small triangles from points on them (the triangles' centroids).
+    for shape in &wide[..300] {
+        if let ShapeKind::Mesh { positions, .. } = &shape.kind {
+            let c = (positions[0] + positions[1] + positions[2]) / 3.0;
+            rays.push(Ray {
+                origin: c,
+                dir: unit_vec(&mut r),
+            });
+        }
+    }
+    let s = compare(&wide, &rays, 20);
+    assert!(s.hits > s.rays / 10, "too few hits: {}", s.hits);
 }
 
 #[test]
@@ -380,6 +528,7 @@ fn obj_meshes_load_relative_to_the_base_dir() {
         let mut s = ShapeDesc::new(ShapeKind::Obj {
             filename: "quad.obj".into(),
             face_normals,
+            flip_tex_coords: true,
         });
         s.to_world = Mat4::from_translation(Vec3::new(0.0, 0.0, -1.0));
         s
@@ -405,6 +554,7 @@ fn obj_meshes_load_relative_to_the_base_dir() {
     missing.kind = ShapeKind::Obj {
         filename: "nope.obj".into(),
         face_normals: false,
+        flip_tex_coords: true,
     };
     let err = Geometry::new(&[missing], Some(&dir), AccelKind::Bvh).unwrap_err();
     assert!(err.to_string().contains("nope.obj"), "{err}");

@@ -229,6 +229,7 @@ fn furnace(bsdf: BsdfDesc, integrator: IntegratorDesc) -> SceneDescription {
                 width: 16,
                 height: 16,
                 filter: FilterDesc::Box,
+                crop: None,
             },
             ..SensorDesc::default()
         },

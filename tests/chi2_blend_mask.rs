@@ -49,7 +49,7 @@ fn check<B: Bsdf + Sync>(name: &str, b: &B, wo: Vec3, dirs: Directions) {
             64,
             1e-3,
         );
-        assert!(w.passed, "{name} channel {c}: {}", w.report());
+        assert!(w.passed(), "{name} channel {c}: {}", w.report());
     }
 }
 

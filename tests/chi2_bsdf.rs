@@ -51,7 +51,7 @@ fn check(name: &str, b: &Sided<AnyBsdf>, wo: Vec3, dirs: Directions) {
             64,
             1e-3,
         );
-        assert!(w.passed, "{name} channel {c}: {}", w.report());
+        assert!(w.passed(), "{name} channel {c}: {}", w.report());
     }
 }
 

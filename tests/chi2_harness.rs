@@ -115,7 +115,7 @@ fn pdf_off_by_one_percent_is_caught_by_the_integral() {
     );
     let c = check_integral(&square(), scaled, common::INTEGRAL_TOL);
     assert!(
-        !c.passed && c.worst_error.is_finite() && c.worst_error > 5e-3,
+        !c.passed() && c.worst_error.is_finite() && c.worst_error > 5e-3,
         "{}",
         c.report()
     );

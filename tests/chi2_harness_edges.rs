@@ -115,7 +115,7 @@ fn weighted_sampler_with_rejection() {
     let value = |w: Vec3| w.z.max(0.0) * 0.5 * FRAC_1_PI;
     check_weights(sampler, pdf, value, 64, 1e-5).assert_passed();
     let c = check_weights(sampler, pdf, |w| 1.1 * value(w), 64, 1e-5);
-    assert!(!c.passed, "{}", c.report());
+    assert!(!c.passed(), "{}", c.report());
     let nan = chi2(hemisphere(), "weighted-nan")
         .output_dir(None)
         .run_weighted(|u| sampler(u).map(|(w, _)| (w, f32::NAN)), pdf);
@@ -202,13 +202,13 @@ fn jacobian_check_accepts_right_and_rejects_wrong_pdfs() {
     check_jacobian(disk_sqrt, disk_pdf, JacobianCheck::default()).assert_passed();
     check_jacobian(cosine_hemisphere, cosine_pdf, JacobianCheck::default()).assert_passed();
     let c = check_jacobian(disk_sqrt, |p| 1.05 * disk_pdf(p), JacobianCheck::default());
-    assert!(!c.passed && c.worst_error.is_finite(), "{}", c.report());
+    assert!(!c.passed() && c.worst_error.is_finite(), "{}", c.report());
     let c = check_jacobian(
         |u: Vec2| polar(u.x, TAU * u.y),
         disk_pdf,
         JacobianCheck::default(),
     );
-    assert!(!c.passed, "{}", c.report());
+    assert!(!c.passed(), "{}", c.report());
     // 1D: x = √u has density 2x.
     check_jacobian(
         |u: Vec2| u.x.sqrt(),
@@ -233,7 +233,7 @@ fn inverse_check() {
     };
     check_inverse(disk_sqrt, invert, 2, 64, 1e-5).assert_passed();
     let c = check_inverse(disk_sqrt, |p| invert(p) * 1.001, 2, 64, 1e-5);
-    assert!(!c.passed && c.worst_error.is_finite(), "{}", c.report());
+    assert!(!c.passed() && c.worst_error.is_finite(), "{}", c.report());
 }
 
 #[test]

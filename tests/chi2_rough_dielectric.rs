@@ -40,7 +40,7 @@ fn check(name: &str, b: &RoughDielectric, wo: Vec3) {
             64,
             1e-3,
         );
-        assert!(w.passed, "{name} channel {c}: {}", w.report());
+        assert!(w.passed(), "{name} channel {c}: {}", w.report());
     }
 }
 

@@ -75,7 +75,7 @@ fn check_1d<W: Warp1D + Sync>(f: &mut Failures, name: &str, w: &W, domain: Inter
         |x| w.pdf(x),
         jac(common::jacobian().step),
     );
-    f.push(name, j.passed, j.report());
+    f.push(name, j.passed(), j.report());
     let i = check_inverse(
         |u| w.sample(u.x),
         |x| Vec2::new(w.invert(x), 0.5),
@@ -83,7 +83,7 @@ fn check_1d<W: Warp1D + Sync>(f: &mut Failures, name: &str, w: &W, domain: Inter
         256,
         inv_tol,
     );
-    f.push(name, i.passed, i.report());
+    f.push(name, i.passed(), i.report());
 }
 
 /// The same for a warp from the square.
@@ -102,9 +102,9 @@ fn check_2d<W, D>(
     let o = chi2(domain, name).samples(SAMPLES).run_warp(w);
     f.push(name, o.passed(), o.report());
     let j = check_warp_jacobian(w, settings);
-    f.push(name, j.passed, j.report());
+    f.push(name, j.passed(), j.report());
     let i = check_warp_inverse(w, 64, inv_tol);
-    f.push(name, i.passed, i.report());
+    f.push(name, i.passed(), i.report());
 }
 
 #[test]
@@ -336,9 +336,9 @@ fn bilinear_patches() {
     ] {
         let q = BilinearPatch::new(corners).expect("valid patch");
         let j = check_warp_jacobian(&q, common::jacobian());
-        f.push(name, j.passed, j.report());
+        f.push(name, j.passed(), j.report());
         let i = check_warp_inverse(&q, 64, 1e-4);
-        f.push(name, i.passed, i.report());
+        f.push(name, i.passed(), i.report());
     }
     f.finish();
 }

@@ -13,7 +13,7 @@ use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use rand::{Rng, SeedableRng};
 
-const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
+use mcrt::sampling::ONE_MINUS_EPSILON as ONE_MINUS_EPS;
 
 fn config(cases: u32) -> ProptestConfig {
     ProptestConfig {
@@ -144,7 +144,7 @@ proptest! {
         prop_assert!(pdf.is_finite() && pdf > 0.0);
         prop_assert!(d.integral().is_finite());
         let d2 = PiecewiseConstant2D::new(&values, 1, values.len()).unwrap();
-        let (p, pdf, [_, y]) = d2.sample(Vec2::new(u, 1.0 - u.max(f32::EPSILON)));
+        let (p, pdf, [_, y]) = d2.sample_cell(Vec2::new(u, 1.0 - u.max(f32::EPSILON)));
         prop_assert!(p.is_finite() && values[y] > 0.0 && pdf.is_finite() && pdf > 0.0);
         let t = AliasTable::new(&values).unwrap();
         let (k, pmf) = t.sample_with_pmf(u);
@@ -155,7 +155,7 @@ proptest! {
     fn pc2d_samples_are_valid((w, h, values) in table_2d(), ux in unit(), uy in unit()) {
         let d = PiecewiseConstant2D::new(&values, w, h).unwrap();
         let u = Vec2::new(ux, uy);
-        let (p, pdf, [x, y]) = d.sample(u);
+        let (p, pdf, [x, y]) = d.sample_cell(u);
         prop_assert!(p.is_finite() && p.cmpge(Vec2::ZERO).all() && p.cmplt(Vec2::ONE).all());
         prop_assert!(values[y * w + x] > 0.0, "zero cell ({x}, {y}) sampled");
         prop_assert_eq!(d.cell_of(p), Some([x, y]));
@@ -186,7 +186,7 @@ proptest! {
         if values[y * w + x] == 0.0 {
             return Ok(()); // rounding carried p onto a zero neighbour
         }
-        let (q, _, [_, row]) = d.sample(d.invert(p));
+        let (q, _, [_, row]) = d.sample_cell(d.invert(p));
         // The error is u's f32 rounding over the slope of each CDF (see the 1D test).
         let m = d.marginal();
         let tol_y = 4.0 * f32::EPSILON / m.pdf(py).min(m.pdf(q.y)) + 2.0 * f32::EPSILON;
@@ -317,7 +317,7 @@ fn million_cells_one_nonzero_2d() {
             Vec2::splat(ONE_MINUS_EPS),
             Vec2::new(0.0, ONE_MINUS_EPS),
         ] {
-            let (p, pdf, cell) = d.sample(u);
+            let (p, pdf, cell) = d.sample_cell(u);
             assert_eq!(cell, [x, y]);
             assert_eq!(d.cell_of(p), Some([x, y]));
             assert!(pdf.is_finite() && (pdf - 1e6).abs() <= 1.0);
@@ -364,7 +364,7 @@ fn piecewise_frequencies_match_masses() {
     let (mut c1, mut c2) = ([0usize; 6], [0usize; 6]);
     for _ in 0..n {
         c1[d1.sample(rng.random::<f32>()).2] += 1;
-        let [x, y] = d2.sample(Vec2::new(rng.random(), rng.random())).2;
+        let [x, y] = d2.sample_cell(Vec2::new(rng.random(), rng.random())).2;
         c2[y * 3 + x] += 1;
     }
     for i in 0..6 {
@@ -406,7 +406,7 @@ fn environment_map_with_a_sun() {
     let n = 200_000;
     let mut in_sun = 0usize;
     for _ in 0..n {
-        let (p, pdf, [x, y]) = d.sample(Vec2::new(rng.random(), rng.random()));
+        let (p, pdf, [x, y]) = d.sample_cell(Vec2::new(rng.random(), rng.random()));
         assert!(v[y * w + x] > 0.0 && pdf.is_finite() && pdf > 0.0 && p.is_finite());
         let sin_theta = (std::f32::consts::PI * p.y).sin();
         let pdf_omega = mcrt::sampling::jacobian::solid_angle_pdf_from_lat_long(pdf, sin_theta);

@@ -8,7 +8,7 @@ use mcrt::sampling::warp::{InvertibleWarp, Warp};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
-const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
+use mcrt::sampling::ONE_MINUS_EPSILON as ONE_MINUS_EPS;
 
 fn config(cases: u32) -> ProptestConfig {
     ProptestConfig {

@@ -38,6 +38,7 @@ fn camera(from: Vec3, fov: f32, res: u32) -> SensorDesc {
             width: res,
             height: res,
             filter: FilterDesc::Box,
+            crop: None,
         },
         ..SensorDesc::default()
     }

@@ -232,7 +232,7 @@ fn special_files_are_refused_without_blocking() {
         assert!(e.to_string().contains("not a regular file"), "{e}");
     }
     // The OBJ reader refuses them as well (the renderer reads meshes through it).
-    let e = mcrt::scene::obj::read_obj(Path::new("/dev/zero")).unwrap_err();
+    let e = mcrt::scene::mesh_file::obj::read_obj(Path::new("/dev/zero")).unwrap_err();
     assert!(e.to_string().contains("not a regular file"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -34,13 +34,13 @@ fn the_extension_chooses_the_format_and_the_other_goes_beside_it() {
         (Path::new("x.EXR"), Path::new("x.png"))
     );
     let p = OutputPlan::new(None, "cornell-box", None, false).expect("default");
-    assert_eq!(p.exr, Path::new("cornell-box.exr"));
+    assert_eq!(p.exr, Path::new("renders/cornell-box.exr"));
     let partial = p.partial();
     assert_eq!(
         (partial.exr.as_path(), partial.png.as_path()),
         (
-            Path::new("cornell-box.partial.exr"),
-            Path::new("cornell-box.partial.png")
+            Path::new("renders/cornell-box.partial.exr"),
+            Path::new("renders/cornell-box.partial.png")
         )
     );
     for bad in ["x.jpg", "x", "x.exr.tmp"] {
@@ -170,7 +170,7 @@ fn render_example() -> PathBuf {
     let p = profile_dir.join("examples").join("render");
     assert!(
         p.is_file(),
-        "{} is missing: run `cargo test` (it builds the examples) or `cargo build --example render`",
+        "{} is missing: run `cargo test --release` (it builds the examples) or `cargo build --release --example render`",
         p.display()
     );
     p

@@ -1,9 +1,23 @@
 //! The estimators on a scene of someone else's: a renderer with its own geometry (one
-//! analytic sphere), its own Lambertian BSDF and a constant environment implements
+//! analytic sphere), its own Lambertian BSDF and its own lights implements
 //! `integrator::Scene` and `integrator::Bsdf` and uses `PathTracer` and `DirectIntegrator`
-//! without the crate's scene module. White furnace: a convex Lambertian object under
-//! uniform radiance 1 returns its albedo, with every strategy.
+//! without the crate's scene module.
+//!
+//! - White furnace: a convex Lambertian object under uniform radiance 1 (an environment)
+//!   returns its albedo, with every strategy.
+//! - The glowing sphere of `examples/custom_scene.rs` (this file includes it): an area light
+//!   and no environment or point lights, so it relies on the `Scene` trait's defaults and on
+//!   `SurfacePoint::new`. Its radiance `Lₑ Σ_{i<d} ρⁱ` is checked for four strategies and
+//!   three depths: 12 two-sided z-tests at the family-wise level 0.01, Šidák-corrected, i.e.
+//!   `|mean − L| ≤ 3.34 σ̂ + 10⁻⁵ L` (σ̂ the standard error over the paths; the second term is
+//!   the `f32` rounding of the radiance, which matters where the estimator has no variance:
+//!   at a finite depth every path returns `L` exactly up to rounding).
 
+#[path = "../examples/custom_scene.rs"]
+#[allow(dead_code)] // the example's `main`
+mod custom_scene;
+
+use custom_scene::{GlowingSphere, Lambert as ExampleLambert};
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::integrator::{
     Bsdf, BsdfFlags, BsdfSample, DirectIntegrator, Frame, LightSample, PathTracer, SampleSource,
@@ -68,13 +82,8 @@ fn hit_sphere(o: Vec3, d: Vec3) -> Option<SurfacePoint> {
     let p = o + d * t;
     let n = p.normalize();
     Some(SurfacePoint {
-        p,
-        ng: n,
-        frame: Frame::from_normal(n),
         t,
-        shape: 0,
-        prim: 0,
-        uv: Vec2::ZERO,
+        ..SurfacePoint::new(p, n, Frame::from_normal(n))
     })
 }
 
@@ -86,8 +95,8 @@ impl Scene for Furnace {
     fn trace(&self, from: &SurfacePoint, dir: Vec3) -> Option<SurfacePoint> {
         hit_sphere(from.p + from.ng * 1e-4 * dir.dot(from.ng).signum(), dir)
     }
-    fn occluded(&self, from: &SurfacePoint, dir: Vec3, _dist: f32) -> bool {
-        self.trace(from, dir).is_some()
+    fn occluded(&self, from: &SurfacePoint, dir: Vec3, dist: f32) -> bool {
+        self.trace(from, dir).is_some_and(|h| h.t < dist)
     }
     fn bsdf(&self, _sp: &SurfacePoint) -> &Lambert {
         &self.0
@@ -103,9 +112,6 @@ impl Scene for Furnace {
     }
     fn environment(&self, _dir: Vec3) -> Vec3 {
         Vec3::ONE
-    }
-    fn has_delta_lights(&self) -> bool {
-        false
     }
     fn sample_light(&self, _from: &SurfacePoint, _u_pick: Vec2, u: Vec2) -> Option<LightSample> {
         let z = 1.0 - 2.0 * u.x;
@@ -252,4 +258,93 @@ fn direct_integrator_draws_only_what_is_read() {
     let mut rng = Counting(Lcg(5), 0);
     di.li(&scene, o, Vec3::Z, f32::INFINITY, &mut rng);
     assert_eq!(rng.1, 0);
+}
+
+/// The two-sided critical value for 12 tests at the family-wise level 0.01 (Šidák): each at
+/// `1 − 0.99^(1/12) = 8.37·10⁻⁴`, `z = Φ⁻¹(1 − 4.19·10⁻⁴) = 3.340`.
+const Z_GLOWING_SPHERE: f64 = 3.340;
+
+#[test]
+fn glowing_sphere_matches_its_analytic_radiance() {
+    let scene = GlowingSphere {
+        wall: ExampleLambert { albedo: 0.6 },
+        emitted: 1.0,
+    };
+    let mut checks = 0;
+    for max_depth in [2, 4, -1] {
+        for strategy in [
+            Strategy::BsdfOnly,
+            Strategy::LightOnly,
+            Strategy::MisBalance,
+            Strategy::MisPower,
+        ] {
+            let pt = PathTracer {
+                max_depth,
+                rr_depth: 2,
+                strategy,
+            };
+            let (mean, se) = custom_scene::estimate(&scene, &pt, 20_000, 11);
+            let want = scene.analytic(max_depth);
+            assert!(
+                mean.is_finite() && se.is_finite(),
+                "{strategy:?} {max_depth}"
+            );
+            assert!(
+                (mean - want).abs() <= Z_GLOWING_SPHERE * se + 1e-5 * want,
+                "{strategy:?}, max_depth {max_depth}: {mean} ± {se}, want {want}"
+            );
+            checks += 1;
+        }
+    }
+    assert_eq!(checks, 12, "the Šidák correction counts 12 tests");
+}
+
+/// The check is not blind: the glowing sphere with `light_pdf` off by a factor 2 (so the MIS
+/// weights of light and BSDF sampling no longer sum to 1) fails it.
+#[test]
+fn glowing_sphere_check_rejects_a_wrong_light_pdf() {
+    struct WrongPdf(GlowingSphere);
+    impl Scene for WrongPdf {
+        type Bsdf = ExampleLambert;
+        fn intersect(&self, o: Vec3, d: Vec3, t_max: f32) -> Option<SurfacePoint> {
+            self.0.intersect(o, d, t_max)
+        }
+        fn trace(&self, from: &SurfacePoint, dir: Vec3) -> Option<SurfacePoint> {
+            self.0.trace(from, dir)
+        }
+        fn occluded(&self, from: &SurfacePoint, dir: Vec3, dist: f32) -> bool {
+            self.0.occluded(from, dir, dist)
+        }
+        fn bsdf(&self, sp: &SurfacePoint) -> &ExampleLambert {
+            self.0.bsdf(sp)
+        }
+        fn is_emitter(&self, sp: &SurfacePoint) -> bool {
+            self.0.is_emitter(sp)
+        }
+        fn emitted(&self, sp: &SurfacePoint, wo: Vec3) -> Vec3 {
+            self.0.emitted(sp, wo)
+        }
+        fn sample_light(&self, from: &SurfacePoint, pick: Vec2, u: Vec2) -> Option<LightSample> {
+            self.0.sample_light(from, pick, u)
+        }
+        fn light_pdf(&self, from: &SurfacePoint, hit: &SurfacePoint) -> f32 {
+            2.0 * self.0.light_pdf(from, hit)
+        }
+    }
+    let sphere = GlowingSphere {
+        wall: ExampleLambert { albedo: 0.6 },
+        emitted: 1.0,
+    };
+    let want = sphere.analytic(2);
+    let pt = PathTracer {
+        max_depth: 2,
+        rr_depth: 2,
+        strategy: Strategy::MisPower,
+    };
+    let (mean, se) = custom_scene::estimate_in(&WrongPdf(sphere), &pt, 2_000, 11);
+    assert!(mean.is_finite() && se.is_finite());
+    assert!(
+        (mean - want).abs() > Z_GLOWING_SPHERE * se + 1e-5 * want,
+        "{mean} ± {se} passed for {want}"
+    );
 }

@@ -7,7 +7,7 @@ use mcrt::scene::description::{
     BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
     SceneDescription, ShapeKind,
 };
-use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError};
+use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError, SceneErrorKind};
 use std::path::Path;
 
 const CORNELL: &str = "tests/data/cornell-box.xml";
@@ -204,8 +204,20 @@ fn substitution_works_in_any_attribute_and_defines_win() {
             reflectance: Vec3::new(0.5, 0.75, 0.5)
         }
     );
-    // A define unused by the file is harmless.
-    assert!(parse(xml, &[("unused", "1")]).is_ok());
+    // A define the file neither declares nor uses is refused (a misspelt -D is never
+    // silently ignored), naming the file and the parameters it declares.
+    let e = parse(xml, &[("r", "0.5"), ("unused", "1")]).unwrap_err();
+    assert!(matches!(e.kind, SceneErrorKind::UnknownDefine(_)), "{e}");
+    let msg = e.to_string();
+    assert!(msg.starts_with("tests/data/inline.xml: "), "{msg}");
+    assert!(
+        msg.contains("-D unused=1") && msg.contains("kind, r, rr"),
+        "{msg}"
+    );
+    // A define that only a `$name` uses (no <default>) is a parameter.
+    let uses = r#"<scene version="3.0.0"><shape type="sphere"><float name="radius" value="$rad"/></shape></scene>"#;
+    assert!(parse(uses, &[("rad", "2")]).is_ok());
+    assert!(parse(uses, &[("rad", "2"), ("ra", "1")]).is_err());
 }
 
 #[test]
@@ -269,6 +281,7 @@ fn materials_emitters_and_integrators() {
     let ShapeKind::Obj {
         filename,
         face_normals,
+        ..
     } = &d.shapes[2].kind
     else {
         panic!()
@@ -376,16 +389,75 @@ fn obj_shapes_resolve_against_the_scene_folder_and_read() {
     let ShapeKind::Obj {
         filename,
         face_normals,
+        ..
     } = &d.shapes[0].kind
     else {
         panic!("{:?}", d.shapes[0].kind)
     };
     assert!(*face_normals);
     assert_eq!(filename, &dir.join("meshes/quad.obj"));
-    let mesh = mcrt::scene::obj::read_obj(filename).unwrap();
+    let mesh = mcrt::scene::mesh_file::obj::read_obj(filename).unwrap();
     assert_eq!(mesh.indices, vec![[0, 1, 2], [0, 2, 3]]);
     assert_eq!(mesh.normals, vec![Vec3::Z; 4]);
-    let missing = mcrt::scene::obj::read_obj(&dir.join("nope.obj")).unwrap_err();
+    let missing = mcrt::scene::mesh_file::obj::read_obj(&dir.join("nope.obj")).unwrap_err();
     assert!(missing.to_string().contains("nope.obj"), "{missing}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn mesh_scene_with_include_spectra_tent_and_crop() {
+    let d = load("tests/data/meshes.xml", &[]);
+    // Six shapes from the included room, then four mesh files.
+    assert_eq!(d.shapes.len(), 10);
+    assert_eq!(d.shapes[0].id.as_deref(), Some("light"));
+    assert!(matches!(
+        &d.shapes[7].kind,
+        ShapeKind::Serialized {
+            shape_index: 1,
+            face_normals: false,
+            ..
+        }
+    ));
+    assert!(matches!(
+        &d.shapes[8].kind,
+        ShapeKind::Ply {
+            face_normals: true,
+            ..
+        }
+    ));
+    // Spectra as Mitsuba 3.9.1 reads them back (`mi.traverse`, scalar_rgb): the green
+    // wall's reflectance and the light's radiance.
+    let close = |a: Vec3, b: [f32; 3]| {
+        let e = (a - Vec3::from(b)).abs().max_element();
+        e.is_finite() && e < 1e-4
+    };
+    let BsdfDesc::Diffuse { reflectance } = d.shapes[4].bsdf else {
+        panic!("{:?}", d.shapes[4].bsdf)
+    };
+    assert!(
+        close(reflectance, [0.0353889, 0.404299, 0.107332]),
+        "{reflectance}"
+    );
+    let radiance = d.shapes[0].emitter.expect("the light").radiance;
+    assert!(close(radiance, [20.383, 13.091, 8.59723]), "{radiance}");
+    let t = load("tests/data/tent-crop.xml", &[]);
+    let film = t.sensor.film;
+    assert_eq!(film.filter, FilterDesc::Tent { radius: 1.5 });
+    let w = film.window();
+    assert_eq!(
+        (w.offset_x, w.offset_y, w.width, w.height),
+        (24, 40, 80, 64)
+    );
+    // Mitsuba's defaults: a tent of radius 1; a crop window reaching to the film's edge.
+    let x = parse_scene(
+        r#"<scene version="3.0.0"><sensor type="perspective"><film type="hdrfilm">
+           <integer name="width" value="10"/><integer name="crop_offset_x" value="4"/>
+           <rfilter type="tent"/></film></sensor></scene>"#,
+        None,
+        &[],
+    )
+    .unwrap();
+    let f = x.sensor.film;
+    assert_eq!(f.filter, FilterDesc::Tent { radius: 1.0 });
+    assert_eq!((f.window().width, f.window().height), (6, 576));
 }

@@ -56,7 +56,7 @@ fn unknown_element_attribute_plugin_and_parameter() {
     assert!(matches!(e.kind, SceneErrorKind::UnknownAttribute(_)), "{e}");
     check(&e, 2, "<shape type=\"cube\">", "\"size\"");
 
-    let e = err("\n<bsdf type=\"principled\"/>");
+    let e = err("\n<bsdf type=\"hair\"/>");
     assert!(
         matches!(e.kind, SceneErrorKind::UnknownPlugin { .. }),
         "{e}"
@@ -64,8 +64,8 @@ fn unknown_element_attribute_plugin_and_parameter() {
     check(
         &e,
         3,
-        "<bsdf type=\"principled\">",
-        "unknown bsdf plugin type \"principled\"",
+        "<bsdf type=\"hair\">",
+        "unknown bsdf plugin type \"hair\"",
     );
 
     let e = err("<sensor type=\"perspective\">\n<float name=\"fvo\" value=\"40\"/>\n</sensor>");
@@ -263,4 +263,98 @@ fn bidirectional_integrators_read_and_refuse_with_locations() {
         let e = err(body);
         check(&e, 2, element, words);
     }
+}
+
+/// Writes `files` (name, text) into a fresh folder and loads the first.
+fn load_files(tag: &str, files: &[(&str, &str)]) -> Result<(), SceneError> {
+    let dir = std::env::temp_dir().join(format!("mcrt-loader-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let r = load_scene(&dir.join(files[0].0), &[]).map(|_| ());
+    std::fs::remove_dir_all(&dir).ok();
+    r
+}
+
+#[test]
+fn include_errors_name_the_file_they_are_in() {
+    let scene = |body: &str| format!("<scene version=\"3.0.0\">\n{body}\n</scene>");
+    // A missing file: located at the <include>.
+    let e = load_files(
+        "inc-missing",
+        &[("a.xml", &scene("<include filename=\"nope.xml\"/>"))],
+    )
+    .unwrap_err();
+    assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
+    assert_eq!(e.line, Some(2), "{e}");
+    assert!(e.to_string().contains("nope.xml"), "{e}");
+    // A cycle: a.xml → b.xml → a.xml.
+    let a = scene("<include filename=\"b.xml\"/>");
+    let b = scene("\n<include filename=\"a.xml\"/>");
+    let e = load_files("inc-cycle", &[("a.xml", &a), ("b.xml", &b)]).unwrap_err();
+    assert!(e.to_string().contains("includes itself"), "{e}");
+    assert!(e.to_string().contains("b.xml, line 3"), "{e}");
+    // An error inside an included file names that file and its line; parameters defined
+    // before the include are known inside it.
+    let a = scene("<default name=\"r\" value=\"2\"/>\n<include filename=\"b.xml\"/>");
+    let b = scene("<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>\n<shape type=\"teapot\"/>");
+    let e = load_files("inc-inner", &[("a.xml", &a), ("b.xml", &b)]).unwrap_err();
+    assert!(
+        matches!(e.kind, SceneErrorKind::UnknownPlugin { .. }),
+        "{e}"
+    );
+    assert!(e.to_string().contains("b.xml, line 3"), "{e}");
+    let e = load_files(
+        "inc-attr",
+        &[("a.xml", &scene("<include file=\"b.xml\"/>"))],
+    )
+    .unwrap_err();
+    assert!(matches!(e.kind, SceneErrorKind::UnknownAttribute(_)), "{e}");
+    assert!(e.to_string().contains("a.xml, line 2"), "{e}");
+    let e = load_files(
+        "inc-root",
+        &[
+            ("a.xml", &scene("<include filename=\"b.xml\"/>")),
+            ("b.xml", "<shape type=\"cube\"/>"),
+        ],
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("must be <scene>"), "{e}");
+}
+
+#[test]
+fn spectrum_crop_tent_and_mesh_file_errors() {
+    let e = err(
+        "<bsdf type=\"diffuse\">\n<spectrum name=\"reflectance\" value=\"500:1, 400:2\"/></bsdf>",
+    );
+    assert!(matches!(e.kind, SceneErrorKind::Malformed(_)), "{e}");
+    check(
+        &e,
+        3,
+        "<spectrum name=\"reflectance\">",
+        "wavelengths must increase",
+    );
+    let e =
+        err("<bsdf type=\"diffuse\">\n<spectrum name=\"reflectance\" filename=\"x.spd\"/></bsdf>");
+    assert!(matches!(e.kind, SceneErrorKind::Unsupported(_)), "{e}");
+    let film = |extra: &str| {
+        err(&format!(
+            "<sensor type=\"perspective\"><film type=\"hdrfilm\">\n\
+             <integer name=\"width\" value=\"64\"/>{extra}</film></sensor>"
+        ))
+    };
+    let e = film(
+        "<integer name=\"crop_offset_x\" value=\"40\"/><integer name=\"crop_width\" value=\"30\"/>",
+    );
+    assert!(matches!(e.kind, SceneErrorKind::InvalidValue(_)), "{e}");
+    assert!(e.to_string().contains("crop_width"), "{e}");
+    let e = film("<integer name=\"crop_offset_y\" value=\"-1\"/>");
+    assert!(e.to_string().contains("crop_offset_y"), "{e}");
+    let e = film("<rfilter type=\"tent\"><float name=\"radius\" value=\"0\"/></rfilter>");
+    assert!(e.to_string().contains("radius"), "{e}");
+    let e = err("<shape type=\"ply\">\n<string name=\"filename\" value=\"missing.ply\"/></shape>");
+    check(&e, 2, "<shape type=\"ply\">", "missing.ply");
+    let e = err("<shape type=\"serialized\">\n<string name=\"filename\" value=\"meshes/shapes.serialized\"/>\n<integer name=\"shape_index\" value=\"-1\"/></shape>");
+    check(&e, 4, "<integer name=\"shape_index\">", "outside");
 }

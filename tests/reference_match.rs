@@ -51,10 +51,9 @@ struct Outcome {
 
 /// Samples per pixel of each reference (tests/data/REFERENCES.md).
 fn reference_spp(reference: &str) -> u32 {
-    if reference == "cornell-box-direct.exr" {
-        4096
-    } else {
-        16384
+    match reference {
+        "cornell-box-direct.exr" | "meshes.exr" | "tent-crop.exr" => 4096,
+        _ => 16384,
     }
 }
 
@@ -269,4 +268,28 @@ fn named_conductors_match_mitsuba() {
 #[test]
 fn blend_and_mask_match_mitsuba() {
     check_material_scene("cornell-box-blend-mask.xml", "cornell-box-blend-mask.exr");
+}
+
+/// PLY (binary little and big endian, ASCII) and `serialized` meshes, smooth shading from
+/// the file's normals and from computed ones, face normals, `<include>` and spectral
+/// colours (reference: `scripts/make_mesh_data.py --render`).
+#[test]
+fn mesh_files_match_mitsuba() {
+    check_low_spp("meshes.xml", &[], "meshes.exr", 64);
+}
+
+/// The tent filter and a crop window (80 × 64 of 128 × 128): 8×8 blocks.
+#[test]
+fn tent_filter_and_crop_window_match_mitsuba() {
+    check_blocks(
+        "tent-crop.xml",
+        &[],
+        "tent-crop.exr",
+        64,
+        Blocks {
+            size: 8,
+            min_count: 21,
+            allowance: 0.0,
+        },
+    );
 }

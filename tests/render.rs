@@ -1,5 +1,6 @@
 //! The render loop's promises: the same image for a seed whatever the thread count (and for
-//! every sampler), cancellation keeps the samples taken, and the effect analysis picks what
+//! every sampler) and whatever the acceleration structure (exactly, or up to float noise for
+//! the BVH's quads), cancellation keeps the samples taken, and the effect analysis picks what
 //! each scene needs.
 
 use mcrt::scene::description::SamplerKind;
@@ -143,5 +144,58 @@ fn gaussian_filter_keeps_the_image_mean() {
     assert!(
         b.is_finite() && g.is_finite() && (g / b - 1.0).abs() < 0.02,
         "{g} vs {b}"
+    );
+}
+
+/// The kd-tree renders the Cornell box exactly as brute force and the grid do (the same
+/// triangle test on the same primitives, so the same hits), and as the BVH does up to float
+/// noise: the BVH tests each rectangle as one quad, whose hits differ from the two
+/// triangles' in the last bits, which now and then sends a path elsewhere. Measured: the L1
+/// distance to the BVH image is 1.7·10⁻⁴ of that between two seeds, 1019 of 1024 pixels
+/// agree to 10⁻⁴.
+#[test]
+fn kdtree_renders_like_brute_force_and_the_bvh() {
+    use mcrt::glam::Vec3;
+    use mcrt::scene::render::AccelKind;
+    let render = |accel, seed| {
+        let opts = RenderOptions {
+            seed: Some(seed),
+            accel,
+            ..RenderOptions::default()
+        };
+        Renderer::new(&small_box(), &opts)
+            .expect("scene builds")
+            .render(&|_, _| {}, &AtomicBool::new(false))
+            .image()
+    };
+    let kd = render(AccelKind::KdTree, 5);
+    assert!(kd.iter().all(|p| p.is_finite()));
+    assert_eq!(
+        kd,
+        render(AccelKind::BruteForce, 5),
+        "kd-tree vs brute force"
+    );
+    assert_eq!(kd, render(AccelKind::Grid, 5), "kd-tree vs grid");
+    let bvh = render(AccelKind::Bvh, 5);
+    let l1 = |a: &[Vec3], b: &[Vec3]| -> f64 {
+        a.iter()
+            .zip(b)
+            .map(|(a, b)| f64::from((*a - *b).abs().element_sum()))
+            .sum()
+    };
+    let (to_bvh, noise) = (l1(&kd, &bvh), l1(&bvh, &render(AccelKind::Bvh, 6)));
+    assert!(
+        to_bvh.is_finite() && noise.is_finite() && to_bvh < 1e-2 * noise,
+        "L1 to the BVH image {to_bvh}, between seeds {noise}"
+    );
+    let close = kd
+        .iter()
+        .zip(&bvh)
+        .filter(|(a, b)| (**a - **b).abs().max_element() <= 1e-4 * b.max_element())
+        .count();
+    assert!(
+        close >= kd.len() * 95 / 100,
+        "{close} of {} pixels agree",
+        kd.len()
     );
 }

@@ -5,7 +5,7 @@ use mcrt::glam::Vec2;
 #[cfg(feature = "sobol")]
 use mcrt::sampling::sampler::SobolSampler;
 use mcrt::sampling::sampler::{
-    HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler,
+    HaltonSampler, IndependentSampler, R2Sampler, SampleSource, Sampler, StratifiedSampler,
 };
 use proptest::prelude::*;
 
@@ -174,14 +174,17 @@ impl<S: Sampler> Sampler for SamePixel<S> {
     fn start_pixel_sample(&mut self, _pixel: [u32; 2], sample_index: u32) {
         self.0.start_pixel_sample([0, 0], sample_index);
     }
+    fn samples_per_pixel(&self) -> u32 {
+        self.0.samples_per_pixel()
+    }
+}
+
+impl<S: Sampler> SampleSource for SamePixel<S> {
     fn next_1d(&mut self) -> f32 {
         self.0.next_1d()
     }
     fn next_2d(&mut self) -> Vec2 {
         self.0.next_2d()
-    }
-    fn samples_per_pixel(&self) -> u32 {
-        self.0.samples_per_pixel()
     }
 }
 

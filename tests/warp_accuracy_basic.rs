@@ -1,6 +1,6 @@
 //! Accuracy of the basic warps at f32, measured on fixed grids and asserted: the interior
 //! inverse round trip, the Jacobian identity, and the extremes (a 10⁻⁴ rad cone, exponent
-//! 10⁶) against f64 references. `cargo test --test warp_accuracy_basic -- --nocapture`
+//! 10⁶) against f64 references. `cargo test --release --test warp_accuracy_basic -- --nocapture`
 //! prints the tables quoted in `docs/derivations.md`.
 
 mod warp_basic_support;

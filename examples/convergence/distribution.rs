@@ -69,7 +69,7 @@ fn measured_rmse(
     for _ in 0..m {
         let mut sum = 0.0;
         for _ in 0..n {
-            let (p, pdf, _) = d.sample(next_u(&mut rng));
+            let (p, pdf, _) = d.sample_cell(next_u(&mut rng));
             if pdf > 0.0 {
                 sum += map.integrand(f64::from(p.x), f64::from(p.y)) / f64::from(pdf);
             }
@@ -135,7 +135,7 @@ pub fn run(e: DistEffort) -> Result<(Vec<DistRow>, f64), String> {
             width: w,
             height: h,
             build_ms: median(&mut builds),
-            ns_sample: ns_per_call(&us, 4 * e.runs + 1, 1, |u| d.sample(u)),
+            ns_sample: ns_per_call(&us, 4 * e.runs + 1, 1, |u| d.sample_cell(u)),
             rel_rmse: measured_rmse(&map, &d, truth, (e.n, e.m), 1 + w as u64),
             rel_var: predicted_rel_var(&map, &d, truth),
         });

@@ -21,7 +21,7 @@ needs a limit and gets 12 segments: the longer paths carry about 0.1% of the Cor
 box's light, below the errors measured here. The caustic box's reference is noisier than \
 the others (its own two halves differ by 0.72% on 32×32 blocks), so its relMSE has a \
 higher floor. Raw numbers: `convergence/integrators.csv`.\n\n\
-This section alone is made by `cargo run --release --example convergence -- --integrators \
+This section alone is made by `cargo run --release --features plots --example convergence -- --integrators \
 [--max-spp N] [--kinds path,bdpt,mlt] [--scenes cornell-box,veach-mis,cornell-box-caustic] \
 [--time-limit SECONDS] [--note TEXT]` (ladder 1, 4, …, 256 by default). It merges its \
 renders into the CSV, redraws the plots and replaces only this section of the page; \

@@ -1,11 +1,12 @@
 //! The convergence study: what accuracy costs in time.
 //!
 //! ```text
-//! cargo run --release --example convergence -- [--quick] [--out docs/] [--max-spp N]
-//!     [--no-render] [--strategies bsdf,light,balance,power]
+//! cargo run --release --features plots --example convergence -- [--quick] [--out docs/]
+//!     [--max-spp N] [--no-render] [--strategies bsdf,light,balance,power]
 //!     [--samplers independent,stratified,sobol] [--scenes cornell-box,veach-mis] [--note TEXT]
-//! cargo run --release --example convergence -- --integrators [--max-spp N] [--kinds path,bdpt,mlt]
-//!     [--scenes cornell-box,veach-mis,cornell-box-caustic] [--time-limit SECONDS] [--note TEXT]
+//! cargo run --release --features plots --example convergence -- --integrators [--max-spp N]
+//!     [--kinds path,bdpt,mlt] [--scenes cornell-box,veach-mis,cornell-box-caustic]
+//!     [--time-limit SECONDS] [--note TEXT]
 //! ```
 //!
 //! Measures the f32 warps against f64 references, the resolution of a 2D distribution
@@ -278,7 +279,7 @@ fn integrator_half(o: &Options, dir: &Path) -> Result<String, String> {
 
 /// The command line as typed (arguments with spaces quoted).
 fn command() -> String {
-    std::iter::once("cargo run --release --example convergence --".to_string())
+    std::iter::once("cargo run --release --features plots --example convergence --".to_string())
         .chain(
             std::env::args()
                 .skip(1)

@@ -1,7 +1,7 @@
 //! Direct lighting: emitters seen from the camera plus light arriving at the first hit, by a
 //! fixed number of light and BSDF samples (Mitsuba 3's `direct`).
 
-use super::{is_positive, Bsdf, PathResult, SampleSource, Scene, Strategy};
+use super::{is_positive, occluded, Bsdf, PathResult, SampleSource, Scene, Strategy};
 use glam::{Vec2, Vec3};
 
 /// Direct-lighting estimator with `emitter_samples` light samples and `bsdf_samples` BSDF
@@ -48,7 +48,7 @@ impl DirectIntegrator {
         origin: Vec3,
         dir: Vec3,
         t_max: f32,
-        rng: &mut R,
+        samples: &mut R,
     ) -> PathResult {
         let mut out = PathResult {
             radiance: Vec3::ZERO,
@@ -79,11 +79,11 @@ impl DirectIntegrator {
         let draw_component = bsdf.samples_component();
         for _ in 0..n_delta {
             let u_pick = if draw_pick {
-                rng.next_2d()
+                samples.next_2d()
             } else {
                 Vec2::splat(0.5)
             };
-            let u = rng.next_2d();
+            let u = samples.next_2d();
             if !smooth {
                 continue;
             }
@@ -98,7 +98,7 @@ impl DirectIntegrator {
                 continue;
             }
             out.rays += 1;
-            if scene.occluded(&sp, ls.wi, ls.dist) {
+            if occluded(scene, &sp, ls.wi, ls.dist) {
                 continue;
             }
             let w = if ls.delta {
@@ -109,8 +109,12 @@ impl DirectIntegrator {
             out.radiance += f * ls.radiance * (w / (ls.pdf * n_delta as f32));
         }
         for _ in 0..n_b {
-            let u1 = if draw_component { rng.next_1d() } else { 0.5 };
-            let u2 = rng.next_2d();
+            let u1 = if draw_component {
+                samples.next_1d()
+            } else {
+                0.5
+            };
+            let u2 = samples.next_2d();
             let Some(bs) = bsdf.sample(wo, u1, u2) else {
                 continue;
             };

@@ -17,42 +17,68 @@
 pub(crate) mod bdpt;
 mod bidirectional;
 mod direct;
-mod frame;
 mod mlt;
 mod path;
 mod strategy;
 mod traits;
 
+pub use crate::sampling::sampler::SampleSource;
+/// The z-up shading frame of a [`SurfacePoint`] (the same type as [`crate::sampling::Frame`]).
+pub use crate::sampling::Frame;
 pub use bdpt::{Bdpt, BdptBuffers, Splat, StrategyStats};
 pub use bidirectional::{BidirectionalScene, CameraConnection, EmissionSample, EmitterKind};
 pub use direct::DirectIntegrator;
-pub use frame::Frame;
 pub use mlt::{brightness as mlt_brightness, Mlt, MltChain, MltPath, PrimarySamples};
 pub use path::{PathResult, PathTracer};
 pub use strategy::Strategy;
-pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, SampleSource, Scene, SurfacePoint};
+pub use traits::{Bsdf, BsdfFlags, BsdfSample, LightSample, Scene, SurfacePoint};
+
+/// The relative shortening of every shadow ray: the estimators ask [`Scene::occluded`] about
+/// `dist · (1 − SHADOW_EPSILON)` when they want to know whether the point at distance `dist`
+/// is visible, so that the surface of that point (a light, a vertex of the other subpath)
+/// cannot hide itself.
+pub const SHADOW_EPSILON: f32 = 1e-3;
+
+/// Whether something hides the point at distance `dist` along `dir` from `from` (a light at
+/// infinity when `dist` is infinite): [`Scene::occluded`] over the distance shortened by
+/// [`SHADOW_EPSILON`]. Every estimator's visibility test goes through here. A distance that
+/// is not finite (infinite, or NaN from a caller's bug) tests the whole ray.
+#[inline(always)]
+pub(crate) fn occluded<S: Scene + ?Sized>(
+    scene: &S,
+    from: &SurfacePoint,
+    dir: glam::Vec3,
+    dist: f32,
+) -> bool {
+    let t_max = if dist.is_finite() {
+        dist * (1.0 - SHADOW_EPSILON)
+    } else {
+        f32::INFINITY
+    };
+    scene.occluded(from, dir, t_max)
+}
 
 /// `x > 0`, false for NaN: the guard in front of every division by a density.
 #[inline]
-pub fn is_positive(x: f32) -> bool {
+pub(crate) fn is_positive(x: f32) -> bool {
     x > 0.0
 }
 
-/// Samples `bsdf` at `wo`, drawing the component choice `u1` from `rng` only when the
+/// Samples `bsdf` at `wo`, drawing the component choice `u1` from `samples` only when the
 /// BSDF reads it (`0.5` otherwise), then the direction `u2`: the one sampling step of every
 /// estimator's random walk.
 #[inline(always)]
 pub(crate) fn sample_bsdf<B: Bsdf, R: SampleSource>(
     bsdf: &B,
     wo: glam::Vec3,
-    rng: &mut R,
+    samples: &mut R,
 ) -> Option<BsdfSample> {
     let u1 = if bsdf.samples_component() {
-        rng.next_1d()
+        samples.next_1d()
     } else {
         0.5
     };
-    let u2 = rng.next_2d();
+    let u2 = samples.next_2d();
     bsdf.sample(wo, u1, u2)
 }
 
@@ -81,11 +107,11 @@ impl Integrator {
         origin: glam::Vec3,
         dir: glam::Vec3,
         t_max: f32,
-        rng: &mut R,
+        samples: &mut R,
     ) -> PathResult {
         match self {
-            Integrator::Path(p) => p.li(scene, origin, dir, t_max, rng),
-            Integrator::Direct(d) => d.li(scene, origin, dir, t_max, rng),
+            Integrator::Path(p) => p.li(scene, origin, dir, t_max, samples),
+            Integrator::Direct(d) => d.li(scene, origin, dir, t_max, samples),
             Integrator::Bdpt(_) | Integrator::Mlt(_) => PathResult::default(),
         }
     }

@@ -1,7 +1,7 @@
 //! Unidirectional path tracing with next-event estimation, multiple importance sampling and
 //! Russian roulette.
 
-use super::{is_positive, Bsdf, SampleSource, Scene, Strategy, SurfacePoint};
+use super::{is_positive, occluded, Bsdf, SampleSource, Scene, Strategy, SurfacePoint};
 use glam::{Vec2, Vec3};
 
 /// A path tracer with Mitsuba 3's `path` semantics.
@@ -86,7 +86,7 @@ impl PathTracer {
         origin: Vec3,
         dir: Vec3,
         t_max: f32,
-        rng: &mut R,
+        samples: &mut R,
     ) -> PathResult {
         let max_depth = self.depth_limit();
         let mut out = PathResult::default();
@@ -125,17 +125,17 @@ impl PathTracer {
             let flags = bsdf.flags();
             // Only the values the scene and the BSDF read are drawn.
             let u_pick = if scene.samples_light_choice() {
-                rng.next_2d()
+                samples.next_2d()
             } else {
                 Vec2::splat(0.5)
             };
-            let u_light = rng.next_2d();
+            let u_light = samples.next_2d();
             if flags.smooth && (self.strategy.samples_lights() || scene.has_delta_lights()) {
                 if let Some(ls) = scene.sample_light(&sp, u_pick, u_light) {
                     out.radiance += throughput * self.nee(scene, bsdf, &sp, wo, &ls, &mut out.rays);
                 }
             }
-            let Some(bs) = super::sample_bsdf(bsdf, wo, rng) else {
+            let Some(bs) = super::sample_bsdf(bsdf, wo, samples) else {
                 break;
             };
             throughput *= bs.weight;
@@ -147,7 +147,7 @@ impl PathTracer {
             }
             if depth >= self.rr_depth {
                 let q = (t_max_c * eta * eta).min(0.95);
-                if rng.next_1d() >= q {
+                if samples.next_1d() >= q {
                     break;
                 }
                 throughput /= q;
@@ -187,7 +187,7 @@ impl PathTracer {
             return Vec3::ZERO;
         }
         *rays += 1;
-        if scene.occluded(sp, ls.wi, ls.dist) {
+        if occluded(scene, sp, ls.wi, ls.dist) {
             return Vec3::ZERO;
         }
         let w = if ls.delta {

@@ -2,29 +2,6 @@
 
 use crate::sampling::mis::{balance_heuristic, power_heuristic};
 
-/// The power (`POWER`, β = 2) or balance heuristic weight of strategy `f` against `g`, in
-/// `[0, 1]`: `1 / (1 + (g/f)^β)` with `f = n_f·pdf_f`, `g = n_g·pdf_g`. Computed inline in
-/// `f32` in the usual case (both products finite, `f > 0`, `n_g, pdf_g ≥ 0`), where it agrees with
-/// [`power_heuristic`] / [`balance_heuristic`] to `f32` rounding; every other input (zero,
-/// infinite, NaN, negative) goes to those functions and their documented edge cases.
-#[inline(always)]
-fn two<const POWER: bool>(n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32) -> f32 {
-    let (f, g) = (n_f * pdf_f, n_g * pdf_g);
-    // `n_g, pdf_g ≥ 0` separately: a negative input times 0 would pass as `g = −0`.
-    let valid_g = n_g >= 0.0 && pdf_g >= 0.0 && g < f32::INFINITY;
-    // `f > 0` with `pdf_f > 0` also means `n_f > 0` (two negatives would multiply to f > 0).
-    if pdf_f > 0.0 && f > 0.0 && f < f32::INFINITY && valid_g {
-        let r = g / f;
-        // r = ∞ (f underflowing against g) gives 0, as the f64 formula does to f32 precision.
-        return 1.0 / (1.0 + if POWER { r * r } else { r });
-    }
-    if POWER {
-        power_heuristic(n_f, pdf_f, n_g, pdf_g)
-    } else {
-        balance_heuristic(n_f, pdf_f, n_g, pdf_g)
-    }
-}
-
 /// How light arriving at a vertex is estimated.
 ///
 /// Delta BSDFs are always handled by BSDF sampling and delta lights always by light
@@ -60,8 +37,8 @@ impl Strategy {
         match self {
             Strategy::BsdfOnly => 0.0,
             Strategy::LightOnly => 1.0,
-            Strategy::MisBalance => two::<false>(n_light, pdf_light, n_bsdf, pdf_bsdf),
-            Strategy::MisPower => two::<true>(n_light, pdf_light, n_bsdf, pdf_bsdf),
+            Strategy::MisBalance => balance_heuristic(n_light, pdf_light, n_bsdf, pdf_bsdf),
+            Strategy::MisPower => power_heuristic(n_light, pdf_light, n_bsdf, pdf_bsdf),
         }
     }
 
@@ -72,8 +49,8 @@ impl Strategy {
         match self {
             Strategy::BsdfOnly => 1.0,
             Strategy::LightOnly => 0.0,
-            Strategy::MisBalance => two::<false>(n_bsdf, pdf_bsdf, n_light, pdf_light),
-            Strategy::MisPower => two::<true>(n_bsdf, pdf_bsdf, n_light, pdf_light),
+            Strategy::MisBalance => balance_heuristic(n_bsdf, pdf_bsdf, n_light, pdf_light),
+            Strategy::MisPower => power_heuristic(n_bsdf, pdf_bsdf, n_light, pdf_light),
         }
     }
 
@@ -114,42 +91,6 @@ mod tests {
         for s in [Strategy::BsdfOnly, Strategy::LightOnly] {
             let w = s.light_weight(1.0, 0.3, 1.0, 0.7) + s.bsdf_weight(1.0, 0.7, 1.0, 0.3);
             assert_eq!(w, 1.0);
-        }
-    }
-
-    /// The inline `f32` weights agree with `sampling::mis` on ordinary, tiny, huge and
-    /// degenerate inputs (the latter are handed to `sampling::mis`).
-    #[test]
-    fn inline_weights_match_sampling_mis() {
-        let values = [
-            0.0,
-            1e-38,
-            1e-20,
-            0.25,
-            1.0,
-            3.0,
-            1e20,
-            3e38,
-            f32::INFINITY,
-            f32::NAN,
-            -1.0,
-        ];
-        for n in [0.0, 1.0, 2.0, -1.0] {
-            for &a in &values {
-                for &b in &values {
-                    let pairs = [
-                        (two::<true>(n, a, 1.0, b), power_heuristic(n, a, 1.0, b)),
-                        (two::<false>(n, a, 1.0, b), balance_heuristic(n, a, 1.0, b)),
-                        (two::<true>(1.0, a, n, b), power_heuristic(1.0, a, n, b)),
-                        (two::<true>(n, a, n, b), power_heuristic(n, a, n, b)),
-                    ];
-                    for (got, want) in pairs {
-                        assert!(got.is_finite() && want.is_finite(), "{n} {a} {b}");
-                        assert!((0.0..=1.0).contains(&got), "{n} {a} {b} {got}");
-                        assert!((got - want).abs() <= 1e-6, "{n} {a} {b}: {got} vs {want}");
-                    }
-                }
-            }
         }
     }
 

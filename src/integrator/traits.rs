@@ -1,10 +1,23 @@
 //! The small traits a renderer implements so that the estimators can run on its geometry,
 //! materials and lights.
 
-use super::Frame;
+use crate::sampling::Frame;
 use glam::{Vec2, Vec3};
 
 /// A point where a ray met a surface.
+///
+/// The estimators read `p`, `ng` and `frame`; `t`, `shape`, `prim` and `uv` are the scene's
+/// own (its [`Scene::bsdf`] or [`Scene::emitted`] may look them up). [`SurfacePoint::new`]
+/// fills those with 0; set the ones a scene uses with struct update syntax:
+///
+/// ```
+/// use mcrt::glam::Vec3;
+/// use mcrt::integrator::{Frame, SurfacePoint};
+///
+/// let n = Vec3::Y;
+/// let sp = SurfacePoint { shape: 3, ..SurfacePoint::new(Vec3::ZERO, n, Frame::from_normal(n)) };
+/// assert_eq!((sp.shape, sp.prim, sp.t), (3, 0, 0.0));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
     /// Position in world space.
@@ -21,6 +34,26 @@ pub struct SurfacePoint {
     pub prim: u32,
     /// Surface parameters of the hit (opaque to the estimators).
     pub uv: Vec2,
+}
+
+impl SurfacePoint {
+    /// A surface point at `p` with unit geometric normal `ng` (of the surface's front side)
+    /// and shading frame `frame` (whose `n` is the shading normal; often
+    /// `Frame::from_normal(ng)`): the fields the estimators read. `t`, `shape`, `prim` and
+    /// `uv` are 0.
+    #[inline]
+    #[must_use]
+    pub fn new(p: Vec3, ng: Vec3, frame: Frame) -> Self {
+        Self {
+            p,
+            ng,
+            frame,
+            t: 0.0,
+            shape: 0,
+            prim: 0,
+            uv: Vec2::ZERO,
+        }
+    }
 }
 
 /// Properties of a BSDF that the estimators (and the renderer's effect analysis) use.
@@ -113,26 +146,12 @@ pub struct LightSample {
     pub delta: bool,
 }
 
-/// A source of uniform sample values in `[0,1)` for one pixel sample. Every
-/// [`crate::sampling::sampler::Sampler`] is one (positioned on its pixel sample first).
-pub trait SampleSource {
-    /// One value in `[0,1)`.
-    fn next_1d(&mut self) -> f32;
-    /// Two values in `[0,1)²`.
-    fn next_2d(&mut self) -> Vec2 {
-        let x = self.next_1d();
-        Vec2::new(x, self.next_1d())
-    }
-    /// Switches to the sample stream `stream` (the bidirectional estimators draw the camera
-    /// subpath from stream 0, the light subpath from 1 and connections from 2). Sources
-    /// without streams ignore it (the default); Metropolis sampling keeps one stream per
-    /// role so that a path's primary sample coordinates keep their meaning when its length
-    /// changes (Hachisuka et al. 2014).
-    #[inline]
-    fn start_stream(&mut self, _stream: u32) {}
-}
-
 /// What the estimators need from a scene: ray casting, materials and lights.
+///
+/// Eight methods are required; the environment (`has_environment`, `environment`,
+/// `environment_pdf`), `has_delta_lights` and `samples_light_choice` have defaults for a
+/// scene without a light at infinity or point lights. `examples/custom_scene.rs` implements
+/// a complete scene (and a BSDF) and compares the path tracer with the analytic answer.
 pub trait Scene {
     /// The material type; an enum or a single concrete type (the latter lets the compiler
     /// drop every code path the scene does not need).
@@ -145,8 +164,13 @@ pub trait Scene {
     /// offsets the origin against self-intersection).
     fn trace(&self, from: &SurfacePoint, dir: Vec3) -> Option<SurfacePoint>;
 
-    /// Whether something blocks the segment from `from` along `dir` for `dist`
-    /// (`f32::INFINITY` for a light at infinity).
+    /// Whether anything is hit at a distance `t` with `0 < t < dist` along the ray leaving
+    /// the surface point `from` in unit direction `dir` (the scene offsets the origin against
+    /// self-intersection, as in [`Scene::trace`]); `dist` is `f32::INFINITY` for a light at
+    /// infinity. A plain ray query: the estimators, when they test whether the point at
+    /// distance `d` is visible, pass `d · (1 − SHADOW_EPSILON)`
+    /// ([`SHADOW_EPSILON`](super::SHADOW_EPSILON)), so the surface of that point (a light's,
+    /// a vertex's) never hides it, and the scene need not shorten `dist` itself.
     fn occluded(&self, from: &SurfacePoint, dir: Vec3, dist: f32) -> bool;
 
     /// The material at a surface point.
@@ -159,15 +183,27 @@ pub trait Scene {
     /// Radiance emitted at `sp` toward the unit world direction `wo`.
     fn emitted(&self, sp: &SurfacePoint, wo: Vec3) -> Vec3;
 
-    /// Whether the scene has a light at infinity (environment).
-    fn has_environment(&self) -> bool;
+    /// Whether the scene has a light at infinity (environment). The default, `false`, is for
+    /// a scene without one; a scene with one overrides this, [`Scene::environment`] and
+    /// [`Scene::environment_pdf`].
+    #[inline]
+    fn has_environment(&self) -> bool {
+        false
+    }
 
     /// Radiance arriving from infinity against the unit ray direction `dir` (the ray
-    /// escaped along `dir`).
-    fn environment(&self, dir: Vec3) -> Vec3;
+    /// escaped along `dir`). Default: none (zero).
+    #[inline]
+    fn environment(&self, _dir: Vec3) -> Vec3 {
+        Vec3::ZERO
+    }
 
-    /// Whether any light is a Dirac delta (point light).
-    fn has_delta_lights(&self) -> bool;
+    /// Whether any light is a Dirac delta (point light). The default, `false`, is for a
+    /// scene whose lights all have area (or are at infinity).
+    #[inline]
+    fn has_delta_lights(&self) -> bool {
+        false
+    }
 
     /// Next-event estimation: choose a light (`u_pick.x`), a part of it such as a triangle
     /// (`u_pick.y`) and a direction toward it (`u`).
@@ -187,28 +223,10 @@ pub trait Scene {
     /// [`Scene::sample_light`] at `from` returns the direction toward the emitter point `hit`.
     fn light_pdf(&self, from: &SurfacePoint, hit: &SurfacePoint) -> f32;
 
-    /// The same for the environment, seen from `from` along `dir`.
-    fn environment_pdf(&self, from: &SurfacePoint, dir: Vec3) -> f32;
-}
-
-/// Dimensions between the starts of two sample streams of a [`Sampler`] (the first stream
-/// starts after the pixel filter's dimension).
-const STREAM_DIMENSIONS: u32 = 1024;
-
-impl<S: crate::sampling::sampler::Sampler> SampleSource for S {
+    /// The same for the environment, seen from `from` along `dir`. Default: 0 (no
+    /// environment).
     #[inline]
-    fn start_stream(&mut self, stream: u32) {
-        crate::sampling::sampler::Sampler::skip_to_dimension(
-            self,
-            1 + stream.saturating_mul(STREAM_DIMENSIONS),
-        );
-    }
-    #[inline]
-    fn next_1d(&mut self) -> f32 {
-        crate::sampling::sampler::Sampler::next_1d(self)
-    }
-    #[inline]
-    fn next_2d(&mut self) -> Vec2 {
-        crate::sampling::sampler::Sampler::next_2d(self)
+    fn environment_pdf(&self, _from: &SurfacePoint, _dir: Vec3) -> f32 {
+        0.0
     }
 }

@@ -80,7 +80,9 @@ pub fn solid_angle_pdf_from_spherical(pdf_theta_phi: f32, sin_theta: f32) -> f32
 
 /// Latitude–longitude image coordinates → solid angle: with `u = φ / 2π` and `v = θ / π`,
 /// `p(ω) = p(u, v) / (2π² sin θ)`. 0 at the poles. (The environment-map case of
-/// [`PiecewiseConstant2D`](crate::sampling::distribution::PiecewiseConstant2D).)
+/// [`PiecewiseConstant2D`](crate::sampling::distribution::PiecewiseConstant2D); the map
+/// itself, direction ↔ `(u, v)`, and a conversion that stays positive at the poles are
+/// [`LatLong`](crate::sampling::warp::LatLong).)
 #[must_use]
 pub fn solid_angle_pdf_from_lat_long(pdf_uv: f32, sin_theta: f32) -> f32 {
     let two_pi_sq = 2.0 * std::f64::consts::PI * std::f64::consts::PI;
@@ -110,12 +112,28 @@ fn ratio(num: f64, den: f64) -> f32 {
     }
 }
 
-/// A point type a warp can produce, seen as a point of `R³` for numerical differentiation.
+/// A point type a warp or sampler can produce, seen as a point of `R³` for numerical
+/// differentiation (and, in `mcrt::stats`, for binning).
+///
+/// Implemented for `f32` (a line), [`Vec2`] (the plane), [`Vec3`] (directions and surfaces)
+/// and `usize` (categories, which have no derivative). [`WarpPoint::DIM`] picks the Jacobian
+/// of [`numerical_jacobian_of`]: `|dx/du₁|`, `|det D|` or `‖∂p/∂u₁ × ∂p/∂u₂‖`.
 pub trait WarpPoint: Copy {
-    /// The number of meaningful coordinates (2 or 3).
+    /// The number of meaningful coordinates (1, 2 or 3; 0 for categories).
     const DIM: usize;
     /// The coordinates in `f64`, padded with zeros.
     fn to_f64(self) -> [f64; 3];
+    /// Whether every coordinate is finite.
+    fn is_finite_point(self) -> bool {
+        self.to_f64().iter().all(|c| c.is_finite())
+    }
+}
+
+impl WarpPoint for f32 {
+    const DIM: usize = 1;
+    fn to_f64(self) -> [f64; 3] {
+        [f64::from(self), 0.0, 0.0]
+    }
 }
 
 impl WarpPoint for Vec2 {
@@ -129,6 +147,13 @@ impl WarpPoint for Vec3 {
     const DIM: usize = 3;
     fn to_f64(self) -> [f64; 3] {
         [f64::from(self.x), f64::from(self.y), f64::from(self.z)]
+    }
+}
+
+impl WarpPoint for usize {
+    const DIM: usize = 0;
+    fn to_f64(self) -> [f64; 3] {
+        [self as f64, 0.0, 0.0]
     }
 }
 
@@ -156,13 +181,25 @@ impl WarpPoint for Vec3 {
 /// | cosine hemisphere (Malley) | as the concentric disk, and within `10 h` of any edge of the square (the horizon, `z = √(1 − r²)`) |
 pub const DEFAULT_JACOBIAN_STEP: f64 = 1.0 / 512.0;
 
-/// `J(u) = sqrt(det(DᵀD))` of `w.sample` at `u`, by central differences with step `h`,
-/// evaluated in `f64` from the `f32` outputs (the step actually used is the difference of
-/// the `f32`-rounded arguments).
+/// `J(u) = sqrt(det(DᵀD))` of `w.sample` at `u`, by central differences with step `h`:
+/// [`numerical_jacobian_of`] for a [`Warp`].
+#[must_use]
+pub fn numerical_jacobian<W>(w: &W, u: Vec2, h: f64) -> Option<f64>
+where
+    W: Warp + ?Sized,
+    W::Point: WarpPoint,
+{
+    numerical_jacobian_of(|v| w.sample(v), u, h)
+}
+
+/// `J(u) = sqrt(det(DᵀD))` of the map `sample` at `u`, by central differences with step
+/// `h`, evaluated in `f64` from the `f32` outputs (the step actually used is the difference
+/// of the `f32`-rounded arguments): `|dx/du₁|` for `f32` points (only `u.x` moves),
+/// `|det D|` for [`Vec2`], `‖∂p/∂u₁ × ∂p/∂u₂‖` for [`Vec3`].
 ///
-/// Returns `None` when `h` is not finite and positive, when `u` lies within `h` of the
-/// square's edges (`u.x` or `u.y` outside `[h, 1 − h)`, so the stencil would leave
-/// `[0,1)`), or when an output is not finite.
+/// Returns `None` when `h` is not finite and positive, when a stencil point `u ± h·eᵢ`
+/// (rounded to `f32`) leaves `[0,1)²` (so `u` within `h` of the square's edges), when an
+/// output is not finite, when `J` is not finite, and for categories (`usize` points).
 ///
 /// Seams and singular points are the caller's to skip: the stencil must not straddle a
 /// seam where the map's derivative jumps (the concentric disk's diagonals `u.x = u.y` and
@@ -171,25 +208,46 @@ pub const DEFAULT_JACOBIAN_STEP: f64 = 1.0 / 512.0;
 /// `u₁ = 0`, the poles of sphere maps) the truncation error grows like `(h / s)²` at
 /// distance `s`. Filter `u` beforehand, or use [`numerical_jacobian_excluding`]. See
 /// [`DEFAULT_JACOBIAN_STEP`] for the accuracy.
+///
+/// ```
+/// use mcrt::glam::Vec2;
+/// use mcrt::sampling::jacobian::numerical_jacobian_of;
+///
+/// // (r, φ) = (√u₁, 2πu₂) maps the square onto the unit disk with J = π everywhere.
+/// let disk = |u: Vec2| {
+///     let (r, phi) = (u.x.sqrt(), std::f32::consts::TAU * u.y);
+///     Vec2::new(r * phi.cos(), r * phi.sin())
+/// };
+/// let j = numerical_jacobian_of(disk, Vec2::new(0.4, 0.3), 1e-3).unwrap();
+/// assert!(j.is_finite() && (j - std::f64::consts::PI).abs() < 1e-3);
+/// assert_eq!(numerical_jacobian_of(disk, Vec2::new(0.0, 0.3), 1e-3), None);
+/// ```
 #[must_use]
-pub fn numerical_jacobian<W>(w: &W, u: Vec2, h: f64) -> Option<f64>
-where
-    W: Warp + ?Sized,
-    W::Point: WarpPoint,
-{
-    let inside = |c: f32| f64::from(c) >= h && f64::from(c) + h < 1.0;
-    if !(h.is_finite() && h > 0.0 && inside(u.x) && inside(u.y)) {
+pub fn numerical_jacobian_of<P: WarpPoint>(
+    sample: impl Fn(Vec2) -> P,
+    u: Vec2,
+    h: f64,
+) -> Option<f64> {
+    if !(h.is_finite() && h > 0.0) || P::DIM == 0 {
         return None;
     }
-    let dx = partial(w, u, Vec2::X, h)?;
-    let dy = partial(w, u, Vec2::Y, h)?;
-    // det(DᵀD) = |∂x|²|∂y|² − (∂x·∂y)² = |∂x × ∂y|², formed without cancellation.
-    let cross = [
-        dx[1] * dy[2] - dx[2] * dy[1],
-        dx[2] * dy[0] - dx[0] * dy[2],
-        dx[0] * dy[1] - dx[1] * dy[0],
-    ];
-    let j = cross.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let du = partial(&sample, u, Vec2::X, h)?;
+    let j = if P::DIM == 1 {
+        du[0].abs()
+    } else {
+        let dv = partial(&sample, u, Vec2::Y, h)?;
+        // det(DᵀD) = |∂x|²|∂y|² − (∂x·∂y)² = |∂x × ∂y|², formed without cancellation.
+        let cross = [
+            du[1] * dv[2] - du[2] * dv[1],
+            du[2] * dv[0] - du[0] * dv[2],
+            du[0] * dv[1] - du[1] * dv[0],
+        ];
+        if P::DIM == 2 {
+            cross[2].abs()
+        } else {
+            cross.iter().map(|c| c * c).sum::<f64>().sqrt()
+        }
+    };
     j.is_finite().then_some(j)
 }
 
@@ -235,26 +293,31 @@ where
     Some(if err.is_finite() { err } else { f64::INFINITY })
 }
 
-/// `∂ sample / ∂ u` along `axis`, by a central difference over the realised `f32` step.
-fn partial<W>(w: &W, u: Vec2, axis: Vec2, h: f64) -> Option<[f64; 3]>
-where
-    W: Warp + ?Sized,
-    W::Point: WarpPoint,
-{
-    let along = |c: f32, s: f64| (f64::from(c) + s) as f32;
-    let plus = Vec2::new(
-        along(u.x, h * f64::from(axis.x)),
-        along(u.y, h * f64::from(axis.y)),
-    );
-    let minus = Vec2::new(
-        along(u.x, -h * f64::from(axis.x)),
-        along(u.y, -h * f64::from(axis.y)),
-    );
+/// `∂ sample / ∂ u` along `axis`, by a central difference over the realised `f32` step;
+/// `None` when a stencil point leaves `[0,1)²` or an output is not finite.
+fn partial<P: WarpPoint>(
+    sample: &impl Fn(Vec2) -> P,
+    u: Vec2,
+    axis: Vec2,
+    h: f64,
+) -> Option<[f64; 3]> {
+    let along = |s: f64| {
+        let v = Vec2::new(
+            (f64::from(u.x) + s * f64::from(axis.x)) as f32,
+            (f64::from(u.y) + s * f64::from(axis.y)) as f32,
+        );
+        let inside = (0.0..1.0).contains(&v.x) && (0.0..1.0).contains(&v.y);
+        inside.then_some(v)
+    };
+    let (plus, minus) = (along(h)?, along(-h)?);
     let step = (f64::from(plus.x) - f64::from(minus.x)) * f64::from(axis.x)
         + (f64::from(plus.y) - f64::from(minus.y)) * f64::from(axis.y);
-    let (a, b) = (w.sample(plus).to_f64(), w.sample(minus).to_f64());
-    let d = [0, 1, 2].map(|k| (a[k] - b[k]) / step);
-    d.iter().all(|x| x.is_finite()).then_some(d)
+    let (a, b) = (sample(plus), sample(minus));
+    if !(a.is_finite_point() && b.is_finite_point()) {
+        return None;
+    }
+    let (a, b) = (a.to_f64(), b.to_f64());
+    Some([0, 1, 2].map(|k| (a[k] - b[k]) / step))
 }
 
 #[cfg(test)]

@@ -5,7 +5,9 @@
 //! measure):
 //!
 //! - balance heuristic `w = f / (f + g)`, power heuristic (β = 2) `w = f² / (f² + g²)`,
-//!   both computed in `f64` as `1 / (1 + (g / f)^β)` so no finite input overflows;
+//!   both computed as `1 / (1 + (g / f)^β)`: in `f32` when `f` and `g` are finite, `f` is
+//!   normal (≥ `f32::MIN_POSITIVE`) and `g ≥ 0` (the estimators' case, a few instructions),
+//!   otherwise in `f64`, so no finite input overflows; the two agree to `f32` rounding;
 //! - `f = 0` gives 0 (including 0/0): a strategy that cannot produce the sample gets no
 //!   weight;
 //! - `f = ∞` gives 1 and `g = ∞` gives 0 (a delta strategy takes all the weight); both
@@ -30,17 +32,19 @@
 
 /// The balance heuristic weight `n_f·pdf_f / (n_f·pdf_f + n_g·pdf_g)` of strategy `f`, in
 /// `[0, 1]`; edge cases as in the [module docs](self).
+#[inline]
 #[must_use]
 pub fn balance_heuristic(n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32) -> f32 {
-    two_strategies(n_f, pdf_f, n_g, pdf_g, |r| r)
+    two_strategies::<false>(n_f, pdf_f, n_g, pdf_g)
 }
 
 /// The power heuristic weight (β = 2) `(n_f·pdf_f)² / ((n_f·pdf_f)² + (n_g·pdf_g)²)` of
 /// strategy `f`, computed as `1 / (1 + (n_g·pdf_g / n_f·pdf_f)²)`, in `[0, 1]`; edge cases
 /// as in the [module docs](self).
+#[inline]
 #[must_use]
 pub fn power_heuristic(n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32) -> f32 {
-    two_strategies(n_f, pdf_f, n_g, pdf_g, |r| r * r)
+    two_strategies::<true>(n_f, pdf_f, n_g, pdf_g)
 }
 
 /// The balance heuristic weight of strategy `i` among `(count, pdf)` pairs:
@@ -72,7 +76,32 @@ fn product(n: f32, pdf: f32) -> Option<f64> {
     Some(f64::from(n) * f64::from(pdf))
 }
 
-fn two_strategies(n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32, power: fn(f64) -> f64) -> f32 {
+/// The weight of `f` against `g`, `1 / (1 + (g/f)^β)` with β = 2 (`POWER`) or 1: inline in
+/// `f32` in the usual case (both products finite, `f` normal, `n_g, pdf_g ≥ 0`), where
+/// it agrees with [`two_strategies_f64`] to `f32` rounding; every other input (zero,
+/// subnormal, infinite, NaN, negative) goes to that function and its edge cases.
+#[inline(always)]
+fn two_strategies<const POWER: bool>(n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32) -> f32 {
+    let (f, g) = (n_f * pdf_f, n_g * pdf_g);
+    // `n_g, pdf_g ≥ 0` separately: a negative input times 0 would pass as `g = −0`.
+    let valid_g = n_g >= 0.0 && pdf_g >= 0.0 && g < f32::INFINITY;
+    // `f > 0` with `pdf_f > 0` also means `n_f > 0` (two negatives would multiply to f > 0).
+    if pdf_f > 0.0 && (f32::MIN_POSITIVE..f32::INFINITY).contains(&f) && valid_g {
+        let r = g / f;
+        // r = ∞ (f underflowing against g) gives 0, as the f64 formula does to f32 precision.
+        return 1.0 / (1.0 + if POWER { r * r } else { r });
+    }
+    two_strategies_f64(
+        n_f,
+        pdf_f,
+        n_g,
+        pdf_g,
+        if POWER { |r| r * r } else { |r| r },
+    )
+}
+
+/// [`two_strategies`] in `f64`, with the edge cases of the [module docs](self).
+fn two_strategies_f64(n_f: f32, pdf_f: f32, n_g: f32, pdf_g: f32, power: fn(f64) -> f64) -> f32 {
     let (Some(f), Some(g)) = (product(n_f, pdf_f), product(n_g, pdf_g)) else {
         return 0.0;
     };
@@ -167,5 +196,56 @@ mod tests {
             0.0
         );
         assert_eq!(balance_heuristic_n(0, &[(1.0, 2.0), (1.0, f32::NAN)]), 0.0);
+    }
+
+    /// The inline `f32` weights agree with the `f64` formula on ordinary, tiny (subnormal
+    /// included), huge and degenerate inputs (the latter are handed to the `f64` formula).
+    #[test]
+    fn f32_path_matches_the_f64_formula() {
+        let values = [
+            0.0,
+            1e-44,
+            1e-38,
+            1e-20,
+            0.25,
+            1.0,
+            3.0,
+            1e20,
+            3e38,
+            INF,
+            f32::NAN,
+            -1.0,
+        ];
+        let square: fn(f64) -> f64 = |r| r * r;
+        let identity: fn(f64) -> f64 = |r| r;
+        for n in [0.0, 1.0, 2.0, -1.0] {
+            for &a in &values {
+                for &b in &values {
+                    let pairs = [
+                        (
+                            power_heuristic(n, a, 1.0, b),
+                            two_strategies_f64(n, a, 1.0, b, square),
+                        ),
+                        (
+                            balance_heuristic(n, a, 1.0, b),
+                            two_strategies_f64(n, a, 1.0, b, identity),
+                        ),
+                        (
+                            power_heuristic(1.0, a, n, b),
+                            two_strategies_f64(1.0, a, n, b, square),
+                        ),
+                        (
+                            power_heuristic(n, a, n, b),
+                            two_strategies_f64(n, a, n, b, square),
+                        ),
+                    ];
+                    for (got, want) in pairs {
+                        assert!(got.is_finite() && want.is_finite(), "{n} {a} {b}");
+                        assert!((0.0..=1.0).contains(&got), "{n} {a} {b} {got}");
+                        assert!((got - want).abs() <= 1e-6, "{n} {a} {b}: {got} vs {want}");
+                    }
+                }
+            }
+        }
     }
 }

@@ -1,17 +1,22 @@
 //! The sampling core: warps, distributions, change of variables, MIS weights and samplers,
-//! and two streaming utilities ([`WeightedReservoir`], [`VarianceEstimator`]).
+//! the [`Frame`] that turns directions sampled about `+z` toward any axis, and two streaming
+//! utilities ([`WeightedReservoir`], [`VarianceEstimator`]).
 //!
-//! Needs only [`glam`] (and `rand_core` for the independent sampler).
+//! Needs only [`glam`] (and `rand_core` with `rand_pcg` for the independent sampler).
 
 pub mod distribution;
 mod error;
+mod frame;
 pub mod jacobian;
 pub mod mis;
 mod reservoir;
 pub mod sampler;
+pub(crate) mod unit;
 mod variance;
 pub mod warp;
 
 pub use error::SamplingError;
+pub use frame::Frame;
 pub use reservoir::WeightedReservoir;
+pub use unit::ONE_MINUS_EPSILON;
 pub use variance::VarianceEstimator;

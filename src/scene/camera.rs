@@ -77,9 +77,14 @@ impl std::error::Error for CameraError {}
 pub struct Camera {
     to_world: Affine3A,
     to_camera: Affine3A,
+    /// The rendered window's size in pixels (the whole film unless it is cropped).
     width: u32,
     height: u32,
-    /// 1/w, 1/h.
+    /// The window's top-left corner on the whole film, in pixels.
+    offset: Vec2,
+    /// The whole film's size in pixels.
+    res: Vec2,
+    /// 1/w, 1/h of the whole film.
     inv_res: Vec2,
     /// tan(fov_x/2), tan(fov_y/2).
     tan_half: Vec2,
@@ -122,11 +127,21 @@ impl Camera {
         };
         let t = (0.5 * sensor.fov.to_radians()).tan();
         let tan_x = if axis == FovAxis::Y { t * aspect } else { t };
+        let win = sensor.film.window();
+        let fits = |o: u32, n: u32, full: u32| n > 0 && o.checked_add(n).is_some_and(|e| e <= full);
+        if !(fits(win.offset_x, win.width, w) && fits(win.offset_y, win.height, h)) {
+            return Err(CameraError::EmptyFilm {
+                width: win.width,
+                height: win.height,
+            });
+        }
         Ok(Self {
             to_world: Affine3A::from_mat4(m),
             to_camera: Affine3A::from_mat4(m).inverse(),
-            width: w,
-            height: h,
+            width: win.width,
+            height: win.height,
+            offset: Vec2::new(win.offset_x as f32, win.offset_y as f32),
+            res: Vec2::new(w as f32, h as f32),
             inv_res: Vec2::new(1.0 / w as f32, 1.0 / h as f32),
             tan_half: Vec2::new(tan_x, tan_x / aspect),
             near,
@@ -134,12 +149,12 @@ impl Camera {
         })
     }
 
-    /// Film width in pixels.
+    /// Width in pixels of the rendered window (the film, or its crop window).
     pub fn width(&self) -> u32 {
         self.width
     }
 
-    /// Film height in pixels.
+    /// Height in pixels of the rendered window (the film, or its crop window).
     pub fn height(&self) -> u32 {
         self.height
     }
@@ -155,7 +170,7 @@ impl Camera {
     }
 
     /// The ray through film position `film` (pixels, `[0,w)×[0,h)`, `(0,0)` the top-left
-    /// corner): unit direction, origin on the near clip plane.
+    /// corner of the rendered window): unit direction, origin on the near clip plane.
     #[inline]
     pub fn generate_ray(&self, film: Vec2) -> Ray {
         self.generate_ray_with_tmax(film).0
@@ -165,7 +180,7 @@ impl Camera {
     /// far clip plane.
     #[inline]
     pub fn generate_ray_with_tmax(&self, film: Vec2) -> (Ray, f32) {
-        let s = film * self.inv_res;
+        let s = (film + self.offset) * self.inv_res;
         let local = Vec3::new(
             self.tan_half.x * (1.0 - 2.0 * s.x),
             self.tan_half.y * (1.0 - 2.0 * s.y),
@@ -187,7 +202,7 @@ impl Camera {
 /// on the plane one unit in front, `θ` the angle to the viewing axis; the importance that
 /// makes `∫ W L dω` the image's mean pixel value is the same function. Exact when
 /// `to_world` is a similarity (rotation, reflection, uniform scale, translation), which
-/// [`Camera::is_similarity`] tells.
+/// `Camera::is_similarity` tells.
 impl Camera {
     /// Unit direction the camera looks along.
     pub fn forward(&self) -> Vec3 {
@@ -195,7 +210,7 @@ impl Camera {
     }
 
     /// Whether `to_world`'s linear part preserves angles (orthogonal columns of one length).
-    pub fn is_similarity(&self) -> bool {
+    pub(crate) fn is_similarity(&self) -> bool {
         let m = self.to_world.matrix3;
         let (x, y, z) = (
             Vec3::from(m.x_axis),
@@ -221,7 +236,7 @@ impl Camera {
             0.5 * (1.0 - q.x / (q.z * self.tan_half.x)),
             0.5 * (1.0 - q.y / (q.z * self.tan_half.y)),
         );
-        let r = s * Vec2::new(self.width as f32, self.height as f32);
+        let r = s * self.res - self.offset;
         r.is_finite().then_some(r)
     }
 
@@ -243,7 +258,7 @@ impl Camera {
     /// The film position of the direction `dir` (anywhere on the image plane, inside the
     /// image or not) and `1/(A cos³θ)`, the density per steradian that a film position
     /// uniform over the image would give there; `None` behind the camera.
-    pub fn direction_density(&self, dir: Vec3) -> Option<(Vec2, f32)> {
+    pub(crate) fn direction_density(&self, dir: Vec3) -> Option<(Vec2, f32)> {
         let q = self.to_camera.transform_vector3(dir);
         let len = q.length();
         let r = self.raster_of_local(q)?;
@@ -251,7 +266,9 @@ impl Camera {
             return None;
         }
         let cos = q.z / len;
-        let area = 4.0 * self.tan_half.x * self.tan_half.y;
+        // The image plane's area (one unit in front) that the rendered window covers.
+        let window = self.width as f32 * self.height as f32 * self.inv_res.x * self.inv_res.y;
+        let area = 4.0 * self.tan_half.x * self.tan_half.y * window;
         Some((r, 1.0 / (area * cos * cos * cos)))
     }
 
@@ -262,7 +279,7 @@ impl Camera {
     }
 
     /// [`Camera::raster_of`] without the image's bounds (a pixel filter reaches past them).
-    pub fn raster_of_unbounded(&self, p: Vec3) -> Option<Vec2> {
+    pub(crate) fn raster_of_unbounded(&self, p: Vec3) -> Option<Vec2> {
         let q = self.to_camera.transform_point3(p);
         if !(q.z >= self.near && q.z <= self.far) {
             return None;
@@ -287,6 +304,47 @@ mod tests {
             },
             ..SensorDesc::default()
         }
+    }
+
+    #[test]
+    fn a_crop_window_is_exactly_that_part_of_the_image() {
+        let full = sensor(50.0, FovAxis::X, 120, 90);
+        let mut cropped = full.clone();
+        cropped.film.crop = Some(crate::scene::description::CropWindow {
+            offset_x: 30,
+            offset_y: 20,
+            width: 40,
+            height: 25,
+        });
+        let (a, b) = (Camera::new(&full).unwrap(), Camera::new(&cropped).unwrap());
+        assert_eq!((b.width(), b.height()), (40, 25));
+        let off = Vec2::new(30.0, 20.0);
+        for p in [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(12.3, 7.9),
+            Vec2::new(39.9, 24.9),
+        ] {
+            let (ra, rb) = (a.generate_ray(p + off), b.generate_ray(p));
+            assert!((ra.dir - rb.dir).abs().max_element() < 1e-6, "{p}");
+            let back = b.direction_density(rb.dir).unwrap();
+            assert!((back.0 - p).abs().max_element() < 1e-3, "{p}: {}", back.0);
+            // Uniform over a window of 1000/10800 of the image: density 10.8× the full one.
+            let full_pdf = a.direction_density(ra.dir).unwrap().1;
+            let ratio = back.1 / full_pdf;
+            assert!(ratio.is_finite() && (ratio - 10.8).abs() < 1e-3, "{ratio}");
+        }
+        assert_eq!(
+            b.direction_pdf(a.generate_ray(Vec2::new(5.0, 5.0)).dir),
+            0.0
+        );
+        let mut past = cropped.clone();
+        past.film.crop = Some(crate::scene::description::CropWindow {
+            offset_x: 100,
+            offset_y: 0,
+            width: 40,
+            height: 10,
+        });
+        assert!(Camera::new(&past).is_err());
     }
 
     #[test]

@@ -115,6 +115,7 @@ fn sensor(spp: u32, res: u32) -> SensorDesc {
             width: res,
             height: res,
             filter: FilterDesc::Box,
+            crop: None,
         },
         sampler: SamplerDesc {
             kind: SamplerKind::Independent,

@@ -247,6 +247,9 @@ pub struct FilmDesc {
     pub height: u32,
     /// The pixel reconstruction filter.
     pub filter: FilterDesc,
+    /// Render only this window of the `width` × `height` image (Mitsuba's `crop_*`); the
+    /// output is the window's size. `None`: the whole image.
+    pub crop: Option<CropWindow>,
 }
 
 impl Default for FilmDesc {
@@ -255,8 +258,34 @@ impl Default for FilmDesc {
             width: 768,
             height: 576,
             filter: FilterDesc::default(),
+            crop: None,
         }
     }
+}
+
+impl FilmDesc {
+    /// The window that is rendered: the crop window, or the whole image.
+    pub fn window(&self) -> CropWindow {
+        self.crop.unwrap_or(CropWindow {
+            offset_x: 0,
+            offset_y: 0,
+            width: self.width,
+            height: self.height,
+        })
+    }
+}
+
+/// A window of the film in pixels, `(0, 0)` the top-left corner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CropWindow {
+    /// Left edge (`crop_offset_x`).
+    pub offset_x: u32,
+    /// Top edge (`crop_offset_y`).
+    pub offset_y: u32,
+    /// Width (`crop_width`).
+    pub width: u32,
+    /// Height (`crop_height`).
+    pub height: u32,
 }
 
 /// A pixel reconstruction filter.
@@ -269,6 +298,11 @@ pub enum FilterDesc {
     Gaussian {
         /// Standard deviation in pixels.
         stddev: f32,
+    },
+    /// Mitsuba's `tent`: `max(0, 1 − |x|/r)` per axis.
+    Tent {
+        /// Radius in pixels (Mitsuba's default 1).
+        radius: f32,
     },
 }
 
@@ -338,6 +372,25 @@ pub enum ShapeKind {
         /// The file, resolved against the scene file's folder.
         filename: PathBuf,
         /// Use flat face normals even where the file has vertex normals.
+        face_normals: bool,
+        /// Flip texture coordinates' `v` to `1 − v` (Mitsuba's default, true).
+        flip_tex_coords: bool,
+    },
+    /// `ply`: a triangle mesh read from a PLY file (ASCII or binary).
+    Ply {
+        /// The file, resolved against the scene file's folder.
+        filename: PathBuf,
+        /// Use flat face normals even where the file has vertex normals.
+        face_normals: bool,
+    },
+    /// `serialized`: one mesh of a file in Mitsuba's compressed mesh format.
+    Serialized {
+        /// The file, resolved against the scene file's folder.
+        filename: PathBuf,
+        /// Which mesh of the file (Mitsuba's default 0, the first).
+        shape_index: u32,
+        /// Use flat face normals even where the file has vertex normals (the file's own
+        /// face-normal flag asks for them too).
         face_normals: bool,
     },
     /// A triangle mesh given in code.

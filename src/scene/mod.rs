@@ -1,6 +1,23 @@
 //! The reference scene used by the renderer and the tests: its description (what a scene
 //! file says), the Mitsuba 3 XML loader, geometry and acceleration, materials, lights, the
 //! camera, and the render loop.
+//!
+//! One home per job; dependencies run down this list (lights use the geometry, the renderer
+//! uses both; nothing here is used by `sampling`, `stats` or `integrator`):
+//!
+//! | module | its job |
+//! |---|---|
+//! | [`description`] | what a scene file says, as plain data ([`description::SceneDescription`]) |
+//! | [`loader`] | Mitsuba 3 XML → description, with located errors; [`validate`] its limits |
+//! | [`mesh_file`] | OBJ, PLY and `serialized` meshes → one triangle-mesh type |
+//! | [`accel`] | acceleration structures over bounding boxes, knowing nothing of primitives |
+//! | [`geometry`] | shapes in world space: ray queries (`geometry/query/`: the one switch over backends), shape sampling (`geometry/sample/`: one sampler per shape), ray offsets |
+//! | [`bsdf`] | materials |
+//! | [`light`] | emitters, the choice among them, and next-event and emission sampling through the geometry's shape samplers |
+//! | [`camera`] | the pinhole camera |
+//! | [`film`] | pixel filters, accumulation, image files, comparison with references |
+//! | [`render`] | the tiled render loop that runs the integrators on a scene |
+//! | [`cornell_box`] | the built-in scene |
 
 pub mod accel;
 pub mod bsdf;
@@ -11,6 +28,6 @@ pub mod film;
 pub mod geometry;
 pub mod light;
 pub mod loader;
-pub mod obj;
+pub mod mesh_file;
 pub mod render;
 pub mod validate;

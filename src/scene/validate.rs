@@ -123,6 +123,31 @@ pub fn film(f: &FilmDesc) -> Result<(), Invalid> {
             return Err(invalid("stddev", "must lie in (0, 16] pixels"));
         }
     }
+    if let FilterDesc::Tent { radius } = f.filter {
+        if !(radius > 0.0 && radius <= 16.0) {
+            return Err(invalid("radius", "must lie in (0, 16] pixels"));
+        }
+    }
+    let w = f.window();
+    let fits = |o: u32, n: u32, full: u32| n > 0 && o.checked_add(n).is_some_and(|e| e <= full);
+    if !fits(w.offset_x, w.width, f.width) {
+        return Err(invalid(
+            "crop_width",
+            format!(
+                "and crop_offset_x: the window [{}, {} + {}) must be non-empty and lie within the width {}",
+                w.offset_x, w.offset_x, w.width, f.width
+            ),
+        ));
+    }
+    if !fits(w.offset_y, w.height, f.height) {
+        return Err(invalid(
+            "crop_height",
+            format!(
+                "and crop_offset_y: the window [{}, {} + {}) must be non-empty and lie within the height {}",
+                w.offset_y, w.offset_y, w.height, f.height
+            ),
+        ));
+    }
     Ok(())
 }
 
@@ -465,8 +490,13 @@ pub fn scene(d: &SceneDescription, spp: u32) -> Result<(), String> {
     self::film(film).map_err(part("film".into()))?;
     sample_count(spp).map_err(part("sampler".into()))?;
     integrator(&d.integrator).map_err(part("integrator".into()))?;
-    work(film.width as u64 * film.height as u64, spp, &d.integrator)
-        .map_err(part("sampler".into()))?;
+    let window = film.window();
+    work(
+        window.width as u64 * window.height as u64,
+        spp,
+        &d.integrator,
+    )
+    .map_err(part("sampler".into()))?;
     transform("to_world", &d.sensor.to_world).map_err(part("sensor".into()))?;
     for (i, s) in d.shapes.iter().enumerate() {
         let id =

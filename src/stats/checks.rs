@@ -2,9 +2,9 @@
 //! `pdf(sample(u)) · J(u) = 1`, the inverse round trip, and BSDF-like sample weights.
 
 use super::domain::Domain;
-use super::jacobian::jacobian_f64;
+use super::domain::StatPoint;
 use super::parallel::{default_threads, map_indexed};
-use super::point::StatPoint;
+use crate::sampling::jacobian::numerical_jacobian_of;
 use crate::sampling::warp::{InvertibleWarp, Warp};
 use glam::Vec2;
 
@@ -13,8 +13,8 @@ use glam::Vec2;
 pub struct CheckOutcome {
     /// What was checked.
     pub check: &'static str,
-    /// Whether it passed.
-    pub passed: bool,
+    /// Whether it passed ([`CheckOutcome::passed`]).
+    passed: bool,
     /// The largest error found (its meaning depends on the check).
     pub worst_error: f64,
     /// The `u` (or point) where the worst error occurred, when there is one.
@@ -28,6 +28,12 @@ pub struct CheckOutcome {
 }
 
 impl CheckOutcome {
+    /// Whether the check passed (a method, as [`Chi2Outcome::passed`](super::Chi2Outcome::passed)).
+    #[must_use]
+    pub fn passed(&self) -> bool {
+        self.passed
+    }
+
     /// A one-paragraph report.
     pub fn report(&self) -> String {
         format!(
@@ -118,10 +124,9 @@ impl Default for JacobianCheck {
 }
 
 /// Checks `pdf(sample(u)) · J(u) = 1`, with `J = √det(DᵀD)` of the map `u ↦ sample(u)` by
-/// central differences in `f64` (the same formula as
-/// [`numerical_jacobian`](crate::sampling::jacobian::numerical_jacobian), here for closures
-/// and one-dimensional points too) (`|dx/du₁|` for `f32` points, `|det D|` for `Vec2`,
-/// `‖∂p/∂u₁ × ∂p/∂u₂‖` for `Vec3`).
+/// central differences in `f64`
+/// ([`numerical_jacobian_of`](crate::sampling::jacobian::numerical_jacobian_of):
+/// `|dx/du₁|` for `f32` points, `|det D|` for `Vec2`, `‖∂p/∂u₁ × ∂p/∂u₂‖` for `Vec3`).
 ///
 /// Points where `J` with step `h` and with step `2h` disagree by more than the tolerance
 /// (seams such as the concentric map's diagonals, singular points such as `√u` at 0),
@@ -144,8 +149,8 @@ pub fn check_jacobian<P: StatPoint>(
         if !p.is_finite_point() || density.is_nan() || density <= 0.0 {
             return None;
         }
-        let j1 = jacobian_f64(&sample, u, settings.step)?;
-        let j2 = jacobian_f64(&sample, u, 2.0 * settings.step)?;
+        let j1 = numerical_jacobian_of(&sample, u, settings.step)?;
+        let j2 = numerical_jacobian_of(&sample, u, 2.0 * settings.step)?;
         ((j1 - j2).abs() <= settings.tolerance * j1.abs()).then(|| ((density * j1 - 1.0).abs(), u))
     };
     let results = map_indexed(n * rows, default_threads(), &eval);

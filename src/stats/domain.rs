@@ -1,9 +1,16 @@
 //! Domains of the chi-square test and their cells: an interval, a rectangle of the plane and
 //! a set of categories. Directions live in [`super::Directions`].
 
-use super::point::StatPoint;
 use super::quadrature::{integrate_1d, integrate_2d, Rect, REFINED_MIN_DEPTH};
+use crate::sampling::jacobian::WarpPoint;
 use glam::Vec2;
+
+/// A point type the harness can bin, difference and share between threads: any
+/// [`WarpPoint`] (`f32`, [`Vec2`], [`glam::Vec3`], `usize`) that is `Send + Sync + 'static`.
+/// Implemented for every such type; the point trait itself is [`WarpPoint`].
+pub trait StatPoint: WarpPoint + Send + Sync + 'static {}
+
+impl<P: WarpPoint + Send + Sync + 'static> StatPoint for P {}
 
 /// Absolute tolerance of each cell's integral (probability mass).
 pub(crate) const CELL_ABS_TOL: f64 = 1e-13;

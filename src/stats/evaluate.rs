@@ -1,13 +1,13 @@
-//! The evaluation behind [`ChiSquareTest`]'s `run*` methods: counting samples, re-checking
-//! suspect cells, pooling, the statistic and the verdict.
+//! The evaluation behind [`ChiSquareTest`](super::ChiSquareTest)'s `run*` methods: counting
+//! samples, re-checking suspect cells, pooling, the statistic and the verdict.
 
 use super::chi2::{p_value, pool, sidak, statistic, CellCount};
 use super::domain::Domain;
-use super::harness::ChiSquareTest;
 use super::outcome::{Chi2Failure, Chi2Outcome};
 use super::parallel::{chunk_rng, for_chunks, map_indexed, next_u, CHUNK};
 use super::report;
 use glam::Vec2;
+use std::path::PathBuf;
 
 /// Cells whose count is further than this many standard deviations from the quadrature's
 /// expectation are re-integrated finely before the statistic is formed.
@@ -16,8 +16,28 @@ pub const RECHECK_SIGMAS: f64 = 4.0;
 /// At most this many cells are re-integrated per run.
 pub const RECHECK_MAX_CELLS: usize = 64;
 
+/// The settings of a chi-square run (what the [`ChiSquareTest`](super::ChiSquareTest)
+/// builder sets).
+#[derive(Clone, Debug)]
+pub(super) struct Settings {
+    pub(super) samples: usize,
+    pub(super) seed: u64,
+    pub(super) alpha: f64,
+    pub(super) test_count: u32,
+    pub(super) integral_tolerance: f64,
+    pub(super) threads: usize,
+    pub(super) name: String,
+    pub(super) output_dir: Option<PathBuf>,
+}
+
+/// One run: a domain and the settings.
+pub(super) struct Run<'a, D: Domain> {
+    pub(super) domain: &'a D,
+    pub(super) settings: &'a Settings,
+}
+
 /// What one draw produced.
-pub(crate) enum Draw<P> {
+pub(super) enum Draw<P> {
     At(P),
     Rejected,
     BadWeight,
@@ -32,7 +52,7 @@ struct Counts {
     bad_weights: u64,
 }
 
-impl<D: Domain> ChiSquareTest<D> {
+impl<D: Domain> Run<'_, D> {
     fn count(&self, draw: &(dyn Fn(Vec2) -> Draw<D::Point> + Sync)) -> Counts {
         let cells = self.domain.cell_count();
         let init = || Counts {
@@ -41,9 +61,9 @@ impl<D: Domain> ChiSquareTest<D> {
             outside: 0,
             bad_weights: 0,
         };
-        let n = self.samples;
+        let n = self.settings.samples;
         let work = |c: usize, acc: &mut Counts| {
-            let mut rng = chunk_rng(self.seed, c);
+            let mut rng = chunk_rng(self.settings.seed, c);
             for _ in c * CHUNK..((c + 1) * CHUNK).min(n) {
                 match draw(next_u(&mut rng)) {
                     Draw::At(p) => match self.domain.cell_of(p) {
@@ -55,7 +75,7 @@ impl<D: Domain> ChiSquareTest<D> {
                 }
             }
         };
-        let parts = for_chunks(n.div_ceil(CHUNK), self.threads, &init, &work);
+        let parts = for_chunks(n.div_ceil(CHUNK), self.settings.threads, &init, &work);
         let mut total = init();
         for p in parts {
             for (t, x) in total.cells.iter_mut().zip(&p.cells) {
@@ -79,7 +99,7 @@ impl<D: Domain> ChiSquareTest<D> {
         if let Some(pdf) = pdf {
             self.refine_suspect_cells(&mut masses, &counts.cells, pdf);
         }
-        let n = self.samples as f64;
+        let n = self.settings.samples as f64;
         let integral: f64 = masses.iter().sum();
         let mut observed = counts.cells.clone();
         let mut expected: Vec<f64> = masses.iter().map(|m| m * n).collect();
@@ -90,7 +110,7 @@ impl<D: Domain> ChiSquareTest<D> {
         let pooled = pool(&observed, &expected);
         let (stat, dof) = statistic(&pooled.terms);
         let p = p_value(stat, dof);
-        let threshold = sidak(self.alpha, self.test_count);
+        let threshold = sidak(self.settings.alpha, self.settings.test_count);
         let failures = self.failures(
             &counts,
             &pooled.zero_hits,
@@ -100,8 +120,8 @@ impl<D: Domain> ChiSquareTest<D> {
             may_reject,
         );
         let mut outcome = Chi2Outcome {
-            name: self.name.clone(),
-            samples: self.samples,
+            name: self.settings.name.clone(),
+            samples: self.settings.samples,
             statistic: stat,
             dof,
             p_value: p,
@@ -113,9 +133,14 @@ impl<D: Domain> ChiSquareTest<D> {
             failures,
             images: Vec::new(),
         };
-        if let (false, Some(dir)) = (outcome.passed(), &self.output_dir) {
-            outcome.images =
-                report::write_images(dir, &self.name, self.domain.grid(), &observed, &expected);
+        if let (false, Some(dir)) = (outcome.passed(), &self.settings.output_dir) {
+            outcome.images = report::write_images(
+                dir,
+                &self.settings.name,
+                self.domain.grid(),
+                &observed,
+                &expected,
+            );
         }
         outcome
     }
@@ -132,7 +157,7 @@ impl<D: Domain> ChiSquareTest<D> {
         observed: &[u64],
         pdf: &(dyn Fn(D::Point) -> f32 + Sync),
     ) {
-        let n = self.samples as f64;
+        let n = self.settings.samples as f64;
         let score = |c: usize| {
             let (o, e) = (observed[c] as f64, masses[c] * n);
             if o > 0.0 && e <= 0.0 {
@@ -149,7 +174,7 @@ impl<D: Domain> ChiSquareTest<D> {
         cells.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         cells.truncate(RECHECK_MAX_CELLS);
         let pdf64 = |p: D::Point| f64::from(pdf(p));
-        let refined = map_indexed(cells.len(), self.threads, &|k| {
+        let refined = map_indexed(cells.len(), self.settings.threads, &|k| {
             self.domain.cell_mass_refined(cells[k].0, &pdf64)
         });
         for (&(c, _), m) in cells.iter().zip(refined) {
@@ -194,7 +219,7 @@ impl<D: Domain> ChiSquareTest<D> {
         } else {
             (integral - 1.0).abs()
         };
-        if excess.is_nan() || excess > self.integral_tolerance {
+        if excess.is_nan() || excess > self.settings.integral_tolerance {
             f.push(Chi2Failure::NotNormalized { integral });
         }
         f

@@ -2,7 +2,7 @@
 //! compares the two.
 
 use super::domain::Domain;
-use super::evaluate::Draw;
+use super::evaluate::{Draw, Run, Settings};
 use super::outcome::Chi2Outcome;
 use super::parallel::{default_threads, map_indexed};
 use crate::sampling::warp::Warp;
@@ -41,15 +41,8 @@ use std::path::PathBuf;
 /// ```
 #[derive(Clone, Debug)]
 pub struct ChiSquareTest<D: Domain> {
-    pub(super) domain: D,
-    pub(super) samples: usize,
-    pub(super) seed: u64,
-    pub(super) alpha: f64,
-    pub(super) test_count: u32,
-    pub(super) integral_tolerance: f64,
-    pub(super) threads: usize,
-    pub(super) name: String,
-    pub(super) output_dir: Option<PathBuf>,
+    domain: D,
+    settings: Settings,
 }
 
 impl<D: Domain> ChiSquareTest<D> {
@@ -59,8 +52,7 @@ impl<D: Domain> ChiSquareTest<D> {
     pub fn new(domain: D) -> Self {
         let output_dir = std::env::var_os("MCRT_CHI2_OUTPUT")
             .map_or_else(|| PathBuf::from("target/chi2-failures"), PathBuf::from);
-        Self {
-            domain,
+        let settings = Settings {
             samples: 1_000_000,
             seed: 0,
             alpha: 0.01,
@@ -69,20 +61,21 @@ impl<D: Domain> ChiSquareTest<D> {
             threads: default_threads(),
             name: "chi2".into(),
             output_dir: Some(output_dir),
-        }
+        };
+        Self { domain, settings }
     }
 
     /// Sets the number of samples drawn.
     #[must_use]
     pub fn samples(mut self, n: usize) -> Self {
-        self.samples = n.max(1);
+        self.settings.samples = n.max(1);
         self
     }
 
     /// Sets the seed (the same seed gives the same counts on any thread count).
     #[must_use]
     pub fn seed(mut self, seed: u64) -> Self {
-        self.seed = seed;
+        self.settings.seed = seed;
         self
     }
 
@@ -92,40 +85,40 @@ impl<D: Domain> ChiSquareTest<D> {
     /// An `alpha` outside `(0, 1)` falls back to 0.01.
     #[must_use]
     pub fn significance(mut self, alpha: f64, test_count: u32) -> Self {
-        self.alpha = if alpha > 0.0 && alpha < 1.0 {
+        self.settings.alpha = if alpha > 0.0 && alpha < 1.0 {
             alpha
         } else {
             0.01
         };
-        self.test_count = test_count.max(1);
+        self.settings.test_count = test_count.max(1);
         self
     }
 
     /// Sets the tolerance of `|∫ pdf − 1|` over the domain.
     #[must_use]
     pub fn integral_tolerance(mut self, tol: f64) -> Self {
-        self.integral_tolerance = tol.abs();
+        self.settings.integral_tolerance = tol.abs();
         self
     }
 
     /// Sets the number of worker threads (results do not depend on it).
     #[must_use]
     pub fn threads(mut self, n: usize) -> Self {
-        self.threads = n.max(1);
+        self.settings.threads = n.max(1);
         self
     }
 
     /// Names the test (the image files are `<name>-observed.png` etc.).
     #[must_use]
     pub fn name(mut self, name: &str) -> Self {
-        self.name = name.into();
+        self.settings.name = name.into();
         self
     }
 
     /// Sets the directory for failure images; `None` writes none.
     #[must_use]
     pub fn output_dir(mut self, dir: Option<PathBuf>) -> Self {
-        self.output_dir = dir;
+        self.settings.output_dir = dir;
         self
     }
 
@@ -149,7 +142,8 @@ impl<D: Domain> ChiSquareTest<D> {
         pdf: impl Fn(D::Point) -> f32 + Sync,
     ) -> Chi2Outcome {
         let masses = self.masses(&pdf);
-        self.execute(&|u| Draw::At(sample(u)), masses, Some(&pdf), false)
+        self.run_of()
+            .execute(&|u| Draw::At(sample(u)), masses, Some(&pdf), false)
     }
 
     /// Tests a BSDF-like sampler returning `Some((point, weight))`, or `None` (or weight 0)
@@ -168,7 +162,7 @@ impl<D: Domain> ChiSquareTest<D> {
             Some((p, w)) if w > 0.0 => Draw::At(p),
             _ => Draw::Rejected,
         };
-        self.execute(&draw, masses, Some(&pdf), true)
+        self.run_of().execute(&draw, masses, Some(&pdf), true)
     }
 
     /// Tests a sampler against exact cell masses (a tabulated density): `mass(cell)` is the
@@ -178,8 +172,9 @@ impl<D: Domain> ChiSquareTest<D> {
         sample: impl Fn(Vec2) -> D::Point + Sync,
         mass: impl Fn(usize) -> f64 + Sync,
     ) -> Chi2Outcome {
-        let masses = map_indexed(self.domain.cell_count(), self.threads, &mass);
-        self.execute(&|u| Draw::At(sample(u)), masses, None, false)
+        let masses = map_indexed(self.domain.cell_count(), self.settings.threads, &mass);
+        self.run_of()
+            .execute(&|u| Draw::At(sample(u)), masses, None, false)
     }
 
     /// Like [`ChiSquareTest::run_with_masses`] with the masses as `(cell, mass)` pairs;
@@ -195,7 +190,8 @@ impl<D: Domain> ChiSquareTest<D> {
                 *slot += v;
             }
         }
-        self.execute(&|u| Draw::At(sample(u)), m, None, false)
+        self.run_of()
+            .execute(&|u| Draw::At(sample(u)), m, None, false)
     }
 
     /// The probability mass of every cell under `pdf` (what [`ChiSquareTest::run`]
@@ -204,9 +200,16 @@ impl<D: Domain> ChiSquareTest<D> {
         self.masses(&pdf)
     }
 
+    fn run_of(&self) -> Run<'_, D> {
+        Run {
+            domain: &self.domain,
+            settings: &self.settings,
+        }
+    }
+
     fn masses(&self, pdf: &(impl Fn(D::Point) -> f32 + Sync)) -> Vec<f64> {
         let pdf64 = |p: D::Point| f64::from(pdf(p));
-        map_indexed(self.domain.cell_count(), self.threads, &|c| {
+        map_indexed(self.domain.cell_count(), self.settings.threads, &|c| {
             self.domain.cell_mass(c, &pdf64)
         })
     }

@@ -51,10 +51,8 @@ mod directions;
 mod domain;
 mod evaluate;
 mod harness;
-mod jacobian;
 mod outcome;
 mod parallel;
-mod point;
 mod quadrature;
 mod report;
 
@@ -64,8 +62,7 @@ pub use checks::{
 };
 pub use chi2::{p_value, sidak, CellCount, MIN_EXPECTED};
 pub use directions::Directions;
-pub use domain::{Discrete, Domain, Interval, PdfRef, Rectangle};
+pub use domain::{Discrete, Domain, Interval, PdfRef, Rectangle, StatPoint};
 pub use evaluate::{RECHECK_MAX_CELLS, RECHECK_SIGMAS};
 pub use harness::ChiSquareTest;
 pub use outcome::{Chi2Failure, Chi2Outcome};
-pub use point::StatPoint;

@@ -1,7 +1,7 @@
 //! Settings shared by the statistical suite (`tests/chi2_*.rs`).
 //!
 //! Every chi-square test of the suite uses the same family-wise level [`ALPHA`] over a fixed,
-//! stated number of tests [`N_TESTS`] (Šidák correction), so a filtered run (`cargo test
+//! stated number of tests [`N_TESTS`] (Šidák correction), so a filtered run (`cargo test --release
 //! --test chi2_warps ggx`) applies exactly the same per-test threshold as the full suite.
 //! `N_TESTS` is an upper bound on the number of chi-square runs in the suite; counting more
 //! runs than exist only makes each run slightly stricter.

@@ -52,15 +52,18 @@ impl<S: Sampler> Sampler for SameDimension<S> {
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
         (self.1, self.2) = (pixel, sample_index);
     }
+    fn samples_per_pixel(&self) -> u32 {
+        self.0.samples_per_pixel()
+    }
+}
+
+impl<S: Sampler> SampleSource for SameDimension<S> {
     fn next_1d(&mut self) -> f32 {
         self.next_2d().x
     }
     fn next_2d(&mut self) -> Vec2 {
         self.0.start_pixel_sample(self.1, self.2);
         self.0.next_2d()
-    }
-    fn samples_per_pixel(&self) -> u32 {
-        self.0.samples_per_pixel()
     }
 }
 

@@ -7,7 +7,7 @@
 //! `p_{i+1}/p_i = p_fwd(x_i)/p_rev(x_i)`, so all ratios follow in one pass over the path.
 
 use super::vertex::{bare_point, Kind, Mode, Vertex};
-use crate::integrator::{is_positive, BidirectionalScene, EmitterKind, SampleSource};
+use crate::integrator::{is_positive, occluded, BidirectionalScene, EmitterKind, SampleSource};
 use glam::{Vec2, Vec3};
 
 /// The MIS heuristic's exponent: 1 balance, 2 power.
@@ -29,7 +29,7 @@ pub(crate) struct Connection {
 }
 
 /// Connects `light[..s]` with `camera[..t]`; `None` when the strategy cannot make a path
-/// here (or the contribution is zero). `s = 1` samples a fresh light point from `rng`,
+/// here (or the contribution is zero). `s = 1` samples a fresh light point from `samples`,
 /// `t = 1` connects to the camera. Shadow rays are added to `rays`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
@@ -39,7 +39,7 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
     s: usize,
     t: usize,
     heuristic: Heuristic,
-    rng: &mut R,
+    samples: &mut R,
     rays: &mut u32,
 ) -> Option<Connection> {
     if t == 0 || t > camera.len() || s > light.len() {
@@ -82,7 +82,7 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
             return None;
         }
         *rays += 1;
-        if scene.occluded(&qs.sp, c.wi, c.dist) {
+        if occluded(scene, &qs.sp, c.wi, c.dist) {
             return None;
         }
         raster = Some(c.raster);
@@ -93,8 +93,8 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
         if !pt.connectible() {
             return None;
         }
-        let u_pick = rng.next_2d();
-        let u = rng.next_2d();
+        let u_pick = samples.next_2d();
+        let u = samples.next_2d();
         let (v, lv) = if scene.has_delta_lights() {
             light_by_emission(scene, pt, u_pick, u, rays)?
         } else {
@@ -118,7 +118,7 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
             return None;
         }
         *rays += 1;
-        if scene.occluded(&pt.sp, w, d2.sqrt()) {
+        if occluded(scene, &pt.sp, w, d2.sqrt()) {
             return None;
         }
         v
@@ -172,7 +172,7 @@ fn light_by_emission<S: BidirectionalScene>(
     } else {
         f32::INFINITY
     };
-    if scene.occluded(&pt.sp, w, dist) {
+    if occluded(scene, &pt.sp, w, dist) {
         return None;
     }
     Some((v, lv))
@@ -213,7 +213,7 @@ fn light_by_nee<S: BidirectionalScene>(
         lv.pdf_fwd = scene.emission_pdf(light, &hit, -ls.wi).0;
         lv
     } else {
-        if scene.occluded(&pt.sp, ls.wi, f32::INFINITY) {
+        if occluded(scene, &pt.sp, ls.wi, f32::INFINITY) {
             return None;
         }
         let light = scene.environment_light()?;

@@ -132,7 +132,7 @@ impl Bdpt {
         origin: Vec3,
         dir: Vec3,
         t_max: f32,
-        rng: &mut R,
+        samples: &mut R,
         buf: &mut BdptBuffers,
         splats: &mut Vec<Splat>,
         mut stats: Option<&mut StrategyStats>,
@@ -146,26 +146,26 @@ impl Bdpt {
             max_vertices,
             rr_depth: self.rr_depth,
         };
-        rng.start_stream(0);
+        samples.start_stream(0);
         camera_subpath(
             scene,
             origin,
             dir,
             t_max,
             lim(max_cam),
-            rng,
+            samples,
             &mut buf.camera,
             &mut out.rays,
         );
-        rng.start_stream(1);
+        samples.start_stream(1);
         // Light subpaths play Russian roulette from their first bounce: their throughput,
         // relative to the first bounce's, is what they can still add to any connection.
         let light_lim = WalkLimits {
             max_vertices: max_light,
             rr_depth: LIGHT_RR_DEPTH,
         };
-        light_subpath(scene, light_lim, rng, &mut buf.light, &mut out.rays);
-        rng.start_stream(2);
+        light_subpath(scene, light_lim, samples, &mut buf.light, &mut out.rays);
+        samples.start_stream(2);
         let h = self.heuristic();
         let segments = if self.max_depth < 0 {
             usize::MAX
@@ -177,8 +177,16 @@ impl Bdpt {
                 if s + t < 2 || s + t - 1 > segments || !self.runs(s, t) {
                     continue;
                 }
-                let Some(c) = connect(scene, &buf.light, &buf.camera, s, t, h, rng, &mut out.rays)
-                else {
+                let Some(c) = connect(
+                    scene,
+                    &buf.light,
+                    &buf.camera,
+                    s,
+                    t,
+                    h,
+                    samples,
+                    &mut out.rays,
+                ) else {
                     continue;
                 };
                 let v = c.value * c.weight;

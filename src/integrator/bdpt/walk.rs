@@ -24,7 +24,7 @@ pub(crate) fn camera_subpath<S: BidirectionalScene, R: SampleSource>(
     dir: Vec3,
     t_max: f32,
     lim: WalkLimits,
-    rng: &mut R,
+    samples: &mut R,
     path: &mut Vec<Vertex>,
     rays: &mut u32,
 ) {
@@ -49,7 +49,7 @@ pub(crate) fn camera_subpath<S: BidirectionalScene, R: SampleSource>(
         pdf,
         Mode::Radiance,
         lim,
-        rng,
+        samples,
         path,
         rays,
     );
@@ -59,7 +59,7 @@ pub(crate) fn camera_subpath<S: BidirectionalScene, R: SampleSource>(
 pub(crate) fn light_subpath<S: BidirectionalScene, R: SampleSource>(
     scene: &S,
     lim: WalkLimits,
-    rng: &mut R,
+    samples: &mut R,
     path: &mut Vec<Vertex>,
     rays: &mut u32,
 ) {
@@ -67,9 +67,9 @@ pub(crate) fn light_subpath<S: BidirectionalScene, R: SampleSource>(
     if lim.max_vertices == 0 {
         return;
     }
-    let u_pick = rng.next_2d();
-    let u_pos = rng.next_2d();
-    let u_dir = rng.next_2d();
+    let u_pick = samples.next_2d();
+    let u_pos = samples.next_2d();
+    let u_dir = samples.next_2d();
     let Some(es) = scene.sample_emission(u_pick, u_pos, u_dir) else {
         return;
     };
@@ -93,7 +93,7 @@ pub(crate) fn light_subpath<S: BidirectionalScene, R: SampleSource>(
         es.pdf_dir,
         Mode::Importance,
         lim,
-        rng,
+        samples,
         path,
         rays,
     );
@@ -110,7 +110,7 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
     mut pdf: f32,
     mode: Mode,
     lim: WalkLimits,
-    rng: &mut R,
+    samples: &mut R,
     path: &mut Vec<Vertex>,
     rays: &mut u32,
 ) {
@@ -166,7 +166,7 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
         let bsdf = scene.bsdf(&sp);
         let wo_world = -dir;
         let wo = sp.frame.to_local(wo_world);
-        let Some(bs) = crate::integrator::sample_bsdf(bsdf, wo, rng) else {
+        let Some(bs) = crate::integrator::sample_bsdf(bsdf, wo, samples) else {
             return;
         };
         let wi_world = sp.frame.to_world(bs.wi);
@@ -204,7 +204,7 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
         }
         if bounces >= lim.rr_depth {
             let q = (b * eta * eta).min(0.95);
-            if rng.next_1d() >= q {
+            if samples.next_1d() >= q {
                 return;
             }
             beta /= q;

@@ -9,7 +9,7 @@
 //! iterations since the value last changed (the sum of `n` small steps), wrapped into
 //! `[0, 1)`.
 
-use crate::integrator::SampleSource;
+use crate::sampling::sampler::SampleSource;
 use rand_core::{RngCore, SeedableRng};
 use rand_pcg::Pcg32;
 

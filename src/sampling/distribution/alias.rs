@@ -168,7 +168,7 @@ fn build_columns(pmf: &[f64]) -> Vec<Column> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::distribution::piecewise_1d::ONE_MINUS_EPSILON;
+    use crate::sampling::ONE_MINUS_EPSILON;
 
     #[test]
     fn rejects_bad_weights() {

@@ -1,9 +1,8 @@
 //! A piecewise-constant density on an interval, sampled by inverting its CDF.
 
+pub(crate) use crate::sampling::unit::clamp_unit;
+use crate::sampling::unit::ONE_MINUS_EPSILON;
 use crate::sampling::SamplingError;
-
-/// The largest `f32` below 1, `1 − 2⁻²⁴`: the largest valid sample value `u`.
-pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// A piecewise-constant density on `[min, max)`, proportional to a table of non-negative
 /// values, one per equal-width bin.
@@ -300,15 +299,6 @@ fn running_sums(func: &[f64]) -> Vec<f64> {
         cdf.push(sum);
     }
     cdf
-}
-
-/// Clamps a sample value into `[0, 1 − 2⁻²⁴]`; NaN becomes 0.
-pub(crate) fn clamp_unit(u: f32) -> f32 {
-    if u >= 0.0 {
-        u.min(ONE_MINUS_EPSILON)
-    } else {
-        0.0
-    }
 }
 
 #[cfg(test)]

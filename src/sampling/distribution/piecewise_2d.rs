@@ -24,7 +24,9 @@ use crate::sampling::SamplingError;
 /// the density of the direction per unit solid angle is `p(ω) = p(u, v) / (2π² sin θ)`
 /// ([`crate::sampling::jacobian::solid_angle_pdf_from_lat_long`]). Weight each row's values
 /// by `sin θ` of its centre before building the table, so that sampling follows the
-/// radiance per solid angle.
+/// radiance per solid angle. [`LatLong`](crate::sampling::warp::LatLong) maps directions to
+/// `(u, v) ∈ [0,1)²` and back (the south pole stays on the last row: at `v = 1` this
+/// table's pdf is 0).
 ///
 /// Reference: Pharr, Jakob & Humphreys, 2023, *Physically Based Rendering* (4th ed.),
 /// section A.5.2, "Piecewise-constant 2D distributions".
@@ -35,7 +37,7 @@ use crate::sampling::SamplingError;
 ///
 /// // 2 columns × 2 rows; the top-left cell is empty.
 /// let d = PiecewiseConstant2D::new(&[0.0, 1.0, 1.0, 2.0], 2, 2).unwrap();
-/// let (p, pdf, cell) = d.sample(Vec2::new(0.1, 0.2));
+/// let (p, pdf, cell) = d.sample_cell(Vec2::new(0.1, 0.2));
 /// assert_ne!(cell, [0, 0]);
 /// assert!((pdf - d.pdf(p)).abs() < 1e-6);
 /// assert!((d.cell_mass(1, 1) - 0.5).abs() < 1e-12);
@@ -106,9 +108,10 @@ impl PiecewiseConstant2D {
 
     /// Draws a point of `[0,1)²` from `u ∈ [0,1)²` (`u.y` picks the row, `u.x` the column):
     /// returns `(point, pdf(point), [column, row])`, the pdf per unit area of `[0,1)²`.
-    /// Never returns a zero-valued cell.
+    /// Never returns a zero-valued cell. [`Warp::sample`] and [`Warp::sample_with_pdf`]
+    /// return the same point without the cell.
     #[must_use]
-    pub fn sample(&self, u: Vec2) -> (Vec2, f32, [usize; 2]) {
+    pub fn sample_cell(&self, u: Vec2) -> (Vec2, f32, [usize; 2]) {
         let (v, _, row) = self.marginal.sample(u.y);
         // The marginal never returns a zero row, so the conditional exists.
         let Some(cond) = self.conditional[row].as_ref() else {
@@ -119,7 +122,7 @@ impl PiecewiseConstant2D {
         (Vec2::new(x, v), self.pdf_of_cell(col, row), [col, row])
     }
 
-    /// The density of [`sample`](Self::sample) at `p`, per unit area of `[0,1)²`; 0 outside
+    /// The density of [`sample_cell`](Self::sample_cell) at `p`, per unit area of `[0,1)²`; 0 outside
     /// the square.
     #[must_use]
     pub fn pdf(&self, p: Vec2) -> f32 {
@@ -129,7 +132,7 @@ impl PiecewiseConstant2D {
         }
     }
 
-    /// The `u` that [`sample`](Self::sample) maps to `p`: the marginal CDF at `p.y` and the
+    /// The `u` that [`sample_cell`](Self::sample_cell) maps to `p`: the marginal CDF at `p.y` and the
     /// conditional CDF of that row at `p.x`. In an all-zero row (never sampled) `u.x` is
     /// `p.x` clamped into `[0,1)`.
     #[must_use]
@@ -208,12 +211,12 @@ impl PiecewiseConstant2D {
 
 /// The distribution as a warp of the unit square onto itself, so generic code (the
 /// chi-square harness, property tests) can take it. The inherent
-/// [`sample`](PiecewiseConstant2D::sample) also returns the pdf and the cell.
+/// [`sample_cell`](PiecewiseConstant2D::sample_cell) also returns the cell.
 impl Warp for PiecewiseConstant2D {
     type Point = Vec2;
 
     fn sample(&self, u: Vec2) -> Vec2 {
-        PiecewiseConstant2D::sample(self, u).0
+        self.sample_cell(u).0
     }
 
     fn pdf(&self, p: Vec2) -> f32 {
@@ -221,7 +224,7 @@ impl Warp for PiecewiseConstant2D {
     }
 
     fn sample_with_pdf(&self, u: Vec2) -> (Vec2, f32) {
-        let (p, pdf, _) = PiecewiseConstant2D::sample(self, u);
+        let (p, pdf, _) = self.sample_cell(u);
         (p, pdf)
     }
 }
@@ -235,7 +238,7 @@ impl InvertibleWarp for PiecewiseConstant2D {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::distribution::piecewise_1d::ONE_MINUS_EPSILON;
+    use crate::sampling::ONE_MINUS_EPSILON;
 
     #[test]
     fn rejects_bad_tables() {
@@ -266,7 +269,7 @@ mod tests {
         let d = PiecewiseConstant2D::new(&t, 3, 3).unwrap();
         for ux in [0.0, 0.5, ONE_MINUS_EPSILON] {
             for uy in [0.0, 1.0 / 3.0, 0.5, ONE_MINUS_EPSILON] {
-                let (p, pdf, [x, y]) = d.sample(Vec2::new(ux, uy));
+                let (p, pdf, [x, y]) = d.sample_cell(Vec2::new(ux, uy));
                 assert!(p.is_finite() && pdf.is_finite() && pdf > 0.0);
                 assert!(t[y * 3 + x] > 0.0, "u = ({ux}, {uy}) gave cell ({x}, {y})");
                 assert_eq!(d.cell_of(p), Some([x, y]));
@@ -288,7 +291,7 @@ mod tests {
             .sum();
         assert!((total - 1.0).abs() < 1e-12);
         let u = Vec2::new(0.3, 0.7);
-        let (p, _, _) = d.sample(u);
+        let (p, _, _) = d.sample_cell(u);
         let back = d.invert(p);
         assert!(back.is_finite() && (back - u).abs().max_element() < 1e-6);
         // The same through the warp traits.

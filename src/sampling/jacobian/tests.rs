@@ -139,3 +139,33 @@ fn conversions_round_trip_and_stay_finite() {
     let w = solid_angle_pdf_from_lat_long(1.0, sin);
     assert!(w.is_finite() && (w * 2.0 * PI * PI * theta.sin() - 1.0).abs() < 1e-6);
 }
+
+#[test]
+fn closures_lines_and_categories() {
+    let j = numerical_jacobian_of(|u: Vec2| 3.0 * u.x, Vec2::new(0.5, 0.5), 1e-3).unwrap();
+    assert!(j.is_finite() && (j - 3.0).abs() < 1e-4, "{j}");
+    // Only u.x moves for a line: u.y may sit on the square's edge.
+    assert!(numerical_jacobian_of(|u: Vec2| u.x, Vec2::new(0.5, 0.0), 1e-3).is_some());
+    assert_eq!(
+        numerical_jacobian_of(|_: Vec2| 2usize, Vec2::splat(0.5), 1e-3),
+        None
+    );
+    assert_eq!(
+        numerical_jacobian_of(|_: Vec2| Vec2::NAN, Vec2::splat(0.5), 1e-3),
+        None
+    );
+}
+
+/// A stencil point that leaves `[0,1)` only once rounded to `f32` is refused: the map is
+/// never evaluated at `u = 1`.
+#[test]
+fn stencil_is_checked_after_rounding() {
+    let u = Vec2::new(1.0 - 2f32.powi(-11), 0.5);
+    let h = 2f64.powi(-11) - 2f64.powi(-30);
+    assert!(f64::from(u.x) + h < 1.0 && ((f64::from(u.x) + h) as f32) == 1.0);
+    let refuse_one = |v: Vec2| {
+        assert!(v.x < 1.0, "evaluated at u = {v}");
+        v
+    };
+    assert_eq!(numerical_jacobian_of(refuse_one, u, h), None);
+}

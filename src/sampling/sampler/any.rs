@@ -4,7 +4,10 @@ use glam::Vec2;
 
 #[cfg(feature = "sobol")]
 use super::SobolSampler;
-use super::{HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler};
+use super::{
+    stream_dimension, HaltonSampler, IndependentSampler, R2Sampler, SampleSource, Sampler,
+    StratifiedSampler,
+};
 use crate::sampling::SamplingError;
 
 /// One of the crate's samplers, chosen at run time (for example from a scene file's
@@ -14,7 +17,7 @@ use crate::sampling::SamplingError;
 /// match once and call generic code with the concrete type instead.
 ///
 /// ```
-/// use mcrt::sampling::sampler::{AnySampler, Sampler, StratifiedSampler};
+/// use mcrt::sampling::sampler::{AnySampler, SampleSource, Sampler, StratifiedSampler};
 ///
 /// let mut s: AnySampler = StratifiedSampler::new(10, 0, true).unwrap().into();
 /// assert_eq!(s.samples_per_pixel(), 16);
@@ -116,6 +119,17 @@ impl Sampler for AnySampler {
     }
 
     #[inline]
+    fn skip_to_dimension(&mut self, dim: u32) {
+        dispatch!(self, s => s.skip_to_dimension(dim))
+    }
+
+    fn samples_per_pixel(&self) -> u32 {
+        dispatch!(self, s => s.samples_per_pixel())
+    }
+}
+
+impl SampleSource for AnySampler {
+    #[inline]
     fn next_1d(&mut self) -> f32 {
         dispatch!(self, s => s.next_1d())
     }
@@ -126,12 +140,8 @@ impl Sampler for AnySampler {
     }
 
     #[inline]
-    fn skip_to_dimension(&mut self, dim: u32) {
-        dispatch!(self, s => s.skip_to_dimension(dim))
-    }
-
-    fn samples_per_pixel(&self) -> u32 {
-        dispatch!(self, s => s.samples_per_pixel())
+    fn start_stream(&mut self, stream: u32) {
+        self.skip_to_dimension(stream_dimension(stream));
     }
 }
 

@@ -4,7 +4,7 @@
 use glam::Vec2;
 
 use super::hash::{combine, mix64, permute, pixel_key_of_mixed};
-use super::{check_spp, Sampler};
+use super::{check_spp, stream_dimension, SampleSource, Sampler};
 use crate::sampling::SamplingError;
 
 /// Base-3 digits used: 3⁻¹⁶ ≈ 2.3·10⁻⁸ is below the `f32` spacing near 1.
@@ -52,7 +52,7 @@ const PERMS3: [[u8; 3]; 6] = [
 /// Scrambling of Digital (t, s)-Sequences", Monte Carlo and Quasi-Monte Carlo Methods 2000.
 ///
 /// ```
-/// use mcrt::sampling::sampler::{HaltonSampler, Sampler};
+/// use mcrt::sampling::sampler::{HaltonSampler, SampleSource, Sampler};
 ///
 /// let mut s = HaltonSampler::new(6, 1).unwrap();
 /// let mut cells = [0; 6];
@@ -158,6 +158,12 @@ impl Sampler for HaltonSampler {
         self.dimension = u64::from(dim);
     }
 
+    fn samples_per_pixel(&self) -> u32 {
+        self.spp
+    }
+}
+
+impl SampleSource for HaltonSampler {
     #[inline]
     fn next_1d(&mut self) -> f32 {
         let (key, index) = self.take();
@@ -173,8 +179,9 @@ impl Sampler for HaltonSampler {
         )
     }
 
-    fn samples_per_pixel(&self) -> u32 {
-        self.spp
+    #[inline]
+    fn start_stream(&mut self, stream: u32) {
+        self.skip_to_dimension(stream_dimension(stream));
     }
 }
 

@@ -5,7 +5,7 @@ use rand_core::RngCore;
 use rand_pcg::Pcg32;
 
 use super::hash::{combine, mix64, pixel_key_of_mixed, unit_f32};
-use super::{check_spp, Sampler};
+use super::{check_spp, stream_dimension, SampleSource, Sampler};
 use crate::sampling::SamplingError;
 
 /// Independent uniform sample values: a PCG32 generator seeded, at each pixel sample, by a hash
@@ -19,7 +19,7 @@ use crate::sampling::SamplingError;
 /// [`Sampler::samples_per_pixel`]. Mitsuba 3's `independent` maps here.
 ///
 /// ```
-/// use mcrt::sampling::sampler::{IndependentSampler, Sampler};
+/// use mcrt::sampling::sampler::{IndependentSampler, SampleSource, Sampler};
 ///
 /// let mut s = IndependentSampler::new(4, 1).unwrap();
 /// s.start_pixel_sample([0, 0], 0);
@@ -62,6 +62,12 @@ impl Sampler for IndependentSampler {
         self.rng = Pcg32::new(key, mix64(key ^ 0x5851_f42d_4c95_7f2d));
     }
 
+    fn samples_per_pixel(&self) -> u32 {
+        self.spp
+    }
+}
+
+impl SampleSource for IndependentSampler {
     #[inline]
     fn next_1d(&mut self) -> f32 {
         unit_f32(self.rng.next_u32())
@@ -73,8 +79,9 @@ impl Sampler for IndependentSampler {
         Vec2::new(x, unit_f32(self.rng.next_u32()))
     }
 
-    fn samples_per_pixel(&self) -> u32 {
-        self.spp
+    #[inline]
+    fn start_stream(&mut self, stream: u32) {
+        self.skip_to_dimension(stream_dimension(stream));
     }
 }
 

@@ -2,7 +2,8 @@
 //! a time.
 //!
 //! A [`Sampler`] is positioned on a pixel sample with [`Sampler::start_pixel_sample`] and then
-//! hands out 1D and 2D values in order ([`Sampler::next_1d`], [`Sampler::next_2d`]); each call
+//! hands out 1D and 2D values in order ([`SampleSource::next_1d`], [`SampleSource::next_2d`]:
+//! [`SampleSource`] is `Sampler`'s supertrait, so import both); each call
 //! consumes one *dimension* (a 2D call consumes one 2D dimension). The values depend only on
 //! (seed, pixel, sample index, dimension), never on the order in which pixels or samples are
 //! visited, so a parallel renderer gets the same image whatever its thread count.
@@ -46,7 +47,7 @@
 //! bit-identical.
 //!
 //! ```
-//! use mcrt::sampling::sampler::{IndependentSampler, Sampler};
+//! use mcrt::sampling::sampler::{IndependentSampler, SampleSource, Sampler};
 //!
 //! let mut sampler = IndependentSampler::new(16, 7).unwrap();
 //! sampler.start_pixel_sample([10, 20], 3);
@@ -57,8 +58,6 @@
 //! assert!((0.0..1.0).contains(&a.1));
 //! ```
 
-use glam::Vec2;
-
 use super::SamplingError;
 
 mod any;
@@ -68,6 +67,7 @@ mod independent;
 mod r2;
 #[cfg(feature = "sobol")]
 mod sobol;
+mod source;
 mod stratified;
 
 pub use any::AnySampler;
@@ -76,28 +76,25 @@ pub use independent::IndependentSampler;
 pub use r2::R2Sampler;
 #[cfg(feature = "sobol")]
 pub use sobol::SobolSampler;
+pub use source::{stream_dimension, SampleSource, STREAM_DIMENSIONS};
 pub use stratified::StratifiedSampler;
 
-/// The largest `f32` below 1, `1 − 2⁻²⁴`: every sample value is at most this.
-pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+/// The largest `f32` below 1, `1 − 2⁻²⁴`: every sample value is at most this (the same
+/// constant as [`crate::sampling::ONE_MINUS_EPSILON`]).
+pub use super::unit::ONE_MINUS_EPSILON;
 
 /// A source of sample values in `[0,1)^d` for the pixel samples of an image.
 ///
 /// Call [`Sampler::start_pixel_sample`] before drawing the values of a pixel sample; it resets
 /// the dimension counter, so the `d`-th call after it returns the same value every time for the
-/// same (seed, pixel, sample index). Samplers are cheap to clone: a renderer gives each thread
-/// its own copy.
-pub trait Sampler: Clone + Send + Sync {
+/// same (seed, pixel, sample index). The values come from the supertrait [`SampleSource`]:
+/// [`SampleSource::next_1d`] (in `[0, 1)`, never 1.0) and [`SampleSource::next_2d`] (in
+/// `[0, 1)²`) each consume one dimension. Import both traits to call them on a concrete
+/// sampler. Samplers are cheap to clone: a renderer gives each thread its own copy.
+pub trait Sampler: SampleSource + Clone + Send + Sync {
     /// Positions the sampler on sample `sample_index` of pixel `pixel` (x, y) and resets the
     /// dimension counter.
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32);
-
-    /// The next 1D value, in `[0, 1)` (never 1.0); consumes one dimension.
-    fn next_1d(&mut self) -> f32;
-
-    /// The next 2D value, in `[0, 1)²` (never 1.0 in either coordinate); consumes one
-    /// dimension.
-    fn next_2d(&mut self) -> Vec2;
 
     /// Jumps to dimension `dim` of the current pixel sample (the next call returns the
     /// value of that dimension). Estimators with several sample streams (the bidirectional
@@ -129,13 +126,6 @@ fn check_spp(spp: u32) -> Result<u32, SamplingError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn one_minus_epsilon_is_the_largest_f32_below_one() {
-        let below_one = ONE_MINUS_EPSILON;
-        assert!(below_one < 1.0);
-        assert_eq!(f32::from_bits(ONE_MINUS_EPSILON.to_bits() + 1), 1.0);
-    }
 
     #[test]
     fn zero_spp_is_rejected() {

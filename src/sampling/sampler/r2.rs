@@ -4,7 +4,7 @@
 use glam::Vec2;
 
 use super::hash::{combine, mix64, permute, pixel_key_of_mixed};
-use super::{check_spp, Sampler};
+use super::{check_spp, stream_dimension, SampleSource, Sampler};
 use crate::sampling::SamplingError;
 
 /// `2⁶⁴/φ₂` and `2⁶⁴/φ₂²` rounded to odd integers, φ₂ ≈ 1.3247 the plastic number (the real
@@ -36,7 +36,7 @@ const ALPHA_1D: u64 = 0x9e37_79b9_7f4a_7c15;
 /// theoretic methods for multiple integration", SIAM Journal on Numerical Analysis 13(6).
 ///
 /// ```
-/// use mcrt::sampling::sampler::{R2Sampler, Sampler};
+/// use mcrt::sampling::sampler::{R2Sampler, SampleSource, Sampler};
 ///
 /// let mut s = R2Sampler::new(64, 1).unwrap();
 /// s.start_pixel_sample([3, 4], 10);
@@ -105,6 +105,12 @@ impl Sampler for R2Sampler {
         self.dimension = u64::from(dim);
     }
 
+    fn samples_per_pixel(&self) -> u32 {
+        self.spp
+    }
+}
+
+impl SampleSource for R2Sampler {
     #[inline]
     fn next_1d(&mut self) -> f32 {
         let (shift, i) = self.take();
@@ -121,8 +127,9 @@ impl Sampler for R2Sampler {
         )
     }
 
-    fn samples_per_pixel(&self) -> u32 {
-        self.spp
+    #[inline]
+    fn start_stream(&mut self, stream: u32) {
+        self.skip_to_dimension(stream_dimension(stream));
     }
 }
 

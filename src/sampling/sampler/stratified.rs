@@ -3,7 +3,7 @@
 use glam::Vec2;
 
 use super::hash::{combine, in_stratum, permute, pixel_key, unit_f32};
-use super::{check_spp, Sampler};
+use super::{check_spp, stream_dimension, SampleSource, Sampler};
 use crate::sampling::SamplingError;
 
 /// Tags that keep the 1D and 2D permutation keys of one dimension apart.
@@ -26,7 +26,7 @@ const TAG_2D: u64 = 0x2d;
 /// lie in `[0, 1 − 2⁻²⁴]`: never 1.0.
 ///
 /// ```
-/// use mcrt::sampling::sampler::{Sampler, StratifiedSampler};
+/// use mcrt::sampling::sampler::{SampleSource, Sampler, StratifiedSampler};
 ///
 /// let mut s = StratifiedSampler::new(5, 1, true).unwrap();
 /// assert_eq!(s.samples_per_pixel(), 9); // rounded up to 3 × 3
@@ -131,6 +131,12 @@ impl Sampler for StratifiedSampler {
         self.dimension = 0;
     }
 
+    fn samples_per_pixel(&self) -> u32 {
+        self.spp
+    }
+}
+
+impl SampleSource for StratifiedSampler {
     fn next_1d(&mut self) -> f32 {
         let stratum = permute(self.index_in_round, self.spp, self.permutation_key(TAG_1D));
         let offset = if self.jitter {
@@ -158,8 +164,9 @@ impl Sampler for StratifiedSampler {
         )
     }
 
-    fn samples_per_pixel(&self) -> u32 {
-        self.spp
+    #[inline]
+    fn start_stream(&mut self, stream: u32) {
+        self.skip_to_dimension(stream_dimension(stream));
     }
 }
 

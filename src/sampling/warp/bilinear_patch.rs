@@ -178,7 +178,7 @@ impl Warp for BilinearPatch {
 impl InvertibleWarp for BilinearPatch {
     fn invert(&self, p: Vec3) -> Vec2 {
         let (st, _) = self.parameters_of(p);
-        let st = st.clamp(Vec2::ZERO, Vec2::splat(1.0 - f32::EPSILON / 2.0));
+        let st = st.clamp(Vec2::ZERO, Vec2::splat(crate::sampling::ONE_MINUS_EPSILON));
         self.weights.map_or(st, |w| w.invert(st))
     }
 }

@@ -1,11 +1,12 @@
 //! Uniform directions in a cone about +z, accurate down to tiny cones (the sun, 4.7·10⁻³ rad,
 //! and smaller).
 
-use super::sphere::polar::{
-    azimuth_to_unit, clamp_unit2, direction, one_minus_cos_theta, sin_from_one_minus_cos,
-};
 use super::{InvertibleWarp, Warp};
 use crate::sampling::error::check_param;
+use crate::sampling::unit::clamp_unit2;
+use crate::sampling::warp::polar::{
+    azimuth_to_unit, direction, one_minus_cos_theta, sin_from_one_minus_cos,
+};
 use crate::sampling::SamplingError;
 use glam::{Vec2, Vec3};
 use std::f64::consts::TAU;
@@ -34,7 +35,8 @@ const RIM_SLACK: f32 = 1e-6;
 ///
 /// Directions passed to [`Warp::pdf`] and [`InvertibleWarp::invert`] are expected to be unit
 /// length; other finite vectors give finite, meaningless values. To sample a cone about
-/// another axis, rotate the samples into a frame built around that axis.
+/// another axis, rotate the samples into a frame built around that axis
+/// ([`Frame::to_world`](crate::sampling::Frame::to_world)).
 ///
 /// ```
 /// use mcrt::glam::Vec2;
@@ -181,7 +183,7 @@ impl InvertibleWarp for UniformCone {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::warp::sphere::polar::ONE_MINUS_EPSILON;
+    use crate::sampling::unit::ONE_MINUS_EPSILON;
 
     #[test]
     fn rejects_bad_parameters() {

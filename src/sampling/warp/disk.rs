@@ -1,7 +1,8 @@
 //! Uniform points on the unit disk: the polar map and the concentric map.
 
-use super::sphere::polar::{azimuth, azimuth_to_unit, clamp_unit, clamp_unit2};
 use super::{InvertibleWarp, Warp};
+use crate::sampling::unit::{clamp_unit, clamp_unit2};
+use crate::sampling::warp::polar::{azimuth, azimuth_to_unit};
 use glam::Vec2;
 use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4};
 
@@ -161,10 +162,7 @@ mod tests {
             Vec2::new(0.0, 0.5),
             1e-6
         ));
-        let rim = UniformDisk.sample(Vec2::new(
-            super::super::sphere::polar::ONE_MINUS_EPSILON,
-            0.5,
-        ));
+        let rim = UniformDisk.sample(Vec2::new(crate::sampling::ONE_MINUS_EPSILON, 0.5));
         assert!(close(rim, Vec2::new(-1.0, 0.0), 1e-6));
         assert!(UniformDisk.pdf(rim) > 0.0);
     }

@@ -1,9 +1,9 @@
 //! Exponential densities: on `[0, ∞)`, and truncated to an interval (either direction of
 //! decay).
 
-use super::sphere::polar::clamp_unit;
 use super::Warp1D;
 use crate::sampling::error::check_param;
+use crate::sampling::unit::clamp_unit;
 use crate::sampling::SamplingError;
 
 /// Points of `[0, ∞)` with the exponential density `λ e^{−λx}` per unit length.

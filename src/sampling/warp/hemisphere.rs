@@ -1,10 +1,11 @@
 //! Directions on the upper hemisphere (z ≥ 0): uniform and cosine-weighted.
 
 use super::disk::{concentric_invert, concentric_polar};
-use super::sphere::polar::{
-    azimuth_to_unit, clamp_unit2, direction, one_minus_cos_theta, sin_from_one_minus_cos,
-};
 use super::{InvertibleWarp, Warp};
+use crate::sampling::unit::clamp_unit2;
+use crate::sampling::warp::polar::{
+    azimuth_to_unit, direction, one_minus_cos_theta, sin_from_one_minus_cos,
+};
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, FRAC_1_SQRT_2, PI};
 
@@ -162,7 +163,7 @@ mod tests {
             }
         }
     }
-    use crate::sampling::warp::sphere::polar::ONE_MINUS_EPSILON;
+    use crate::sampling::unit::ONE_MINUS_EPSILON;
 
     fn close(a: Vec3, b: Vec3, tol: f32) -> bool {
         a.is_finite() && b.is_finite() && (a - b).abs().max_element() <= tol

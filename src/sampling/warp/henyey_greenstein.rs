@@ -1,8 +1,9 @@
 //! The Henyey–Greenstein phase function as a warp onto the sphere.
 
-use super::sphere::polar::{azimuth_to_unit, clamp_unit, clamp_unit2, direction, sin2_theta};
 use super::{InvertibleWarp, Warp};
 use crate::sampling::error::check_param;
+use crate::sampling::unit::{clamp_unit, clamp_unit2};
+use crate::sampling::warp::polar::{azimuth_to_unit, direction, sin2_theta};
 use crate::sampling::SamplingError;
 use glam::{Vec2, Vec3};
 use std::f64::consts::PI;
@@ -35,7 +36,7 @@ pub(crate) fn one_minus_and_plus_cos(w: Vec3) -> (f64, f64) {
 /// Astrophysical Journal 93. Derivation: `docs/derivations.md`.
 ///
 /// To use it as a phase function `p(ω_o, ω_i)` with `cos θ = ω_o · ω_i`, rotate the sample
-/// into a frame about `ω_o` (pbrt's convention, where `g > 0` scatters forward, takes the frame
+/// into a frame about `ω_o` ([`Frame`](crate::sampling::Frame)) (pbrt's convention, where `g > 0` scatters forward, takes the frame
 /// about `−ω_o`).
 ///
 /// ```

@@ -1,8 +1,8 @@
 //! Linear densities: on `[0, 1]` between two end values, and bilinear on `[0, 1]²` between
 //! four corner values.
 
-use super::sphere::polar::{clamp_unit, clamp_unit2};
 use super::{InvertibleWarp, Warp, Warp1D};
+use crate::sampling::unit::{clamp_unit, clamp_unit2};
 use crate::sampling::SamplingError;
 use glam::Vec2;
 

@@ -1,8 +1,8 @@
 //! The logistic density on the real line, and trimmed to an interval.
 
-use super::sphere::polar::clamp_unit;
 use super::Warp1D;
 use crate::sampling::error::check_param;
+use crate::sampling::unit::clamp_unit;
 use crate::sampling::SamplingError;
 
 /// The smallest `u` the logistic quantile is evaluated at (the smallest positive `f32`), so

@@ -22,8 +22,8 @@ pub(crate) mod special;
 
 pub use distribution::MicrofacetDistribution;
 
-/// Largest `f32` below 1: `u` is clamped to it so that `1 − u` is never 0.
-const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
+// `u` is clamped to the largest `f32` below 1, so that `1 − u` is never 0.
+use crate::sampling::unit::ONE_MINUS_EPSILON;
 
 /// Validates a roughness: finite, in [1e-4, 1e4].
 pub(crate) fn check_alpha(alpha: f32) -> Result<f32, SamplingError> {
@@ -154,7 +154,7 @@ impl Warp for Beckmann {
     type Point = Vec3;
 
     fn sample(&self, u: Vec2) -> Vec3 {
-        let u1 = u.x.clamp(0.0, ONE_MINUS_EPS);
+        let u1 = u.x.clamp(0.0, ONE_MINUS_EPSILON);
         let tan2 = -self.alpha * self.alpha * (-u1).ln_1p();
         normal_from_tan2(tan2.max(0.0), u.y)
     }
@@ -177,7 +177,7 @@ impl InvertibleWarp for Beckmann {
         } else {
             -(-e).exp_m1()
         };
-        Vec2::new(u1.min(ONE_MINUS_EPS), azimuth_to_unit(m))
+        Vec2::new(u1.min(ONE_MINUS_EPSILON), azimuth_to_unit(m))
     }
 }
 
@@ -248,7 +248,7 @@ impl Warp for Ggx {
     type Point = Vec3;
 
     fn sample(&self, u: Vec2) -> Vec3 {
-        let u1 = u.x.clamp(0.0, ONE_MINUS_EPS);
+        let u1 = u.x.clamp(0.0, ONE_MINUS_EPSILON);
         let tan2 = self.alpha * self.alpha * (u1 / (1.0 - u1));
         normal_from_tan2(tan2, u.y)
     }
@@ -272,7 +272,7 @@ impl InvertibleWarp for Ggx {
         } else {
             r2 / den
         };
-        Vec2::new(u1.min(ONE_MINUS_EPS), azimuth_to_unit(m))
+        Vec2::new(u1.min(ONE_MINUS_EPSILON), azimuth_to_unit(m))
     }
 }
 
@@ -280,7 +280,7 @@ impl InvertibleWarp for Ggx {
 mod tests {
     use super::*;
 
-    const EDGES: [f32; 3] = [0.0, 0.5, ONE_MINUS_EPS];
+    const EDGES: [f32; 3] = [0.0, 0.5, ONE_MINUS_EPSILON];
 
     #[test]
     fn rejects_bad_alpha() {

@@ -8,6 +8,15 @@
 //! dimensions drive them without wasting a second coordinate. The derivation of each mapping (pdf, CDF, inverse, Jacobian) is in
 //! `docs/derivations.md`.
 //!
+//! # Directions about another axis
+//!
+//! Directional warps sample about `+z` (a z-up local frame, `cos θ = z`). For a lobe about
+//! another unit axis `n`, build a [`Frame`](crate::sampling::Frame) with
+//! [`Frame::from_normal(n)`](crate::sampling::Frame::from_normal), map samples out with
+//! [`Frame::to_world`](crate::sampling::Frame::to_world), and take a world direction back with
+//! [`Frame::to_local`](crate::sampling::Frame::to_local) before calling `pdf` or `invert`
+//! (a rotation: the densities per solid angle are unchanged).
+//!
 //! # Inputs outside the unit square
 //!
 //! Every warp is defined for `u ∈ [0,1)^d`; the property tests pin the edges `u = 0` and
@@ -39,10 +48,12 @@ mod disk;
 mod exponential;
 mod hemisphere;
 mod henyey_greenstein;
+mod lat_long;
 pub(crate) mod linear;
 mod logistic;
 mod microfacet;
 mod normal;
+pub(crate) mod polar;
 mod power_cosine;
 mod smoothstep;
 mod sphere;
@@ -60,6 +71,7 @@ pub use disk::*;
 pub use exponential::*;
 pub use hemisphere::*;
 pub use henyey_greenstein::*;
+pub use lat_long::LatLong;
 pub use linear::*;
 pub use logistic::*;
 pub use microfacet::*;

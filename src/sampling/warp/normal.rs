@@ -1,9 +1,10 @@
 //! Normal (Gaussian) densities: one-dimensional by the inverse CDF, two-dimensional by the
 //! Box–Muller map.
 
-use super::sphere::polar::{azimuth, azimuth_to_unit, clamp_unit, clamp_unit2};
 use super::{InvertibleWarp, Warp, Warp1D};
 use crate::sampling::error::check_param;
+use crate::sampling::unit::{clamp_unit, clamp_unit2};
+use crate::sampling::warp::polar::{azimuth, azimuth_to_unit};
 use crate::sampling::SamplingError;
 use glam::Vec2;
 use std::f64::consts::{PI, TAU};

@@ -1,10 +1,11 @@
 //! Power-cosine lobes about +z: the Phong/Blinn family, resolved in f32 up to exponent 10⁶.
 
-use super::sphere::polar::{
-    azimuth_to_unit, clamp_unit2, direction, one_minus_cos_theta, sin_from_one_minus_cos,
-};
 use super::{InvertibleWarp, Warp};
 use crate::sampling::error::check_param;
+use crate::sampling::unit::clamp_unit2;
+use crate::sampling::warp::polar::{
+    azimuth_to_unit, direction, one_minus_cos_theta, sin_from_one_minus_cos,
+};
 use crate::sampling::SamplingError;
 use glam::{Vec2, Vec3};
 

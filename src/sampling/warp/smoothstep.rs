@@ -1,8 +1,8 @@
 //! The smoothstep density on an interval.
 
-use super::sphere::polar::clamp_unit;
 use super::Warp1D;
 use crate::sampling::error::check_param;
+use crate::sampling::unit::clamp_unit;
 use crate::sampling::SamplingError;
 
 /// The CDF of the smoothstep density in `t ∈ [0, 1]`: `t³ (2 − t)`.

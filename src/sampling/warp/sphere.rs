@@ -1,10 +1,9 @@
 //! Uniform directions on the whole unit sphere.
 
-pub(in crate::sampling::warp) mod polar;
-
 use super::{InvertibleWarp, Warp};
+use crate::sampling::unit::clamp_unit2;
+use crate::sampling::warp::polar::{azimuth_to_unit, direction, one_minus_cos_theta};
 use glam::{Vec2, Vec3};
-use polar::{clamp_unit2, direction, one_minus_cos_theta};
 use std::f32::consts::PI;
 
 /// Uniform directions on the unit sphere S²; pdf `1/(4π)` per unit solid angle (steradian).
@@ -57,7 +56,7 @@ impl Warp for UniformSphere {
 impl InvertibleWarp for UniformSphere {
     fn invert(&self, w: Vec3) -> Vec2 {
         let u1 = 0.5 * one_minus_cos_theta(w);
-        clamp_unit2(u1, polar::azimuth_to_unit(w.x, w.y))
+        clamp_unit2(u1, azimuth_to_unit(w.x, w.y))
     }
 }
 
@@ -69,7 +68,7 @@ mod tests {
     fn poles_and_equator() {
         let n = UniformSphere.sample(Vec2::new(0.0, 0.3));
         assert!(n.is_finite() && (n - Vec3::Z).length() < 1e-7);
-        let s = UniformSphere.sample(Vec2::new(polar::ONE_MINUS_EPSILON, 0.3));
+        let s = UniformSphere.sample(Vec2::new(crate::sampling::ONE_MINUS_EPSILON, 0.3));
         assert!(s.is_finite() && (s + Vec3::Z).length() < 1e-3);
         let e = UniformSphere.sample(Vec2::new(0.5, 0.25));
         assert!(e.is_finite() && (e - Vec3::Y).length() < 1e-6);

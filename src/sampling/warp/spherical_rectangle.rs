@@ -324,7 +324,7 @@ mod tests {
     #[test]
     fn edges_and_corners_hit_the_rectangle() {
         let r = square(Vec3::new(0.3, -0.2, 0.0), 1.0);
-        let edges = [0.0, 0.5, 1.0 - f32::EPSILON / 2.0];
+        let edges = [0.0, 0.5, crate::sampling::ONE_MINUS_EPSILON];
         for u1 in edges {
             for u2 in edges {
                 let (w, pdf) = r.sample_with_pdf(Vec2::new(u1, u2));

@@ -1,8 +1,8 @@
 //! The tent (triangle) density on `[−r, r]`.
 
-use super::sphere::polar::clamp_unit;
 use super::Warp1D;
 use crate::sampling::error::check_param;
+use crate::sampling::unit::clamp_unit;
 use crate::sampling::SamplingError;
 
 /// Points of `[−r, r]` with the tent density `(r − |x|)/r²` per unit length (peak `1/r` at 0).

@@ -1,7 +1,8 @@
 //! The course quiz's density on the hemisphere: `p(ω) ∝ θ / sin θ`.
 
-use super::sphere::polar::{azimuth_to_unit, clamp_unit2, direction};
 use super::{InvertibleWarp, Warp};
+use crate::sampling::unit::clamp_unit2;
+use crate::sampling::warp::polar::{azimuth_to_unit, direction};
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_2_PI, FRAC_PI_2, PI};
 

@@ -1,7 +1,7 @@
 //! Uniform barycentric coordinates on a triangle, and their placement on a triangle in 3D.
 
-use super::sphere::polar::clamp_unit2;
 use super::{InvertibleWarp, Warp};
+use crate::sampling::unit::clamp_unit2;
 use glam::{DVec3, Vec2, Vec3};
 
 /// Absolute slack of the support test, so that samples on the edges, which carry a rounding
@@ -176,7 +176,7 @@ mod tests {
             );
         }
     }
-    use crate::sampling::warp::sphere::polar::ONE_MINUS_EPSILON;
+    use crate::sampling::unit::ONE_MINUS_EPSILON;
 
     #[test]
     fn vertices_and_spot_values() {

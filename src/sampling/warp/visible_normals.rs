@@ -15,8 +15,7 @@ mod slope;
 
 use slope::SlopeCdf;
 
-/// Largest `f32` below 1.
-const ONE_MINUS_EPS: f32 = 1.0 - f32::EPSILON / 2.0;
+use crate::sampling::unit::ONE_MINUS_EPSILON;
 
 /// Checks that `wi` is finite, unit length within 1e-3, and above the horizon; returns it
 /// normalised.
@@ -125,7 +124,7 @@ impl Warp for GgxVisible {
 
     fn sample(&self, u: Vec2) -> Vec3 {
         let w = self.wi_std;
-        let u1 = f64::from(u.x.clamp(0.0, ONE_MINUS_EPS));
+        let u1 = f64::from(u.x.clamp(0.0, ONE_MINUS_EPSILON));
         // Height above the cap's base, t = z + w.z ∈ (0, 1 + w.z]; 1 ∓ z from t exactly.
         let t = (1.0 - u1) * (1.0 + w.z);
         let one_minus_wz = (w.x * w.x + w.y * w.y) / (1.0 + w.z);
@@ -251,7 +250,7 @@ mod tests {
 
     #[test]
     fn samples_are_visible_at_extremes() {
-        let edges = [0.0, 0.5, ONE_MINUS_EPS];
+        let edges = [0.0, 0.5, ONE_MINUS_EPSILON];
         for alpha in [1e-4, 0.01, 0.5, 1.0] {
             for deg in [0.0, 60.0, 89.9] {
                 let wi = wi_at(deg);

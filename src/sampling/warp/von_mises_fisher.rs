@@ -1,9 +1,10 @@
 //! The von Mises–Fisher density on the sphere.
 
 use super::henyey_greenstein::one_minus_and_plus_cos;
-use super::sphere::polar::{azimuth_to_unit, clamp_unit, clamp_unit2, direction};
 use super::{InvertibleWarp, Warp};
 use crate::sampling::error::check_param;
+use crate::sampling::unit::{clamp_unit, clamp_unit2};
+use crate::sampling::warp::polar::{azimuth_to_unit, direction};
 use crate::sampling::SamplingError;
 use glam::{Vec2, Vec3};
 use std::f64::consts::PI;

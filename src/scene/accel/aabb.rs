@@ -89,7 +89,7 @@ impl Aabb {
 
 /// A ray prepared for slab tests: origin and reciprocal direction (SIMD lanes).
 #[derive(Debug, Clone, Copy)]
-pub struct RayBoxTest {
+pub(crate) struct RayBoxTest {
     /// The ray origin.
     pub origin: Vec3A,
     /// `1 / dir` per component, with zero components replaced by ±10⁻³⁰ first, so that no
@@ -106,7 +106,7 @@ const SLAB_GROW: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32
 impl RayBoxTest {
     /// Prepares a ray with the given origin and direction.
     #[inline]
-    pub fn new(origin: Vec3, dir: Vec3) -> Self {
+    pub(crate) fn new(origin: Vec3, dir: Vec3) -> Self {
         let d = Vec3A::from(dir);
         let tiny = Vec3A::splat(1e-30);
         let d = Vec3A::select(d.abs().cmplt(tiny), tiny.copysign(d), d);
@@ -116,16 +116,10 @@ impl RayBoxTest {
         }
     }
 
-    /// True when the ray meets the box `[min, max]` for some `t` in `[0, t_max]`.
-    #[inline(always)]
-    pub fn hits(&self, min: Vec3A, max: Vec3A, t_max: f32) -> bool {
-        self.clip(min, max, t_max).is_some()
-    }
-
     /// The parametric interval `[t0, t1]` where the ray is inside `[min, max]`, clipped to
     /// `[0, t_max]`; `None` if empty.
     #[inline(always)]
-    pub fn clip(&self, min: Vec3A, max: Vec3A, t_max: f32) -> Option<(f32, f32)> {
+    pub(crate) fn clip(&self, min: Vec3A, max: Vec3A, t_max: f32) -> Option<(f32, f32)> {
         let a = (min - self.origin) * self.inv_dir;
         let b = (max - self.origin) * self.inv_dir;
         let t0 = a.min(b).max_element();

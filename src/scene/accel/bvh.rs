@@ -13,9 +13,9 @@ use super::aabb::Aabb;
 use glam::{Vec3, Vec3A};
 
 /// Number of SAH bins per axis.
-pub const BINS: usize = 16;
+pub(crate) const BINS: usize = 16;
 /// Largest number of primitives in a leaf.
-pub const MAX_LEAF: usize = 4;
+pub(crate) const MAX_LEAF: usize = 4;
 /// Depth beyond which the build splits at the median, so the traversal stack stays bounded.
 const MEDIAN_DEPTH: u32 = 36;
 
@@ -35,7 +35,7 @@ struct Node {
 /// A BVH over primitives given by their bounds. The primitives must be stored in the order
 /// [`Bvh::order`] reports, so that a leaf covers a contiguous range of them.
 #[derive(Debug, Clone)]
-pub struct Bvh {
+pub(crate) struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
 }
@@ -49,7 +49,7 @@ struct Builder<'a> {
 
 impl Bvh {
     /// Builds the hierarchy over primitives with the given bounds.
-    pub fn build(bounds: &[Aabb]) -> Self {
+    pub(crate) fn build(bounds: &[Aabb]) -> Self {
         let mut b = Builder {
             bounds,
             centroids: bounds.iter().map(Aabb::center).collect(),
@@ -74,7 +74,7 @@ impl Bvh {
     }
 
     /// `order[i]` is the input index of the primitive that must be stored at position `i`.
-    pub fn order(&self) -> &[u32] {
+    pub(crate) fn order(&self) -> &[u32] {
         &self.order
     }
 
@@ -101,16 +101,8 @@ impl Bvh {
     }
 
     /// Number of nodes.
-    pub fn node_count(&self) -> usize {
+    pub(crate) fn node_count(&self) -> usize {
         self.nodes.len()
-    }
-
-    /// The bounds of the whole hierarchy.
-    pub fn bounds(&self) -> Aabb {
-        Aabb {
-            min: self.nodes[0].min.into(),
-            max: self.nodes[0].max.into(),
-        }
     }
 }
 

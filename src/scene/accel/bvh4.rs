@@ -33,7 +33,7 @@ pub(super) struct Node4 {
 
 /// The 4-wide BVH.
 #[derive(Debug, Clone)]
-pub struct Bvh4 {
+pub(crate) struct Bvh4 {
     pub(super) nodes: Vec<Node4>,
     /// The root: a node index or a leaf code (a scene of at most four primitives).
     pub(super) root: u32,
@@ -47,7 +47,7 @@ pub struct Bvh4 {
 
 impl Bvh4 {
     /// Builds the binary SAH BVH over the bounds and collapses it.
-    pub fn build(bounds: &[Aabb]) -> Self {
+    pub(crate) fn build(bounds: &[Aabb]) -> Self {
         let bvh = Bvh::build(bounds);
         let mut out = Self {
             nodes: Vec::with_capacity(bvh.node_count() / 2 + 1),
@@ -64,23 +64,18 @@ impl Bvh4 {
     }
 
     /// `order[i]` is the input index of the primitive to store at position `i`.
-    pub fn order(&self) -> &[u32] {
+    pub(crate) fn order(&self) -> &[u32] {
         &self.order
     }
 
-    /// Number of 4-wide nodes.
-    pub fn node_count(&self) -> usize {
-        self.nodes.len()
-    }
-
     /// Number of leaves.
-    pub fn leaf_count(&self) -> usize {
+    pub(crate) fn leaf_count(&self) -> usize {
         self.leaves.len()
     }
 
     /// The stored primitives of leaf `k` (positions in [`Bvh4::order`]); the leaves'
     /// ranges partition the stored order. Empty past the end.
-    pub fn leaf(&self, k: usize) -> std::ops::Range<u32> {
+    pub(crate) fn leaf(&self, k: usize) -> std::ops::Range<u32> {
         self.leaves
             .get(k)
             .map_or(0..0, |&(first, n)| first..first + n)
@@ -145,7 +140,7 @@ impl Bvh4 {
     /// distance if it hits before `t_max`; the search then continues with that distance as
     /// the new bound. Returns the nearest distance found, if any.
     #[inline]
-    pub fn closest(
+    pub(crate) fn closest(
         &self,
         origin: Vec3,
         dir: Vec3,
@@ -170,7 +165,7 @@ impl Bvh4 {
     /// `bound` to the distance of any hit nearer than it; leaves entered beyond the bound
     /// are skipped. Returns the final bound.
     #[inline]
-    pub fn closest_leaf(
+    pub(crate) fn closest_leaf(
         &self,
         origin: Vec3,
         dir: Vec3,
@@ -188,7 +183,7 @@ impl Bvh4 {
     /// True when `visit(k, t_max)` holds for some leaf `k` the ray may meet within
     /// `(0, t_max)`; stops at the first one. Leaves are visited in no particular order.
     #[inline]
-    pub fn any_leaf(
+    pub(crate) fn any_leaf(
         &self,
         origin: Vec3,
         dir: Vec3,
@@ -201,7 +196,7 @@ impl Bvh4 {
 
     /// True when `test(i, t_max)` holds for some primitive `i`; stops at the first one.
     #[inline]
-    pub fn any(
+    pub(crate) fn any(
         &self,
         origin: Vec3,
         dir: Vec3,

@@ -13,13 +13,13 @@ use super::aabb::{Aabb, RayBoxTest};
 use glam::Vec3;
 
 /// Cells per primitive (λ).
-pub const DENSITY: f32 = 3.0;
+pub(crate) const DENSITY: f32 = 3.0;
 /// Largest resolution along one axis.
-pub const MAX_RES: u32 = 128;
+pub(crate) const MAX_RES: u32 = 128;
 
 /// A uniform grid over primitives given by their bounds (in stored order).
 #[derive(Debug, Clone)]
-pub struct Grid {
+pub(crate) struct Grid {
     bounds: Aabb,
     res: [i32; 3],
     cell: Vec3,
@@ -31,7 +31,7 @@ pub struct Grid {
 
 impl Grid {
     /// Builds the grid over primitives with the given bounds.
-    pub fn build(prims: &[Aabb]) -> Self {
+    pub(crate) fn build(prims: &[Aabb]) -> Self {
         let mut bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.union(*p));
         if bounds.is_empty() {
             bounds = Aabb {
@@ -59,8 +59,9 @@ impl Grid {
         g
     }
 
+    #[cfg(test)]
     /// The resolution along each axis.
-    pub fn resolution(&self) -> [u32; 3] {
+    pub(crate) fn resolution(&self) -> [u32; 3] {
         self.res.map(|r| r as u32)
     }
 
@@ -115,7 +116,7 @@ impl Grid {
     /// Like [`super::Bvh4::closest`]: visits primitives along the ray, `test` returns a hit
     /// distance below its bound, and the nearest distance found is returned.
     #[inline]
-    pub fn closest(
+    pub(crate) fn closest(
         &self,
         origin: Vec3,
         dir: Vec3,
@@ -141,7 +142,7 @@ impl Grid {
 
     /// Like [`super::Bvh4::any`]: true as soon as `test(i, t_max)` holds for a primitive.
     #[inline]
-    pub fn any(
+    pub(crate) fn any(
         &self,
         origin: Vec3,
         dir: Vec3,

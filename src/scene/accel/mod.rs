@@ -1,11 +1,11 @@
 //! Acceleration structures over primitives given by their bounding boxes: a SAH BVH (built
-//! binary, [`Bvh`], then collapsed to 4-wide nodes, [`Bvh4`], which is what
-//! [`AccelKind::Bvh`] uses), a uniform grid ([`Grid`]) and brute force, selected by
-//! [`AccelKind`].
+//! binary, then collapsed to 4-wide nodes), a uniform grid, an SAH kd-tree and brute force,
+//! selected by [`AccelKind`] and built as an [`Accel`].
 //!
-//! They know nothing of the primitives themselves: a query calls back with primitive
-//! indices and the caller intersects them. The primitives must be stored in the order
-//! [`Accel::order`] reports (the BVH's leaves cover contiguous ranges of that order).
+//! They know nothing of the primitives themselves: a query calls back with the index of a
+//! primitive (its position in the bounds given to [`Accel::build`]) and the caller
+//! intersects it. (The scene's [`Geometry`](crate::scene::geometry::Geometry) stores its
+//! triangles inside the BVH's leaves instead, for 4-wide tests; `docs/geometry.md`.)
 //!
 //! ```
 //! use mcrt::glam::Vec3;
@@ -16,12 +16,11 @@
 //!     Aabb { min: Vec3::new(0.0, -0.5, -0.5), max: Vec3::new(1.0, 0.5, 0.5) },
 //!     Aabb { min: Vec3::new(2.0, -0.5, -0.5), max: Vec3::new(3.0, 0.5, 0.5) },
 //! ];
-//! for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::BruteForce] {
+//! for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::KdTree, AccelKind::BruteForce] {
 //!     let accel = Accel::build(kind, &boxes);
-//!     let stored = accel.order().to_vec();
 //!     // "Intersect" a box at its lower x face.
 //!     let t = accel.closest(Vec3::new(-1.0, 0.0, 0.0), Vec3::X, f32::INFINITY, |i, t_max| {
-//!         let t = boxes[stored[i as usize] as usize].min.x + 1.0;
+//!         let t = boxes[i as usize].min.x + 1.0;
 //!         (t < t_max).then_some(t)
 //!     });
 //!     assert_eq!(t, Some(1.0));
@@ -32,12 +31,13 @@ mod aabb;
 mod bvh;
 mod bvh4;
 mod grid;
+mod kdtree;
 mod traverse;
 
-pub use aabb::{Aabb, RayBoxTest};
-pub use bvh::{Bvh, BINS, MAX_LEAF};
-pub use bvh4::Bvh4;
-pub use grid::{Grid, DENSITY, MAX_RES};
+pub use aabb::Aabb;
+pub(crate) use bvh4::Bvh4;
+use grid::Grid;
+use kdtree::KdTree;
 
 use glam::Vec3;
 
@@ -45,11 +45,13 @@ use glam::Vec3;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum AccelKind {
     /// A bounding volume hierarchy built with the binned surface area heuristic and
-    /// collapsed to 4-wide nodes ([`Bvh4`]; the default).
+    /// collapsed to 4-wide nodes (the default).
     #[default]
     Bvh,
     /// A uniform grid traversed with a 3D DDA.
     Grid,
+    /// A kd-tree built with the surface area heuristic in O(N log N) (Wald & Havran 2006; `docs/geometry.md`).
+    KdTree,
     /// No structure: every primitive is tested (for reference and tests).
     BruteForce,
 }
@@ -57,14 +59,17 @@ pub enum AccelKind {
 /// A built acceleration structure.
 #[derive(Debug, Clone)]
 pub struct Accel {
-    imp: Imp,
+    structure: Structure,
+    /// `order[i]`: the input index of the primitive at position `i` of the structure's
+    /// leaves (identity but for the BVH, whose leaves cover ranges of it).
     order: Vec<u32>,
 }
 
 #[derive(Debug, Clone)]
-enum Imp {
+enum Structure {
     Bvh(Bvh4),
     Grid(Grid),
+    KdTree(KdTree),
     BruteForce(u32),
 }
 
@@ -77,16 +82,20 @@ impl Accel {
                 let bvh = Bvh4::build(bounds);
                 let order = bvh.order().to_vec();
                 Self {
-                    imp: Imp::Bvh(bvh),
+                    structure: Structure::Bvh(bvh),
                     order,
                 }
             }
             AccelKind::Grid => Self {
-                imp: Imp::Grid(Grid::build(bounds)),
+                structure: Structure::Grid(Grid::build(bounds)),
+                order: identity(),
+            },
+            AccelKind::KdTree => Self {
+                structure: Structure::KdTree(KdTree::build(bounds)),
                 order: identity(),
             },
             AccelKind::BruteForce => Self {
-                imp: Imp::BruteForce(bounds.len() as u32),
+                structure: Structure::BruteForce(bounds.len() as u32),
                 order: identity(),
             },
         }
@@ -94,30 +103,17 @@ impl Accel {
 
     /// Which kind this is.
     pub fn kind(&self) -> AccelKind {
-        match self.imp {
-            Imp::Bvh(_) => AccelKind::Bvh,
-            Imp::Grid(_) => AccelKind::Grid,
-            Imp::BruteForce(_) => AccelKind::BruteForce,
+        match self.structure {
+            Structure::Bvh(_) => AccelKind::Bvh,
+            Structure::Grid(_) => AccelKind::Grid,
+            Structure::KdTree(_) => AccelKind::KdTree,
+            Structure::BruteForce(_) => AccelKind::BruteForce,
         }
     }
 
-    /// The 4-wide BVH when this is [`AccelKind::Bvh`], for leaf-level queries
-    /// ([`Bvh4::closest_leaf`], [`Bvh4::any_leaf`]).
-    pub fn bvh4(&self) -> Option<&Bvh4> {
-        match &self.imp {
-            Imp::Bvh(b) => Some(b),
-            _ => None,
-        }
-    }
-
-    /// `order()[i]` is the input index of the primitive to store at position `i`; query
-    /// callbacks receive positions in that stored order.
-    pub fn order(&self) -> &[u32] {
-        &self.order
-    }
-
-    /// The nearest hit: `test(i, t_max)` intersects stored primitive `i` and returns its
-    /// distance if below `t_max`; the bound then shrinks. Returns the nearest distance.
+    /// The nearest hit: `test(i, t_max)` intersects primitive `i` (an index into the bounds
+    /// given to [`Accel::build`]) and returns its distance if below `t_max`; the bound then
+    /// shrinks. Returns the nearest distance.
     #[inline]
     pub fn closest(
         &self,
@@ -126,10 +122,14 @@ impl Accel {
         t_max: f32,
         mut test: impl FnMut(u32, f32) -> Option<f32>,
     ) -> Option<f32> {
-        match &self.imp {
-            Imp::Bvh(b) => b.closest(origin, dir, t_max, test),
-            Imp::Grid(g) => g.closest(origin, dir, t_max, test),
-            Imp::BruteForce(n) => {
+        match &self.structure {
+            Structure::Bvh(b) => {
+                let order = &self.order;
+                b.closest(origin, dir, t_max, |i, t| test(order[i as usize], t))
+            }
+            Structure::Grid(g) => g.closest(origin, dir, t_max, test),
+            Structure::KdTree(k) => k.closest(origin, dir, t_max, test),
+            Structure::BruteForce(n) => {
                 let mut best = None;
                 let mut bound = t_max;
                 for i in 0..*n {
@@ -143,7 +143,7 @@ impl Accel {
         }
     }
 
-    /// True as soon as `test(i, t_max)` holds for some stored primitive `i`.
+    /// True as soon as `test(i, t_max)` holds for some primitive `i`.
     #[inline]
     pub fn any(
         &self,
@@ -152,10 +152,14 @@ impl Accel {
         t_max: f32,
         mut test: impl FnMut(u32, f32) -> bool,
     ) -> bool {
-        match &self.imp {
-            Imp::Bvh(b) => b.any(origin, dir, t_max, test),
-            Imp::Grid(g) => g.any(origin, dir, t_max, test),
-            Imp::BruteForce(n) => (0..*n).any(|i| test(i, t_max)),
+        match &self.structure {
+            Structure::Bvh(b) => {
+                let order = &self.order;
+                b.any(origin, dir, t_max, |i, t| test(order[i as usize], t))
+            }
+            Structure::Grid(g) => g.any(origin, dir, t_max, test),
+            Structure::KdTree(k) => k.any(origin, dir, t_max, test),
+            Structure::BruteForce(n) => (0..*n).any(|i| test(i, t_max)),
         }
     }
 }

@@ -24,6 +24,12 @@ pub enum PixelFilter {
         /// 1 / the integral of the shifted Gaussian over `[−r, r]` (one axis).
         norm: f32,
     },
+    /// Mitsuba's `tent`: `max(0, 1 − |x|/r)` per axis on `[−r, r]`, sampled exactly per axis
+    /// by [`Tent`](crate::sampling::warp::Tent).
+    Tent {
+        /// Radius in pixels (Mitsuba's default 1).
+        radius: f32,
+    },
 }
 
 impl PixelFilter {
@@ -32,7 +38,27 @@ impl PixelFilter {
         match *desc {
             FilterDesc::Box => PixelFilter::Box,
             FilterDesc::Gaussian { stddev } => Self::gaussian(stddev.max(1e-3)),
+            FilterDesc::Tent { radius } => PixelFilter::Tent {
+                radius: radius.max(1e-3),
+            },
         }
+    }
+
+    /// The per-axis density at offset `d` from a pixel centre, and the radius beyond which
+    /// it is 0; `None` for the box.
+    #[inline]
+    fn axis(&self) -> Option<(f32, impl Fn(f32) -> f32 + '_)> {
+        let radius = match *self {
+            PixelFilter::Box => return None,
+            PixelFilter::Gaussian { radius, .. } | PixelFilter::Tent { radius } => radius,
+        };
+        Some((radius, move |d: f32| match *self {
+            PixelFilter::Gaussian { a, bias, norm, .. } => {
+                ((a * d * d).exp() - bias).max(0.0) * norm
+            }
+            PixelFilter::Tent { radius } => (1.0 - d.abs() / radius).max(0.0) / radius,
+            PixelFilter::Box => 0.0,
+        }))
     }
 
     fn gaussian(stddev: f32) -> Self {
@@ -82,6 +108,13 @@ impl PixelFilter {
                 };
                 Vec2::new(one(u.x), one(u.y))
             }
+            &PixelFilter::Tent { radius } => match crate::sampling::warp::Tent::new(radius) {
+                Ok(t) => {
+                    use crate::sampling::warp::Warp1D;
+                    Vec2::new(t.sample(u.x), t.sample(u.y))
+                }
+                Err(_) => Vec2::ZERO,
+            },
         }
     }
 }
@@ -95,34 +128,23 @@ impl PixelFilter {
     /// camera's strategies by it.
     pub fn coverage(&self, raster: Vec2, width: u32, height: u32) -> f32 {
         let mut sums = [0.0f32; 2];
-        match self {
-            PixelFilter::Box => {
-                let inside = raster.x >= 0.0
-                    && raster.y >= 0.0
-                    && raster.x < width as f32
-                    && raster.y < height as f32;
-                return if inside { 1.0 } else { 0.0 };
+        let Some((radius, density)) = self.axis() else {
+            let inside = raster.x >= 0.0
+                && raster.y >= 0.0
+                && raster.x < width as f32
+                && raster.y < height as f32;
+            return if inside { 1.0 } else { 0.0 };
+        };
+        for (axis, (c, n)) in [(raster.x, width), (raster.y, height)]
+            .into_iter()
+            .enumerate()
+        {
+            if !c.is_finite() {
+                return 0.0;
             }
-            &PixelFilter::Gaussian {
-                radius,
-                a,
-                bias,
-                norm,
-                ..
-            } => {
-                let density = |d: f32| ((a * d * d).exp() - bias).max(0.0) * norm;
-                for (axis, (c, n)) in [(raster.x, width), (raster.y, height)]
-                    .into_iter()
-                    .enumerate()
-                {
-                    if !c.is_finite() {
-                        return 0.0;
-                    }
-                    let lo = (c - radius - 0.5).ceil().max(0.0) as i64;
-                    let hi = ((c + radius - 0.5).floor() as i64).min(n as i64 - 1);
-                    sums[axis] = (lo..=hi).map(|i| density(i as f32 + 0.5 - c)).sum();
-                }
-            }
+            let lo = (c - radius - 0.5).ceil().max(0.0) as i64;
+            let hi = ((c + radius - 0.5).floor() as i64).min(n as i64 - 1);
+            sums[axis] = (lo..=hi).map(|i| density(i as f32 + 0.5 - c)).sum();
         }
         sums[0] * sums[1]
     }
@@ -135,36 +157,26 @@ impl PixelFilter {
         if !raster.is_finite() {
             return;
         }
-        match self {
-            PixelFilter::Box => {
-                let (x, y) = (raster.x.floor(), raster.y.floor());
-                if x >= 0.0 && y >= 0.0 && x < width as f32 && y < height as f32 {
-                    add(y as usize * width as usize + x as usize, 1.0);
-                }
+        let Some((radius, density)) = self.axis() else {
+            let (x, y) = (raster.x.floor(), raster.y.floor());
+            if x >= 0.0 && y >= 0.0 && x < width as f32 && y < height as f32 {
+                add(y as usize * width as usize + x as usize, 1.0);
             }
-            &PixelFilter::Gaussian {
-                radius,
-                a,
-                bias,
-                norm,
-                ..
-            } => {
-                let density = |d: f32| ((a * d * d).exp() - bias).max(0.0) * norm;
-                let lo = |c: f32| (c - radius - 0.5).ceil().max(0.0) as u32;
-                let hi = |c: f32, n: u32| ((c + radius - 0.5).floor() as i64).min(n as i64 - 1);
-                let (x0, y0) = (lo(raster.x), lo(raster.y));
-                let (x1, y1) = (hi(raster.x, width), hi(raster.y, height));
-                for y in y0 as i64..=y1 {
-                    let wy = density(y as f32 + 0.5 - raster.y);
-                    if wy <= 0.0 {
-                        continue;
-                    }
-                    for x in x0 as i64..=x1 {
-                        let wx = density(x as f32 + 0.5 - raster.x);
-                        if wx > 0.0 {
-                            add(y as usize * width as usize + x as usize, wx * wy);
-                        }
-                    }
+            return;
+        };
+        let lo = |c: f32| (c - radius - 0.5).ceil().max(0.0) as u32;
+        let hi = |c: f32, n: u32| ((c + radius - 0.5).floor() as i64).min(n as i64 - 1);
+        let (x0, y0) = (lo(raster.x), lo(raster.y));
+        let (x1, y1) = (hi(raster.x, width), hi(raster.y, height));
+        for y in y0 as i64..=y1 {
+            let wy = density(y as f32 + 0.5 - raster.y);
+            if wy <= 0.0 {
+                continue;
+            }
+            for x in x0 as i64..=x1 {
+                let wx = density(x as f32 + 0.5 - raster.x);
+                if wx > 0.0 {
+                    add(y as usize * width as usize + x as usize, wx * wy);
                 }
             }
         }
@@ -194,6 +206,14 @@ mod tests {
         assert!((v.sqrt() - 0.4988).abs() < 0.004, "{}", v.sqrt());
         let b = PixelFilter::Box.sample(Vec2::new(0.0, 0.75));
         assert_eq!(b, Vec2::new(-0.5, 0.25));
+        // The tent of radius r has variance r²/6.
+        let t = PixelFilter::from_desc(&FilterDesc::Tent { radius: 1.0 });
+        let xs: Vec<f64> = (0..n)
+            .map(|i| t.sample(Vec2::splat((i as f32 + 0.5) / n as f32)).x as f64)
+            .collect();
+        assert!(xs.iter().all(|x| x.is_finite() && x.abs() <= 1.0));
+        let var = xs.iter().map(|x| x * x).sum::<f64>() / n as f64;
+        assert!((var - 1.0 / 6.0).abs() < 1e-3, "{var}");
     }
 
     #[test]
@@ -201,6 +221,8 @@ mod tests {
         for f in [
             PixelFilter::Box,
             PixelFilter::from_desc(&FilterDesc::Gaussian { stddev: 0.5 }),
+            PixelFilter::from_desc(&FilterDesc::Tent { radius: 1.0 }),
+            PixelFilter::from_desc(&FilterDesc::Tent { radius: 1.7 }),
         ] {
             for r in [
                 Vec2::new(10.3, 7.8),
@@ -227,6 +249,7 @@ mod tests {
         for f in [
             PixelFilter::Box,
             PixelFilter::from_desc(&FilterDesc::Gaussian { stddev: 0.5 }),
+            PixelFilter::from_desc(&FilterDesc::Tent { radius: 1.0 }),
         ] {
             let mut total = 0.0f32;
             f.splat(Vec2::new(10.3, 7.8), 20, 20, |i, w| {

@@ -27,7 +27,7 @@ impl std::fmt::Display for ImageError {
 
 impl std::error::Error for ImageError {}
 
-fn err(path: &Path, e: impl std::fmt::Display) -> ImageError {
+pub(super) fn err(path: &Path, e: impl std::fmt::Display) -> ImageError {
     ImageError {
         path: path.to_path_buf(),
         message: e.to_string(),
@@ -56,7 +56,7 @@ fn temporary_name(path: &Path) -> PathBuf {
 
 /// Writes `path` atomically: `fill` writes into a new temporary file beside it, which is
 /// synced and renamed over `path`; on any error the temporary file is removed.
-fn write_atomically(
+pub(super) fn write_atomically(
     path: &Path,
     fill: impl FnOnce(&mut File) -> Result<(), String>,
 ) -> Result<(), ImageError> {

@@ -1,5 +1,6 @@
 //! The film: per-pixel accumulation of radiance samples (mean and variance of the mean),
-//! the pixel reconstruction filters, and EXR/PNG output.
+//! the pixel reconstruction filters, EXR/PNG output, and the parts of a distributed render
+//! ([`write_part`], [`read_part`], [`merge_parts`]; `docs/distributed.md`).
 //!
 //! Filters are applied by *filter importance sampling*: a pixel sample's position is drawn
 //! from the filter's density around the pixel centre, and the pixel value is the plain mean
@@ -12,14 +13,32 @@
 mod compare;
 mod filter;
 mod io;
+mod merge;
 mod output;
+mod part;
+mod window;
 
 pub use compare::{compare_blocks, z_two_sided, BlockReport};
 pub use filter::PixelFilter;
 pub use io::{read_exr, write_exr, write_png, ImageError};
-pub use output::{OutputError, OutputPlan, EXIT_INTERRUPTED};
+pub use merge::{merge_parts, MergeError};
+pub use output::{OutputError, OutputPlan, DEFAULT_FOLDER, EXIT_INTERRUPTED};
+pub use part::{read_part, write_part, Part, PartInfo};
+pub use window::{Crop, SampleRange, WindowError};
 
 use glam::Vec3;
+
+/// The factor by which light tracing's splat sums enter the image: 1 / the pixel samples
+/// taken per pixel (`samples` over `pixels`), each of which traced one light subpath; 0 if
+/// none. A render and the merge of its parts compute it alike, so they agree bit for bit.
+pub(crate) fn splat_scale(samples: u64, pixels: u64) -> f64 {
+    let taken = samples as f64 / pixels as f64;
+    if taken > 0.0 {
+        1.0 / taken
+    } else {
+        0.0
+    }
+}
 
 /// Accumulated samples for every pixel: sums of values and of squares in f64, and counts.
 #[derive(Debug, Clone, PartialEq)]
@@ -97,13 +116,37 @@ impl Film {
 
     /// Adds `v` to the splat sum of pixel `index` (ignored past the end).
     pub fn add_splat(&mut self, index: usize, v: Vec3) {
+        self.add_splat_sum(index, [v.x as f64, v.y as f64, v.z as f64]);
+    }
+
+    /// Adds a sum of splats, kept in f64, to pixel `index` (ignored past the end): how
+    /// [`merge_parts`] adds the splats of the parts of a render.
+    pub fn add_splat_sum(&mut self, index: usize, v: [f64; 3]) {
         if self.splat.is_empty() {
             self.splat = vec![[0.0; 3]; self.count.len()];
         }
         if let Some(s) = self.splat.get_mut(index) {
-            s[0] += v.x as f64;
-            s[1] += v.y as f64;
-            s[2] += v.z as f64;
+            for (s, v) in s.iter_mut().zip(v) {
+                *s += v;
+            }
+        }
+    }
+
+    /// The splat sum of pixel `index`, before the splat scale (0 where nothing was splatted
+    /// and past the end).
+    pub fn splat_sum(&self, index: usize) -> [f64; 3] {
+        self.splat.get(index).copied().unwrap_or([0.0; 3])
+    }
+
+    /// The samples accumulated in pixel `index` (none past the end).
+    pub fn pixel(&self, index: usize) -> PixelAccum {
+        match (
+            self.sum.get(index),
+            self.sum_sq.get(index),
+            self.count.get(index),
+        ) {
+            (Some(&sum), Some(&sum_sq), Some(&count)) => PixelAccum { sum, sum_sq, count },
+            _ => PixelAccum::default(),
         }
     }
 

@@ -1,15 +1,20 @@
 //! Where a render's images go, decided and checked before rendering, and written so that
-//! nothing is lost: the extension of the requested name chooses the format and the other
-//! format goes beside it, a name equal to the scene file is refused, the folder must be
-//! writable before any work starts, every file is written atomically (see [`write_exr`]),
-//! and an interrupted render writes `NAME.partial.exr` / `NAME.partial.png` instead of
-//! replacing a complete image.
+//! nothing is lost: by default into the folder [`DEFAULT_FOLDER`] of the current folder
+//! (made if missing; the repository's `.gitignore` lists it), the extension of the requested
+//! name chooses the format and the other format goes beside it, a name equal to the scene
+//! file is refused, the folder must be writable before any work starts, every file is
+//! written atomically (see [`write_exr`]), and an interrupted render writes
+//! `NAME.partial.exr` / `NAME.partial.png` instead of replacing a complete image.
 
 use super::io::{write_exr, write_png, ImageError};
+use super::part::{write_part, PartInfo};
 use super::Film;
 use glam::Vec3;
 use std::fmt;
 use std::path::{Path, PathBuf};
+
+/// The folder, relative to the current one, that renders go to when no output is named.
+pub const DEFAULT_FOLDER: &str = "renders";
 
 /// The exit status of a render stopped by SIGINT or SIGTERM (128 + SIGINT, as shells do).
 pub const EXIT_INTERRUPTED: u8 = 130;
@@ -38,13 +43,15 @@ impl fmt::Display for OutputError {
 impl std::error::Error for OutputError {}
 
 impl OutputPlan {
-    /// The files for `requested` (`-o`; else `default_stem.exr` in the current folder).
+    /// The files for `requested` (`-o`; else `default_stem.exr` in [`DEFAULT_FOLDER`]).
     /// `NAME.exr` or `NAME.png` (any case) gives both `NAME.exr` and `NAME.png`; any other
     /// extension is refused, as is a name that is the scene file.
     ///
     /// ```
     /// use mcrt::scene::film::OutputPlan;
     /// use std::path::Path;
+    /// let p = OutputPlan::new(None, "scene", None, false).unwrap();
+    /// assert_eq!(p.exr, Path::new("renders/scene.exr"));
     /// let p = OutputPlan::new(Some(Path::new("out/x.png")), "scene", None, false).unwrap();
     /// assert_eq!(p.exr, Path::new("out/x.exr"));
     /// assert_eq!(p.png, Path::new("out/x.png"));
@@ -59,7 +66,7 @@ impl OutputPlan {
     ) -> Result<Self, OutputError> {
         let out = requested
             .map(Path::to_path_buf)
-            .unwrap_or_else(|| PathBuf::from(format!("{default_stem}.exr")));
+            .unwrap_or_else(|| Path::new(DEFAULT_FOLDER).join(format!("{default_stem}.exr")));
         let ext = out
             .extension()
             .and_then(|e| e.to_str())
@@ -124,8 +131,9 @@ impl OutputPlan {
         }
     }
 
-    /// Checks, before rendering, that every file can be written: its folder exists and
-    /// accepts a new file, and the name is not a folder.
+    /// Checks, before rendering, that every file can be written: its folder exists (the
+    /// [`DEFAULT_FOLDER`] is made if missing) and accepts a new file, and the name is not a
+    /// folder.
     pub fn check_writable(&self) -> Result<(), OutputError> {
         for p in self.files() {
             if p.is_dir() {
@@ -135,6 +143,11 @@ impl OutputPlan {
                 )));
             }
             let dir = folder_of(p);
+            if dir == Path::new(DEFAULT_FOLDER) && !dir.exists() {
+                std::fs::create_dir(&dir).map_err(|e| {
+                    OutputError(format!("cannot make the folder \"{}\": {e}", dir.display()))
+                })?;
+            }
             let probe = dir.join(format!(".mcrt-probe-{}", std::process::id()));
             let made = std::fs::OpenOptions::new()
                 .write(true)
@@ -174,6 +187,40 @@ impl OutputPlan {
             write_exr(v, w, h, &film.variance())?;
         }
         Ok(plan.files().cloned().collect())
+    }
+}
+
+impl OutputPlan {
+    /// Writes `film`'s share `info` of a render as a part (see [`write_part`]) under the
+    /// plan's EXR name, or its [`partial`](Self::partial) name if `interrupted` (the `merge`
+    /// example refuses such a part, whose pixels lack samples). Returns the file written.
+    pub fn write_part(
+        &self,
+        film: &Film,
+        info: &PartInfo,
+        interrupted: bool,
+    ) -> Result<PathBuf, ImageError> {
+        let path = if interrupted {
+            self.partial().exr
+        } else {
+            self.exr.clone()
+        };
+        write_part(&path, film, info)?;
+        Ok(path)
+    }
+
+    /// Refuses a plan that would overwrite one of `inputs` (for `merge`: one of its parts).
+    pub fn check_not_inputs(&self, inputs: &[PathBuf]) -> Result<(), OutputError> {
+        for p in self.files() {
+            if let Some(i) = inputs.iter().find(|i| same_file(p, i)) {
+                return Err(OutputError(format!(
+                    "output \"{}\" is the input \"{}\"",
+                    p.display(),
+                    i.display()
+                )));
+            }
+        }
+        Ok(())
     }
 }
 

@@ -1,12 +1,11 @@
 //! Turning [`ShapeDesc`]s into world-space primitives and per-shape data.
 
 use super::error::GeometryError;
-use super::intersect::TriSoa;
+use super::query::TriSoa;
+use super::sample::{front_normal, RectangleSampler};
 use crate::sampling::distribution::AliasTable;
-use crate::sampling::warp::RectangleFrame;
 use crate::scene::description::{ShapeDesc, ShapeKind};
-use crate::scene::obj::read_obj;
-use glam::{Affine3A, Mat3, Vec3};
+use glam::{Affine3A, Mat3, Vec2, Vec3};
 use std::path::Path;
 
 /// One primitive as the acceleration structure sees it.
@@ -33,6 +32,8 @@ pub(crate) struct MeshData {
     pub(crate) positions: Vec<Vec3>,
     /// World-space unit vertex normals, or empty.
     pub(crate) normals: Vec<Vec3>,
+    /// Per-vertex texture coordinates, or empty (meshes read from files).
+    pub(crate) uvs: Vec<Vec2>,
     pub(crate) indices: Vec<[u32; 3]>,
     /// `flip_normals`.
     pub(crate) flip: bool,
@@ -40,11 +41,8 @@ pub(crate) struct MeshData {
     pub(crate) pick: Option<AliasTable>,
     /// Total area.
     pub(crate) area: f32,
-    /// A rectangle's corner and edges (world space), for spherical-rectangle sampling.
-    pub(crate) parallelogram: Option<[Vec3; 3]>,
-    /// The same rectangle prepared for spherical-rectangle sampling (`None` when the warp
-    /// rejects it, e.g. zero area).
-    pub(crate) rect_frame: Option<Box<RectangleFrame>>,
+    /// A `rectangle` shape's sampler (it is sampled as a whole, not by triangles).
+    pub(crate) rectangle: Option<RectangleSampler>,
 }
 
 /// A world-space disk.
@@ -134,6 +132,9 @@ fn shape_data(
     base_dir: Option<&Path>,
 ) -> Result<ShapeData, GeometryError> {
     let flip = desc.flip_normals;
+    if let Some(mesh) = super::file_mesh::build(i, &desc.kind, m, flip, base_dir) {
+        return Ok(ShapeData::Mesh(mesh?));
+    }
     let mirrored = Mat3::from(m.matrix3).determinant() < 0.0;
     Ok(match &desc.kind {
         ShapeKind::Rectangle => {
@@ -148,8 +149,8 @@ fn shape_data(
                 mirrored,
             )?;
             let (corner, ex, ey) = (p[0], p[1] - p[0], p[3] - p[0]);
-            mesh.parallelogram = Some([corner, ex, ey]);
-            mesh.rect_frame = RectangleFrame::new(corner, ex, ey).ok().map(Box::new);
+            let n = front_normal(&mesh, mesh.indices[0].map(|v| mesh.positions[v as usize]));
+            mesh.rectangle = Some(RectangleSampler::new([corner, ex, ey], n, mesh.area));
             ShapeData::Mesh(mesh)
         }
         ShapeKind::Cube => {
@@ -170,35 +171,15 @@ fn shape_data(
                 .collect();
             ShapeData::Mesh(mesh(i, pos, nrm, indices.clone(), flip, false)?)
         }
-        ShapeKind::Obj {
-            filename,
-            face_normals,
-        } => {
-            let path = base_dir.map_or_else(|| filename.clone(), |b| b.join(filename));
-            let obj = read_obj(&path).map_err(|e| GeometryError::Obj {
-                shape: i,
-                message: e.to_string(),
-            })?;
-            let pos: Vec<Vec3> = obj
-                .positions
-                .iter()
-                .map(|&p| m.transform_point3(p))
-                .collect();
-            let nrm = if *face_normals {
-                vec![]
-            } else if obj.normals.is_empty() {
-                smooth_normals(&pos, &obj.indices)
-            } else {
-                let nm = Mat3::from(m.matrix3).inverse().transpose();
-                obj.normals
-                    .iter()
-                    .map(|&n| (nm * n).normalize_or_zero())
-                    .collect()
-            };
-            ShapeData::Mesh(mesh(i, pos, nrm, obj.indices, flip, false)?)
-        }
         &ShapeKind::Sphere { center, radius } => sphere(i, m, center, radius, flip)?,
         ShapeKind::Disk => disk(m, flip),
+        // Read by `file_mesh::build` above.
+        ShapeKind::Obj { .. } | ShapeKind::Ply { .. } | ShapeKind::Serialized { .. } => {
+            return Err(GeometryError::InvalidShape {
+                shape: i,
+                what: "a mesh file shape was not read".into(),
+            })
+        }
     })
 }
 
@@ -246,12 +227,12 @@ pub(crate) fn mesh(
     Ok(MeshData {
         positions,
         normals,
+        uvs: Vec::new(),
         indices,
         flip,
         pick: AliasTable::new(&areas).ok(),
         area: areas.iter().map(|&a| f64::from(a)).sum::<f64>() as f32,
-        parallelogram: None,
-        rect_frame: None,
+        rectangle: None,
     })
 }
 
@@ -327,7 +308,7 @@ fn disk(m: &Affine3A, flip: bool) -> ShapeData {
 /// Vertex normals as the angle-weighted mean of the adjacent face normals (what Mitsuba
 /// computes for meshes without normals unless `face_normals` is set). Vertices on no
 /// face of nonzero area get a zero normal, which hit shading replaces by `ng`.
-fn smooth_normals(pos: &[Vec3], indices: &[[u32; 3]]) -> Vec<Vec3> {
+pub(super) fn smooth_normals(pos: &[Vec3], indices: &[[u32; 3]]) -> Vec<Vec3> {
     let mut acc = vec![Vec3::ZERO; pos.len()];
     for t in indices {
         let p = t.map(|v| pos.get(v as usize).copied().unwrap_or(Vec3::ZERO));

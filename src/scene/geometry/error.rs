@@ -34,6 +34,13 @@ pub enum GeometryError {
         /// The reader's message (naming the file).
         message: String,
     },
+    /// A PLY or `serialized` mesh file could not be read.
+    MeshFile {
+        /// Index of the shape.
+        shape: usize,
+        /// The reader's message (naming the file and the place in it).
+        message: String,
+    },
 }
 
 impl fmt::Display for GeometryError {
@@ -47,7 +54,9 @@ impl fmt::Display for GeometryError {
                 "shape {shape}: a sphere's to_world may only rotate, scale uniformly and translate"
             ),
             Self::InvalidShape { shape, what } => write!(f, "shape {shape}: {what}"),
-            Self::Obj { shape, message } => write!(f, "shape {shape}: {message}"),
+            Self::Obj { shape, message } | Self::MeshFile { shape, message } => {
+                write!(f, "shape {shape}: {message}")
+            }
         }
     }
 }

@@ -47,25 +47,23 @@
 
 mod build;
 mod error;
-mod intersect;
-mod leaves;
+mod file_mesh;
 mod offset;
-mod packet;
-mod pair;
-mod quad;
+mod query;
 mod sample;
+mod vertex_attributes;
 
 pub use crate::scene::accel::AccelKind;
 pub use error::GeometryError;
 pub use offset::{offset_origin, spawn_ray, spawn_ray_to};
+pub(crate) use sample::RectangleSampler;
 pub use sample::ShapeSampling;
 
-use crate::scene::accel::{Aabb, Accel};
+use crate::scene::accel::Aabb;
 use crate::scene::description::ShapeDesc;
 use build::{Prim, PrimId, ShapeData};
 use glam::{Vec2, Vec3, Vec3A};
-use intersect::{hit_disk, hit_sphere, TriRay};
-use pair::Unit;
+use query::{HitRecord, RayQuery, Stored};
 use std::f32::consts::PI;
 use std::path::Path;
 
@@ -119,25 +117,15 @@ pub struct ShapeSample {
 /// The scene's shapes in world space with an acceleration structure.
 #[derive(Debug, Clone)]
 pub struct Geometry {
-    /// Primitives in the acceleration structure's order.
+    /// Primitives in the ray-query backend's slot order.
     prims: Vec<Prim>,
     ids: Vec<PrimId>,
-    accel: Accel,
-    /// The BVH's leaves with packed quads and triangles (empty for the other structures).
-    packed: leaves::Packed,
+    query: RayQuery,
     /// Per stored primitive: a triangle's unit front normal ([`Hit::ng`]), else zero.
     face_ng: Vec<Vec3>,
     shapes: Vec<ShapeData>,
     bounds: Aabb,
     shape_sampling: ShapeSampling,
-}
-
-/// Where a closest-hit search found its hit: stored primitive and barycentrics.
-#[derive(Clone, Copy)]
-struct HitRecord {
-    index: u32,
-    b1: f32,
-    b2: f32,
 }
 
 impl Geometry {
@@ -153,35 +141,18 @@ impl Geometry {
         accel: AccelKind,
     ) -> Result<Self, GeometryError> {
         let built = build::build(shapes, base_dir)?;
-        // With the BVH, triangle pairs forming parallelograms become one quad unit.
-        let units = if accel == AccelKind::Bvh {
-            pair::units(&built)
-        } else {
-            (0..built.prims.len() as u32).map(Unit::One).collect()
-        };
-        let bounds: Vec<Aabb> = units
-            .iter()
-            .map(|u| unit_bounds(u, &built.prims, &built.shapes))
-            .collect();
-        let scene = bounds.iter().fold(Aabb::EMPTY, |b, p| b.union(*p));
-        let accel = Accel::build(accel, &bounds);
-        // Slots: the input primitives in stored order (units are single for other kinds).
-        let (order, packed) = match accel.bvh4() {
-            Some(bvh) => leaves::pack(bvh, &units, &built.prims),
-            None => (accel.order().to_vec(), leaves::Packed::default()),
-        };
-        let ids: Vec<PrimId> = order.iter().map(|&i| built.ids[i as usize]).collect();
+        let q = RayQuery::build(accel, &built);
+        let ids: Vec<PrimId> = q.slots.iter().map(|&i| built.ids[i as usize]).collect();
         Ok(Self {
-            prims: order.iter().map(|&i| built.prims[i as usize]).collect(),
+            prims: q.slots.iter().map(|&i| built.prims[i as usize]).collect(),
             face_ng: ids
                 .iter()
                 .map(|id| face_normal(&built.shapes, id))
                 .collect(),
             ids,
-            accel,
-            packed,
+            query: q.query,
             shapes: built.shapes,
-            bounds: scene,
+            bounds: q.bounds,
             shape_sampling: ShapeSampling::default(),
         })
     }
@@ -198,7 +169,7 @@ impl Geometry {
 
     /// The acceleration structure in use.
     pub fn accel_kind(&self) -> AccelKind {
-        self.accel.kind()
+        self.query.kind()
     }
 
     /// The world-space bounding box of all shapes (empty when there are none).
@@ -218,67 +189,28 @@ impl Geometry {
     /// The nearest hit with `0 < t < t_max`.
     #[inline(never)]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        if let Some(bvh) = self.accel.bvh4() {
-            let (t, rec) = self.closest_packed(bvh, ray, t_max)?;
-            return Some(self.make_hit(ray, t, rec));
-        }
-        let tri = TriRay::new(ray.origin, ray.dir);
-        let mut rec = HitRecord {
-            index: 0,
-            b1: 0.0,
-            b2: 0.0,
-        };
-        let t = self.accel.closest(ray.origin, ray.dir, t_max, |i, bound| {
-            let (t, b1, b2) = self.hit_prim(&tri, ray, i, bound)?;
-            rec = HitRecord { index: i, b1, b2 };
-            Some(t)
-        })?;
+        let (t, rec) = self.query.closest(self.stored(), ray, t_max)?;
         Some(self.make_hit(ray, t, rec))
     }
 
     /// True when anything is hit with `0 < t < t_max`.
     #[inline(never)]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        if let Some(bvh) = self.accel.bvh4() {
-            return self.occluded_packed(bvh, ray, t_max);
-        }
-        let tri = TriRay::new(ray.origin, ray.dir);
-        self.accel.any(ray.origin, ray.dir, t_max, |i, bound| {
-            self.hit_prim(&tri, ray, i, bound).is_some()
-        })
+        self.query.any(self.stored(), ray, t_max)
     }
 
-    /// Intersects stored primitive `i`: (t, b1, b2), barycentrics only for triangles.
     #[inline(always)]
-    fn hit_prim(&self, tri: &TriRay, ray: &Ray, i: u32, t_max: f32) -> Option<(f32, f32, f32)> {
-        match &self.prims[i as usize] {
-            Prim::Tri(v) => tri.hit(v, t_max),
-            &Prim::Sphere { center, radius } => {
-                hit_sphere(ray.origin, ray.dir, center, radius, t_max).map(|t| (t, 0.0, 0.0))
-            }
-            &Prim::Disk(s) => match &self.shapes[s as usize] {
-                ShapeData::Disk(d) => {
-                    hit_disk(ray.origin, ray.dir, &d.to_object, t_max).map(|(t, _)| (t, 0.0, 0.0))
-                }
-                _ => None,
-            },
-        }
-    }
-
-    /// Intersects stored primitive `i` without a prepared triangle ray: spheres and disks
-    /// (and, should a BVH leaf ever hold more than four triangles, the extra ones).
-    #[inline(always)]
-    fn hit_other(&self, ray: &Ray, i: u32, t_max: f32) -> Option<(f32, f32, f32)> {
-        match &self.prims[i as usize] {
-            Prim::Tri(_) => self.hit_prim(&TriRay::new(ray.origin, ray.dir), ray, i, t_max),
-            _ => self.hit_prim(&TriRay::DUMMY, ray, i, t_max),
+    fn stored(&self) -> Stored<'_> {
+        Stored {
+            prims: &self.prims,
+            shapes: &self.shapes,
         }
     }
 
     /// Fills in the surface data of a hit found by the search.
     #[inline(always)]
     fn make_hit(&self, ray: &Ray, t: f32, rec: HitRecord) -> Hit {
-        let id = self.ids[rec.index as usize];
+        let id = self.ids[rec.slot as usize];
         let mut hit = Hit {
             t,
             p: ray.at(t),
@@ -291,11 +223,11 @@ impl Geometry {
         match &self.shapes[id.shape as usize] {
             ShapeData::Mesh(m) => {
                 let b0 = 1.0 - rec.b1 - rec.b2;
-                if let Prim::Tri(tri) = &self.prims[rec.index as usize] {
+                if let Prim::Tri(tri) = &self.prims[rec.slot as usize] {
                     hit.p = tri.point(Vec3A::new(b0, rec.b1, rec.b2));
                 }
                 let sign = if m.flip { -1.0 } else { 1.0 };
-                hit.ng = self.face_ng[rec.index as usize];
+                hit.ng = self.face_ng[rec.slot as usize];
                 hit.ns = if m.normals.is_empty() {
                     hit.ng
                 } else {
@@ -341,32 +273,5 @@ fn face_normal(shapes: &[ShapeData], id: &PrimId) -> Vec3 {
             sign * (b - a).cross(c - a).normalize_or(Vec3::Z)
         }
         _ => Vec3::ZERO,
-    }
-}
-
-/// The bounds of a BVH unit: one primitive, or both triangles of a quad.
-fn unit_bounds(u: &Unit, prims: &[Prim], shapes: &[ShapeData]) -> Aabb {
-    match *u {
-        Unit::One(i) => prim_bounds(&prims[i as usize], shapes),
-        Unit::Pair { first, second, .. } => prim_bounds(&prims[first as usize], shapes)
-            .union(prim_bounds(&prims[second as usize], shapes)),
-    }
-}
-
-fn prim_bounds(p: &Prim, shapes: &[ShapeData]) -> Aabb {
-    match p {
-        Prim::Tri(v) => Aabb::from_points(&v.vertices()),
-        &Prim::Sphere { center, radius } => Aabb {
-            min: center - Vec3::splat(radius),
-            max: center + Vec3::splat(radius),
-        },
-        &Prim::Disk(s) => match &shapes[s as usize] {
-            ShapeData::Disk(d) => {
-                let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-                    .map(|(x, y)| d.to_world.transform_point3(Vec3::new(x, y, 0.0)));
-                Aabb::from_points(&corners)
-            }
-            _ => Aabb::EMPTY,
-        },
     }
 }

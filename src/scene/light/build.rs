@@ -1,12 +1,10 @@
 //! Building [`Lights`] from a scene description: each emitter with its power, the
-//! rectangle fast paths and the choice of lights.
+//! choice of lights and the sampling plan.
 
 use super::choice::{LightChoice, LightPlace};
-use super::rect::AreaRect;
-use super::{mean, EnvMap, Light, LightError, Lights};
-use crate::sampling::warp::RectangleFrame;
+use super::{mean, EnvMap, Light, LightError, Lights, SamplePlan};
 use crate::scene::description::{EmitterDesc, SceneDescription};
-use crate::scene::render::geo::Geometry;
+use crate::scene::geometry::{Geometry, RectangleSampler, ShapeSampling};
 use std::f32::consts::PI;
 
 impl Lights {
@@ -43,7 +41,7 @@ impl Lights {
                 }
                 EmitterDesc::Constant { radiance } => {
                     if env.is_some() {
-                        return Err(LightError("more than one environment emitter".into()));
+                        return Err(LightError::SeveralEnvironments);
                     }
                     env = Some(lights.len() as u32);
                     power.push(4.0 * PI * PI * radius * radius * mean(*radiance).max(0.0));
@@ -57,22 +55,24 @@ impl Lights {
                     to_world,
                 } => {
                     if env.is_some() {
-                        return Err(LightError("more than one environment emitter".into()));
+                        return Err(LightError::SeveralEnvironments);
                     }
-                    let map = EnvMap::load(filename, *scale, *to_world)
-                        .map_err(|e| LightError(format!("{}: {e}", filename.display())))?;
+                    let map = EnvMap::load(filename, *scale, *to_world).map_err(|reason| {
+                        LightError::EnvMap {
+                            path: filename.clone(),
+                            reason,
+                        }
+                    })?;
                     env = Some(lights.len() as u32);
                     power.push(PI * radius * radius * map.integral());
                     lights.push(Light::EnvMap(Box::new(map)));
                 }
             }
         }
-        let rects: Vec<Option<AreaRect>> = lights
+        let rectangles: Vec<Option<RectangleSampler>> = lights
             .iter()
             .map(|l| match *l {
-                Light::Area { shape, .. } => geo
-                    .parallelogram(shape)
-                    .and_then(|(par, n, area)| AreaRect::new(par, n, area)),
+                Light::Area { shape, .. } => geo.rectangle_sampler(shape).cloned(),
                 _ => None,
             })
             .collect();
@@ -91,18 +91,12 @@ impl Lights {
             })
             .collect();
         let picker = LightChoice::new(&power, &places);
-        let only_rect = match (single, picker.is_some(), rects.first(), lights.first()) {
-            (true, true, Some(Some(r)), Some(&Light::Area { radiance, .. })) => {
-                Some((*r, radiance))
-            }
-            _ => None,
-        };
-        let only_rect_frame = match (&only_rect, lights.first()) {
-            (Some(_), Some(&Light::Area { shape, .. })) => geo
-                .parallelogram(shape)
-                .and_then(|([corner, ex, ey], _, _)| RectangleFrame::new(corner, ex, ey).ok())
-                .map(Box::new),
-            _ => None,
+        let lone_rectangle = single && picker.is_some() && matches!(rectangles[..], [Some(_)]);
+        let plan = match (picker.is_some(), lone_rectangle, geo.shape_sampling()) {
+            (false, _, _) => SamplePlan::Nothing,
+            (true, true, ShapeSampling::Area) => SamplePlan::LoneRectangleByArea,
+            (true, true, ShapeSampling::SolidAngle) => SamplePlan::LoneRectangleBySolidAngle,
+            (true, false, _) => SamplePlan::Choose { single },
         };
         let on_mesh =
             |l: &Light| matches!(*l, Light::Area { shape, .. } if geo.shape_reads_pick(shape));
@@ -116,11 +110,9 @@ impl Lights {
         Ok(Self {
             shape_radiance,
             picker,
-            only_rect,
-            only_rect_frame,
+            plan,
             reads_pick: !single || lights.iter().any(on_mesh),
-            single,
-            rects,
+            rectangles,
             lights,
             shape_light,
             env,

@@ -11,7 +11,7 @@
 use super::{Light, Lights};
 use crate::integrator::{is_positive, EmissionSample, EmitterKind, SurfacePoint};
 use crate::sampling::warp::{CosineHemisphere, UniformDiskConcentric, UniformSphere, Warp};
-use crate::scene::render::geo::Geometry;
+use crate::scene::geometry::Geometry;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -31,14 +31,14 @@ fn bare(p: Vec3, n: Vec3, shape: u32) -> SurfacePoint {
 
 impl Lights {
     /// Probability of choosing light `i` to start a light subpath (by power).
-    pub fn emission_pmf(&self, i: u32) -> f32 {
+    pub(crate) fn emission_pmf(&self, i: u32) -> f32 {
         self.picker
             .as_ref()
             .map_or(0.0, |c| c.power().pmf(i as usize))
     }
 
     /// The light index of the area light on shape `shape`.
-    pub fn light_of_shape(&self, shape: u32) -> Option<u32> {
+    pub(crate) fn light_of_shape(&self, shape: u32) -> Option<u32> {
         *self.shape_light.get(shape as usize)?
     }
 

@@ -5,10 +5,9 @@
 
 use crate::integrator::is_positive;
 use crate::sampling::distribution::PiecewiseLinear2D;
-use crate::sampling::warp::Warp;
+use crate::sampling::warp::{LatLong, Warp};
 use crate::scene::film::read_exr;
 use glam::{Mat3, Mat4, Vec2, Vec3};
-use std::f32::consts::PI;
 use std::path::Path;
 
 #[cfg(test)]
@@ -16,7 +15,7 @@ mod tests;
 
 /// A latitude–longitude environment map. In its own frame, the map coordinates `(u, v)`
 /// belong to the direction `(sin θ sin φ, cos θ, −sin θ cos φ)` with `φ = 2πu`, `θ = πv`
-/// (Mitsuba 3's convention: `+y` up, `u = 0` toward `−z`).
+/// (Mitsuba 3's convention: `+y` up, `u = 0` toward `−z`; [`LatLong`]).
 ///
 /// **Lookup** (as Mitsuba 3's `envmap`): radiance is interpolated bilinearly. Column `x`
 /// sits at `u = (x + ½)/width` (its centre), and interpolation wraps around in `u`; row `y`
@@ -84,13 +83,6 @@ fn wrap_unit(x: f32) -> f32 {
     }
 }
 
-/// `p(ω) = p(u, v) / (2π² sin θ)`, with `sin θ` at least `f32::EPSILON` (as Mitsuba 3
-/// does), so that a sample at a pole, where `v` is exactly 0 or 1, keeps a finite density
-/// instead of being lost (the poles have no solid angle, so this changes no integral).
-fn solid_angle_pdf(pdf_uv: f32, sin_theta: f32) -> f32 {
-    pdf_uv / (2.0 * PI * PI * sin_theta.abs().max(f32::EPSILON))
-}
-
 /// Interpolation along one axis: `(lower index, upper index, weight of the upper)`.
 type Lerp = (usize, usize, f32);
 
@@ -145,14 +137,10 @@ impl EnvMap {
         })
     }
 
-    /// Map coordinates `(u, v)` of a world direction and its `sin θ`. `θ` comes from
-    /// `atan2(sin θ, cos θ)`, which keeps its precision near the poles (unlike `acos`).
+    /// Map coordinates `(u, v) ∈ [0,1)²` of a world direction and its `sin θ`
+    /// ([`LatLong`]).
     fn uv(&self, dir_world: Vec3) -> (Vec2, f32) {
-        let d = (self.to_local * dir_world).normalize_or_zero();
-        let u = wrap_unit(d.x.atan2(-d.z) / (2.0 * PI));
-        let sin_theta = (d.x * d.x + d.z * d.z).sqrt();
-        let v = (sin_theta.atan2(d.y) / PI).clamp(0.0, 1.0);
-        (Vec2::new(u, v), sin_theta)
+        LatLong::uv_sin_theta((self.to_local * dir_world).normalize_or_zero())
     }
 
     /// Half a texel in `u`: the interpolation cells (and the sampling table) start at the
@@ -184,18 +172,16 @@ impl EnvMap {
         if !is_positive(pdf_uv) {
             return None;
         }
-        let (st, ct) = (PI * uv.y).sin_cos();
-        let (sp, cp) = (2.0 * PI * uv.x).sin_cos();
-        let local = Vec3::new(st * sp, ct, -st * cp);
+        let (local, st) = LatLong::direction_sin_theta(uv);
         let dir = (self.to_world * local).normalize();
-        Some((dir, self.lookup(uv), solid_angle_pdf(pdf_uv, st)))
+        Some((dir, self.lookup(uv), LatLong::solid_angle_pdf(pdf_uv, st)))
     }
 
     /// Density per steradian with which [`EnvMap::sample`] returns `dir`.
     pub fn pdf(&self, dir: Vec3) -> f32 {
         let (uv, st) = self.uv(dir);
         let cell_uv = Vec2::new(wrap_unit(uv.x - self.half_texel()), uv.y);
-        solid_angle_pdf(self.dist.pdf(cell_uv), st)
+        LatLong::solid_angle_pdf(self.dist.pdf(cell_uv), st)
     }
 
     /// The interpolated radiance's channel mean integrated over the sphere, `∫ L dω` (for

@@ -7,18 +7,19 @@ mod build;
 mod choice;
 mod emission;
 mod envmap;
-mod rect;
+mod error;
+#[cfg(test)]
+mod tests;
 
 use choice::LightChoice;
 
 pub use envmap::EnvMap;
-use rect::AreaRect;
+pub use error::LightError;
 
 use crate::integrator::{is_positive, LightSample, SurfacePoint};
-use crate::sampling::warp::RectangleFrame;
-use crate::scene::render::geo::{Geometry, Hit, ShapeSampling};
+use crate::sampling::warp::{UniformSphere, Warp};
+use crate::scene::geometry::{Geometry, RectangleSampler, ShapeSample, ShapeSampling};
 use glam::{Vec2, Vec3};
-use std::f32::consts::PI;
 
 /// One light.
 #[derive(Debug, Clone, PartialEq)]
@@ -47,18 +48,6 @@ pub enum Light {
     EnvMap(Box<EnvMap>),
 }
 
-/// Why the lights of a scene could not be set up.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct LightError(pub String);
-
-impl std::fmt::Display for LightError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "light setup: {}", self.0)
-    }
-}
-
-impl std::error::Error for LightError {}
-
 /// All lights of a scene with the distribution that chooses among them.
 #[derive(Debug, Clone)]
 pub struct Lights {
@@ -70,35 +59,44 @@ pub struct Lights {
     shape_radiance: Vec<Option<Vec3>>,
     env: Option<u32>,
     has_delta: bool,
-    /// Per light: the rectangle of an area light on a rectangle shape, sampled here
-    /// directly when the geometry samples rectangles by area (same points, same density).
-    rects: Vec<Option<AreaRect>>,
-    /// Exactly one light: no choice to sample (its probability is 1).
-    single: bool,
-    /// The scene's only light, an emitting rectangle (its choice probability is 1).
-    only_rect: Option<(AreaRect, Vec3)>,
-    /// That rectangle's frame for solid-angle sampling, built from the same corner and
-    /// edges as the geometry's own (so the same warp and the same bits).
-    only_rect_frame: Option<Box<RectangleFrame>>,
+    /// Per light: the sampler of an area light on a rectangle (the geometry's own), so that
+    /// sampling it needs no shape lookup.
+    rectangles: Vec<Option<RectangleSampler>>,
+    /// How [`Lights::sample`] proceeds, chosen once.
+    plan: SamplePlan,
     /// [`Lights::sample`] reads `u_pick`: several lights, or a light on a triangle mesh.
     reads_pick: bool,
+}
+
+/// How [`Lights::sample`] proceeds, chosen once when the lights are built (with the
+/// geometry's [`ShapeSampling`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum SamplePlan {
+    /// No light emits: no sample.
+    Nothing,
+    /// The only light is a rectangle sampled by area (the Cornell box with
+    /// `--light-sampling area`): no choice, a few dozen instructions, inline.
+    LoneRectangleByArea,
+    /// The only light is a rectangle sampled by solid angle: no choice; points clearly behind
+    /// it are rejected before the warp.
+    LoneRectangleBySolidAngle,
+    /// Choose a light (probability 1 for a lone light), then sample it.
+    Choose {
+        /// Exactly one light.
+        single: bool,
+    },
 }
 
 fn mean(v: Vec3) -> f32 {
     (v.x + v.y + v.z) / 3.0
 }
 
-/// A direction toward area light `shape` through [`Geometry::sample_shape`] (`u_rest` picks
-/// a mesh triangle, `u` the point), its density times the light's choice probability `pick`.
-fn sample_shape_light(
-    geo: &Geometry,
-    shape: u32,
-    radiance: Vec3,
-    from: Vec3,
-    (u_rest, u): (f32, Vec2),
-    pick: f32,
-) -> Option<LightSample> {
-    let s = geo.sample_shape(shape, from, u_rest, u)?;
+/// The direction from `from` toward a point sampled on an emitter's shape, with the shape
+/// density (per steradian) times the light's choice probability `pick`; `None` when the
+/// point is seen from behind (area lights emit from their front) or the density is not
+/// finite and positive.
+#[inline(always)]
+fn toward_area_light(s: ShapeSample, radiance: Vec3, from: Vec3, pick: f32) -> Option<LightSample> {
     let d = s.p - from;
     let dist = d.length();
     if !is_positive(dist) {
@@ -111,26 +109,6 @@ fn sample_shape_light(
     Some(LightSample {
         wi,
         dist,
-        radiance,
-        pdf: s.pdf * pick,
-        delta: false,
-    })
-}
-
-/// A direction toward rectangle light `r` sampled by area from `from`, its density times
-/// the light's choice probability `pick`.
-#[inline(always)]
-fn rect_light_sample(
-    r: &AreaRect,
-    radiance: Vec3,
-    from: Vec3,
-    u: Vec2,
-    pick: f32,
-) -> Option<LightSample> {
-    let s = r.sample(from, u)?;
-    Some(LightSample {
-        wi: s.wi,
-        dist: s.dist,
         radiance,
         pdf: s.pdf * pick,
         delta: false,
@@ -152,12 +130,12 @@ impl Lights {
     /// Whether [`Lights::sample`] reads its `u_pick` argument: there are several lights to
     /// choose from, or the light is a triangle mesh (a triangle to choose). With a single
     /// rectangle, sphere, disk, point or environment light it does not.
-    pub fn reads_pick(&self) -> bool {
+    pub(crate) fn reads_pick(&self) -> bool {
         self.reads_pick
     }
 
     /// Whether any light is a point light.
-    pub fn has_delta(&self) -> bool {
+    pub(crate) fn has_delta(&self) -> bool {
         self.has_delta
     }
 
@@ -168,7 +146,7 @@ impl Lights {
 
     /// Emitted radiance of shape `shape` if it is an area light.
     #[inline]
-    pub fn area_radiance(&self, shape: u32) -> Option<Vec3> {
+    pub(crate) fn area_radiance(&self, shape: u32) -> Option<Vec3> {
         *self.shape_radiance.get(shape as usize)?
     }
 
@@ -192,66 +170,64 @@ impl Lights {
         u_pick: Vec2,
         u: Vec2,
     ) -> Option<LightSample> {
-        // A lone rectangle light sampled by area (the Cornell box) inline; everything else
-        // out of line.
-        if let Some((r, radiance)) = &self.only_rect {
-            if geo.shape_sampling() == ShapeSampling::Area {
-                return rect_light_sample(r, *radiance, from.p, u, 1.0);
+        match self.plan {
+            SamplePlan::LoneRectangleByArea => {
+                let (r, radiance) = self.lone_rectangle()?;
+                let s = r.sample(ShapeSampling::Area, from.p, u)?;
+                toward_area_light(s, radiance, from.p, 1.0)
             }
+            _ => self.sample_general(geo, from, u_pick, u),
         }
-        self.sample_out_of_line(geo, from, u_pick, u)
     }
 
-    /// [`Lights::sample`] out of line: a lone rectangle sampled by solid angle, then the
-    /// general case. (Hinted `inline` rather than forced out of line: the compiler then keeps
-    /// it out of line by its size and inlines the spherical-rectangle warp into it, which
-    /// `#[inline(never)]` here prevented, 35 M instructions worse on the Cornell box.)
+    /// The first light's rectangle sampler and radiance.
+    #[inline(always)]
+    fn lone_rectangle(&self) -> Option<(&RectangleSampler, Vec3)> {
+        match (self.rectangles.first(), self.lights.first()) {
+            (Some(Some(r)), Some(&Light::Area { radiance, .. })) => Some((r, radiance)),
+            _ => None,
+        }
+    }
+
+    /// [`Lights::sample`] for every plan but the inline one. (Hinted `inline` rather than
+    /// forced out of line, so that the compiler keeps it out of line by its size and inlines
+    /// the spherical-rectangle warp into it.)
     #[inline]
-    fn sample_out_of_line(
+    fn sample_general(
         &self,
         geo: &Geometry,
         from: &SurfacePoint,
         u_pick: Vec2,
         u: Vec2,
     ) -> Option<LightSample> {
-        // (By area, `sample` has taken the lone rectangle already.)
-        if let Some((r, radiance)) = &self.only_rect {
-            if geo.shape_sampling() == ShapeSampling::SolidAngle {
+        debug_assert!(self.plan == SamplePlan::Nothing || self.sampling_matches(geo));
+        let single = match self.plan {
+            SamplePlan::Nothing => return None,
+            SamplePlan::LoneRectangleBySolidAngle => {
+                let (r, radiance) = self.lone_rectangle()?;
                 if r.surely_behind(from.p) {
                     return None;
                 }
-                if let Some(f) = &self.only_rect_frame {
-                    if let Some(ls) = rect::solid_angle_sample(f, r.normal(), *radiance, from.p, u)
-                    {
-                        return ls;
-                    }
-                }
+                let s = r.sample(ShapeSampling::SolidAngle, from.p, u)?;
+                return toward_area_light(s, radiance, from.p, 1.0);
             }
-        }
-        self.sample_chosen(geo, from, u_pick, u)
-    }
-
-    /// [`Lights::sample`] in general: the choice of light, then its own sampling.
-    fn sample_chosen(
-        &self,
-        geo: &Geometry,
-        from: &SurfacePoint,
-        u_pick: Vec2,
-        u: Vec2,
-    ) -> Option<LightSample> {
+            SamplePlan::LoneRectangleByArea => true,
+            SamplePlan::Choose { single } => single,
+        };
         let picker = self.picker.as_ref()?;
-        let (i, pick) = if self.single {
+        let (i, pick) = if single {
             (0, 1.0)
         } else {
             picker.sample(from.p, u_pick.x)
         };
         match self.lights[i] {
-            Light::Area { shape, radiance } => match &self.rects[i] {
-                Some(r) if geo.shape_sampling() == ShapeSampling::Area => {
-                    rect_light_sample(r, radiance, from.p, u, pick)
-                }
-                _ => sample_shape_light(geo, shape, radiance, from.p, (u_pick.y, u), pick),
-            },
+            Light::Area { shape, radiance } => {
+                let s = match &self.rectangles[i] {
+                    Some(r) => r.sample(geo.shape_sampling(), from.p, u)?,
+                    None => geo.sample_shape(shape, from.p, u_pick.y, u)?,
+                };
+                toward_area_light(s, radiance, from.p, pick)
+            }
             Light::Point {
                 position,
                 intensity,
@@ -281,17 +257,26 @@ impl Lights {
                 })
             }
             Light::Constant { radiance } => {
-                let z = 1.0 - 2.0 * u.x;
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let (s, c) = (2.0 * PI * u.y).sin_cos();
+                let (wi, pdf) = UniformSphere.sample_with_pdf(u);
                 Some(LightSample {
-                    wi: Vec3::new(r * c, r * s, z),
+                    wi,
                     dist: f32::INFINITY,
                     radiance,
-                    pdf: pick / (4.0 * PI),
+                    pdf: pick * pdf,
                     delta: false,
                 })
             }
+        }
+    }
+
+    /// Whether the plan was chosen for the geometry's current [`ShapeSampling`].
+    fn sampling_matches(&self, geo: &Geometry) -> bool {
+        match self.plan {
+            SamplePlan::LoneRectangleByArea => geo.shape_sampling() == ShapeSampling::Area,
+            SamplePlan::LoneRectangleBySolidAngle => {
+                geo.shape_sampling() == ShapeSampling::SolidAngle
+            }
+            _ => true,
         }
     }
 
@@ -301,24 +286,15 @@ impl Lights {
         let Some(Some(i)) = self.shape_light.get(hit.shape as usize) else {
             return 0.0;
         };
-        let h = Hit {
-            t: hit.t,
-            p: hit.p,
-            ng: hit.ng,
-            ns: hit.frame.n,
-            uv: hit.uv,
-            shape: hit.shape,
-            prim: hit.prim,
-        };
-        geo.shape_pdf(hit.shape, from.p, &h) * self.pmf(from.p, *i)
+        geo.shape_pdf_at(hit.shape, from.p, (hit.p, hit.ng, hit.prim)) * self.pmf(from.p, *i)
     }
 
     /// The same for the environment along `dir`.
-    pub fn pdf_environment(&self, from: &SurfacePoint, dir: Vec3) -> f32 {
+    pub(crate) fn pdf_environment(&self, from: &SurfacePoint, dir: Vec3) -> f32 {
         match self.env {
             Some(i) => match &self.lights[i as usize] {
                 Light::EnvMap(m) => self.pmf(from.p, i) * m.pdf(dir),
-                _ => self.pmf(from.p, i) / (4.0 * PI),
+                _ => self.pmf(from.p, i) * UniformSphere.pdf(dir),
             },
             None => 0.0,
         }

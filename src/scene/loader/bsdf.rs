@@ -291,7 +291,8 @@ fn roughness(e: &Elem, p: &mut Props) -> Res<f32> {
 /// with `eta` or `k`.
 fn fresnel(e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
     let material = p.string("material")?.unwrap_or_else(|| "none".into());
-    let (eta, k) = (p.rgb("eta")?, p.rgb("k")?);
+    let unbounded = super::spectrum::SpectrumUse::Unbounded;
+    let (eta, k) = (p.colour("eta", unbounded)?, p.colour("k", unbounded)?);
     if material != "none" {
         if eta.is_some() || k.is_some() {
             let which = if eta.is_some() { "eta" } else { "k" };

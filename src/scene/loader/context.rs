@@ -61,7 +61,7 @@ impl<'a> Ctx<'a> {
     /// An error located at element `e`.
     pub fn err(&self, e: &Elem, kind: SceneErrorKind) -> SceneError {
         SceneError::new(
-            self.file,
+            e.file.as_deref().or(self.file),
             Some(e.line),
             Some(e.column),
             Some(e.describe()),

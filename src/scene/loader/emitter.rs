@@ -3,6 +3,7 @@
 use super::context::{Ctx, Res};
 use super::error::SceneErrorKind;
 use super::props::Props;
+use super::spectrum::SpectrumUse;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::scene::description::{AreaEmitterDesc, EmitterDesc};
@@ -82,9 +83,10 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
     Ok(desc)
 }
 
-/// A colour parameter with default 1 whose channels must be finite and non-negative.
+/// An emitted colour with default 1 whose channels must be finite and non-negative (a
+/// `<spectrum>` is converted as emission, without the D65 weighting of reflectances).
 fn non_negative(e: &Elem, p: &mut Props, name: &'static str) -> Res<Vec3> {
-    let v = p.rgb(name)?.unwrap_or(Vec3::ONE);
+    let v = p.colour(name, SpectrumUse::Emission)?.unwrap_or(Vec3::ONE);
     validate::colour(name, v).map_err(|i| p.invalid(name, e, &i.message))?;
     Ok(v)
 }

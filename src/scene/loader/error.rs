@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum SceneErrorKind {
-    /// A file (the scene itself, an OBJ mesh or an EXR environment map) is missing or
+    /// A file (the scene itself, a mesh or an EXR environment map) is missing or
     /// cannot be read.
     Io {
         /// The file that could not be read.
@@ -58,6 +58,8 @@ pub enum SceneErrorKind {
     InvalidValue(String),
     /// `$name` with no `<default>` or define.
     UndefinedParameter(String),
+    /// A define (`-D name=value`) that no `<default>` declares and no `$name` uses.
+    UnknownDefine(String),
     /// `ref` to an id that does not exist or names the wrong kind of object.
     UndefinedReference(String),
     /// Two objects with the same `id`.
@@ -66,6 +68,10 @@ pub enum SceneErrorKind {
     Misplaced(String),
     /// A malformed line of an OBJ file.
     Obj(String),
+    /// A malformed PLY file (header, element data or mesh).
+    Ply(String),
+    /// A malformed Mitsuba `serialized` mesh file.
+    Serialized(String),
 }
 
 impl fmt::Display for SceneErrorKind {
@@ -99,10 +105,13 @@ impl fmt::Display for SceneErrorKind {
             Self::Malformed(m) => write!(f, "malformed value: {m}"),
             Self::InvalidValue(m) => write!(f, "invalid value: {m}"),
             Self::UndefinedParameter(m) => write!(f, "undefined parameter: {m}"),
+            Self::UnknownDefine(m) => write!(f, "unknown define: {m}"),
             Self::UndefinedReference(m) => write!(f, "bad reference: {m}"),
             Self::DuplicateId(id) => write!(f, "duplicate id \"{id}\""),
             Self::Misplaced(m) => write!(f, "misplaced element: {m}"),
             Self::Obj(m) => write!(f, "malformed OBJ: {m}"),
+            Self::Ply(m) => write!(f, "malformed PLY: {m}"),
+            Self::Serialized(m) => write!(f, "malformed serialized mesh: {m}"),
         }
     }
 }
@@ -192,10 +201,13 @@ impl SceneErrorKind {
             Self::Malformed(m) => Self::Malformed(c(m)),
             Self::InvalidValue(m) => Self::InvalidValue(c(m)),
             Self::UndefinedParameter(m) => Self::UndefinedParameter(c(m)),
+            Self::UnknownDefine(m) => Self::UnknownDefine(c(m)),
             Self::UndefinedReference(m) => Self::UndefinedReference(c(m)),
             Self::DuplicateId(m) => Self::DuplicateId(c(m)),
             Self::Misplaced(m) => Self::Misplaced(c(m)),
             Self::Obj(m) => Self::Obj(c(m)),
+            Self::Ply(m) => Self::Ply(c(m)),
+            Self::Serialized(m) => Self::Serialized(c(m)),
         }
     }
 }

@@ -6,7 +6,7 @@
 //! tags `integer`, `float`, `boolean`, `string`, `rgb`, `point`, `vector`, `transform`
 //! (`lookat`, `matrix`, `translate`, `rotate`, `scale`), and the plugins
 //! `path`/`direct`, `perspective`, `independent`/`stratified`/`ldsampler`, `hdrfilm` with
-//! `box`/`gaussian`, `rectangle`/`cube`/`disk`/`sphere`/`obj`,
+//! `box`/`gaussian`/`tent` and `crop_*`, `rectangle`/`cube`/`disk`/`sphere`/`obj`/`ply`/`serialized`,
 //! `diffuse`/`conductor`/`roughconductor`/`dielectric`/`twosided`, and
 //! `area`/`point`/`constant`/`envmap`. Semantics and defaults follow Mitsuba 3.
 //!
@@ -27,16 +27,19 @@
 //! ```
 
 mod bsdf;
+mod cie_tables;
 mod context;
 mod emitter;
 mod error;
 mod file;
+mod include;
 mod integrator;
 mod params;
 mod position;
 mod props;
 mod sensor;
 mod shape;
+mod spectrum;
 mod transform;
 mod tree;
 mod values;
@@ -107,7 +110,8 @@ pub fn parse_scene(
     }
     // The total work: located at the sensor, or at the integrator if only it is given.
     let film = &desc.sensor.film;
-    let pixels = film.width as u64 * film.height as u64;
+    let window = film.window();
+    let pixels = window.width as u64 * window.height as u64;
     let spp = desc.sensor.sampler.sample_count;
     if let Err(i) = crate::scene::validate::work(pixels, spp, &desc.integrator) {
         let at = sensor.or(integrator).unwrap_or(&root);

@@ -7,6 +7,11 @@
 //! hold no `$` and a default's value is substituted when it is declared, that is the same
 //! as replacing each `$` by the longest parameter name that follows it, which a trie of the
 //! names finds in one pass.
+//!
+//! A define must be one of the scene's parameters: a name a `<default>` declares or a
+//! `$name` uses. [`Params::unused_defines`] lists the others, which the loader refuses (as the
+//! render example refuses an unknown define for its built-in scene), so a misspelt `-D`
+//! never goes unnoticed.
 
 use std::collections::HashMap;
 
@@ -28,6 +33,13 @@ pub(crate) enum SubstError {
 /// The known parameters: defines first (they win), then defaults in file order.
 pub(crate) struct Params {
     values: Vec<String>,
+    /// Per value: whether a `$name` used it, and whether a `<default>` declared its name.
+    used: Vec<bool>,
+    declared: Vec<bool>,
+    /// The defines' names (their values come first in `values`).
+    define_names: Vec<String>,
+    /// The names `<default>` elements declared, in file order.
+    default_names: Vec<String>,
     /// Trie of the names: `(node, char) → child`; node 0 is the root.
     edges: HashMap<(u32, char), u32>,
     /// For every trie node, the parameter whose name ends there.
@@ -42,14 +54,56 @@ impl Params {
     pub fn new(defines: &[(String, String)]) -> Self {
         let mut p = Self {
             values: Vec::new(),
+            used: Vec::new(),
+            declared: Vec::new(),
+            define_names: Vec::new(),
+            default_names: Vec::new(),
             edges: HashMap::new(),
             ends: vec![None],
             written: 0,
         };
         for (n, v) in defines {
-            p.add(n, v);
+            if p.add(n, v) {
+                p.define_names.push(n.clone());
+            }
         }
         p
+    }
+
+    /// A `<default>`: adds `name = value` unless a define or an earlier default gave
+    /// `name`, and marks the name as declared either way.
+    pub fn declare(&mut self, name: &str, value: &str) {
+        self.add(name, value);
+        if let Some(i) = self.find(name) {
+            self.declared[i] = true;
+        }
+        if !self.default_names.iter().any(|n| n == name) {
+            self.default_names.push(name.to_string());
+        }
+    }
+
+    /// The value index of parameter `name`.
+    fn find(&self, name: &str) -> Option<usize> {
+        let mut node = 0u32;
+        for c in name.chars() {
+            node = *self.edges.get(&(node, c))?;
+        }
+        self.ends[node as usize].map(|v| v as usize)
+    }
+
+    /// The defines that no `<default>` declared and no `$name` used, in the order given.
+    pub fn unused_defines(&self) -> Vec<&str> {
+        self.define_names
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| !self.used[i] && !self.declared[i])
+            .map(|(_, n)| n.as_str())
+            .collect()
+    }
+
+    /// The names `<default>` elements declared, in file order.
+    pub fn default_names(&self) -> &[String] {
+        &self.default_names
     }
 
     /// Adds `name = value` unless `name` is already known; returns whether it was added.
@@ -68,11 +122,14 @@ impl Params {
         }
         *slot = Some(self.values.len() as u32);
         self.values.push(value.to_string());
+        self.used.push(false);
+        self.declared.push(false);
         true
     }
 
-    /// The parameter with the longest name that starts `text`, and that name's length.
-    fn longest_prefix(&self, text: &str) -> Option<(usize, &str)> {
+    /// The parameter with the longest name that starts `text`: that name's length and the
+    /// parameter's index.
+    fn longest_prefix(&self, text: &str) -> Option<(usize, usize)> {
         let (mut node, mut best) = (0u32, None);
         for (i, c) in text.char_indices() {
             match self.edges.get(&(node, c)) {
@@ -80,7 +137,7 @@ impl Params {
                 None => break,
             }
             if let Some(v) = self.ends[node as usize] {
-                best = Some((i + c.len_utf8(), self.values[v as usize].as_str()));
+                best = Some((i + c.len_utf8(), v as usize));
             }
         }
         best
@@ -98,7 +155,9 @@ impl Params {
             let after = &rest[k + 1..];
             // No name holds `$`, so the match cannot reach past the next one.
             let region = &after[..after.find('$').unwrap_or(after.len())];
-            let (len, v) = self.longest_prefix(region).ok_or(SubstError::Undefined)?;
+            let (len, i) = self.longest_prefix(region).ok_or(SubstError::Undefined)?;
+            self.used[i] = true;
+            let v = &self.values[i];
             self.charge(out.len() + v.len())?;
             out.push_str(v);
             rest = &after[len..];
@@ -146,6 +205,18 @@ mod tests {
         assert_eq!(p.substitute("$$a"), Err(SubstError::Undefined));
         assert_eq!(p.substitute("plain").as_deref(), Ok("plain"));
         assert_eq!(p.substitute("é$aé").as_deref(), Ok("é1é"));
+    }
+
+    #[test]
+    fn a_define_counts_if_declared_or_used() {
+        let d = |n: &str| (n.to_string(), "1".to_string());
+        let mut p = Params::new(&[d("spp"), d("res"), d("sp"), d("typo")]);
+        p.declare("spp", "4");
+        p.declare("max_depth", "-1");
+        assert_eq!(p.substitute("$spp $res").as_deref(), Ok("1 1"));
+        // `$spp` is the longest match, so `sp` is not used.
+        assert_eq!(p.unused_defines(), ["sp", "typo"]);
+        assert_eq!(p.default_names(), ["spp", "max_depth"]);
     }
 
     #[test]

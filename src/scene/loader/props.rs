@@ -4,6 +4,7 @@
 
 use super::context::{Ctx, Res};
 use super::error::SceneErrorKind;
+use super::spectrum::{Spectrum, SpectrumUse};
 use super::transform::{check_attrs, read_transform, xyz};
 use super::tree::Elem;
 use super::values::{parse_bool, parse_float, parse_int, parse_triple};
@@ -18,6 +19,7 @@ pub(crate) enum Value {
     Bool(bool),
     Str(String),
     Rgb(Vec3),
+    Spectrum(Spectrum),
     Vec3(Vec3),
     Transform(Mat4),
 }
@@ -43,9 +45,12 @@ pub(crate) const OBJECT_TAGS: &[&str] = &[
 ];
 
 /// Tags Mitsuba knows that this loader does not support.
-const UNSUPPORTED_TAGS: &[&str] = &[
-    "spectrum", "texture", "medium", "phase", "volume", "include", "path", "alias",
-];
+const UNSUPPORTED_TAGS: &[&str] = &["texture", "medium", "phase", "volume", "path", "alias"];
+
+// Textures: `<texture>` is refused above, so a `<ref name="reflectance" id="…"/>` inside a
+// BSDF (a nested object here) can only name a BSDF and is refused where BSDFs read their
+// objects. Texture support plugs in here: a `Value::Texture` read from `<texture>` and
+// from `<ref name=…>` to one, and `Props::colour` returning it.
 
 /// The parameters and nested objects of a plugin element.
 pub(crate) struct Props<'c, 'a> {
@@ -94,11 +99,6 @@ impl<'c, 'a> Props<'c, 'a> {
         let p = &mut self.props[*self.index.get(name)?];
         p.used = true;
         Some((p.value.clone(), p.elem))
-    }
-
-    /// Whether `name` is given (does not mark it used).
-    pub fn has(&self, name: &str) -> bool {
-        self.index.contains_key(name)
     }
 
     /// A wrong-type error for parameter `name` given by element `e`.
@@ -169,14 +169,21 @@ impl<'c, 'a> Props<'c, 'a> {
         }
     }
 
-    /// A colour: `<rgb>`, or a `<float>`/`<integer>` used for all three channels.
+    /// A reflectance-like colour: `<rgb>`, a `<spectrum>` (converted as a reflectance),
+    /// or a `<float>`/`<integer>` used for all three channels.
     pub fn rgb(&mut self, name: &str) -> Res<Option<Vec3>> {
+        self.colour(name, SpectrumUse::Reflectance)
+    }
+
+    /// A colour as [`Props::rgb`], with a `<spectrum>` converted for `usage`.
+    pub fn colour(&mut self, name: &str, usage: SpectrumUse) -> Res<Option<Vec3>> {
         match self.raw(name) {
             None => Ok(None),
             Some((Value::Rgb(v), _)) => Ok(Some(v)),
+            Some((Value::Spectrum(s), _)) => Ok(Some(s.to_rgb(usage))),
             Some((Value::Float(v), _)) => Ok(Some(Vec3::splat(v))),
             Some((Value::Int(v), _)) => Ok(Some(Vec3::splat(v as f32))),
-            Some((_, e)) => Err(self.wrong(e, name, "an <rgb> or a <float>")),
+            Some((_, e)) => Err(self.wrong(e, name, "an <rgb>, a <spectrum> or a <float>")),
         }
     }
 
@@ -237,6 +244,17 @@ pub(crate) fn read_value(ctx: &Ctx, c: &Elem) -> Res<Value> {
         "boolean" => Value::Bool(parse_bool(&simple(c)?).map_err(malformed)?),
         "string" => Value::Str(simple(c)?),
         "rgb" => Value::Rgb(parse_triple(&simple(c)?, "rgb").map_err(malformed)?),
+        "spectrum" => {
+            if c.attr("filename").is_some() {
+                return Err(ctx.err(
+                    c,
+                    SceneErrorKind::Unsupported(
+                        "<spectrum filename=…> (spectral data files)".into(),
+                    ),
+                ));
+            }
+            Value::Spectrum(Spectrum::parse(&simple(c)?).map_err(malformed)?)
+        }
         "point" | "vector" => {
             check_attrs(ctx, c, &["name", "value", "x", "y", "z"], &["name"])?;
             no_children(ctx, c)?;

@@ -7,7 +7,7 @@ use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::scene::description::{
-    FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc,
+    CropWindow, FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc,
 };
 use crate::scene::validate::{self, MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
 
@@ -122,15 +122,24 @@ fn read_film(ctx: &Ctx, e: &Elem) -> Res<FilmDesc> {
     for name in ["sample_border", "compensate"] {
         p.bool(name)?;
     }
-    for name in [
-        "crop_offset_x",
-        "crop_offset_y",
-        "crop_width",
-        "crop_height",
-    ] {
-        if p.has(name) {
-            return Err(ctx.err(e, SceneErrorKind::Unsupported(format!("film \"{name}\""))));
-        }
+    // Mitsuba's crop window: offsets default to 0, sizes to the rest of the film.
+    let max = MAX_RESOLUTION;
+    let (ox, oy) = (
+        p.int_in("crop_offset_x", 0, max)?,
+        p.int_in("crop_offset_y", 0, max)?,
+    );
+    let (cw, ch) = (
+        p.int_in("crop_width", 1, max)?,
+        p.int_in("crop_height", 1, max)?,
+    );
+    if ox.is_some() || oy.is_some() || cw.is_some() || ch.is_some() {
+        let (ox, oy) = (ox.unwrap_or(0) as u32, oy.unwrap_or(0) as u32);
+        f.crop = Some(CropWindow {
+            offset_x: ox,
+            offset_y: oy,
+            width: cw.map_or(f.width.saturating_sub(ox), |v| v as u32),
+            height: ch.map_or(f.height.saturating_sub(oy), |v| v as u32),
+        });
     }
     let mut filter = None;
     for o in &p.objects {
@@ -157,6 +166,13 @@ fn read_filter(ctx: &Ctx, e: &Elem) -> Res<FilterDesc> {
     no_objects(ctx, &p)?;
     let f = match ty {
         "box" => FilterDesc::Box,
+        "tent" => {
+            let radius = p.float("radius")?.unwrap_or(1.0);
+            if !(radius > 0.0 && radius <= 16.0) {
+                return Err(p.invalid("radius", e, "must lie in (0, 16] pixels"));
+            }
+            FilterDesc::Tent { radius }
+        }
         "gaussian" => {
             let stddev = p.float("stddev")?.unwrap_or(0.5);
             if !(stddev > 0.0 && stddev <= 16.0) {

@@ -1,5 +1,5 @@
-//! `<shape>`: `rectangle`, `cube`, `disk`, `sphere` and `obj`, each with an optional BSDF
-//! (or `<ref>`) and an optional `area` emitter.
+//! `<shape>`: `rectangle`, `cube`, `disk`, `sphere` and the mesh files `obj`, `ply` and
+//! `serialized`, each with an optional BSDF (or `<ref>`) and an optional `area` emitter.
 
 use super::bsdf::read_bsdf_or_ref;
 use super::context::{Ctx, Res};
@@ -11,6 +11,37 @@ use super::{plugin_type, unknown_plugin};
 use crate::scene::description::{BsdfDesc, ShapeDesc, ShapeKind};
 use crate::scene::validate;
 use glam::Vec3;
+
+/// The parameters of a shape read from a mesh file; the file must exist and be readable
+/// (its contents are read when the geometry is built).
+fn mesh_file<'a>(ctx: &Ctx<'a>, e: &'a Elem, ty: &str, p: &mut Props) -> Res<ShapeKind> {
+    let name = p.string("filename")?.ok_or_else(|| {
+        ctx.err(
+            e,
+            SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
+        )
+    })?;
+    let filename = ctx.readable_file(e, &name, None)?;
+    let face_normals = p.bool("face_normals")?.unwrap_or(false);
+    Ok(match ty {
+        "obj" => ShapeKind::Obj {
+            filename,
+            face_normals,
+            flip_tex_coords: p.bool("flip_tex_coords")?.unwrap_or(true),
+        },
+        "ply" => ShapeKind::Ply {
+            filename,
+            face_normals,
+        },
+        _ => ShapeKind::Serialized {
+            filename,
+            shape_index: p
+                .int_in("shape_index", 0, i64::from(u32::MAX))?
+                .unwrap_or(0) as u32,
+            face_normals,
+        },
+    })
+}
 
 /// Reads a `<shape>` element.
 pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
@@ -28,22 +59,7 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
             }
             ShapeKind::Sphere { center, radius }
         }
-        "obj" => {
-            let name = p.string("filename")?.ok_or_else(|| {
-                ctx.err(
-                    e,
-                    SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
-                )
-            })?;
-            let filename = ctx.readable_file(e, &name, None)?;
-            let face_normals = p.bool("face_normals")?.unwrap_or(false);
-            // Texture coordinates are not used by any supported material.
-            p.bool("flip_tex_coords")?;
-            ShapeKind::Obj {
-                filename,
-                face_normals,
-            }
-        }
+        "obj" | "ply" | "serialized" => mesh_file(ctx, e, ty, &mut p)?,
         other => return Err(unknown_plugin(ctx, e, other)),
     };
     let mut shape = ShapeDesc::new(kind);

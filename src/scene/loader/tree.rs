@@ -1,11 +1,13 @@
 //! Reads the XML text into a small owned element tree, checking the version, applying
-//! `<default>` parameters and `-D` defines, and substituting `$name` in every attribute
-//! value in document order, as Mitsuba 3 does.
+//! `<default>` parameters and `-D` defines, substituting `$name` in every attribute
+//! value in document order, and putting the contents of each `<include filename>`d scene
+//! in its place, as Mitsuba 3 does.
 
 use super::error::{clip, SceneError, SceneErrorKind};
 use super::params::{Params, SubstError};
 use super::position::Positions;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// Deepest element nesting accepted (real scenes use fewer than ten levels).
 const MAX_DEPTH: usize = 64;
@@ -27,6 +29,8 @@ pub(crate) struct Elem {
     pub line: u32,
     /// 1-based column of the start tag.
     pub column: u32,
+    /// The included file the element comes from (`None`: the scene file itself).
+    pub file: Option<Arc<Path>>,
 }
 
 impl Elem {
@@ -86,6 +90,12 @@ pub(crate) fn read_tree(
     let mut reader = Reader {
         positions: Positions::new(xml),
         file,
+        included: None,
+        base_dir: file
+            .and_then(Path::parent)
+            .map(Path::to_path_buf)
+            .unwrap_or_default(),
+        stack: file.map(super::include::canonical).into_iter().collect(),
         params: Params::new(defines),
     };
     let root = reader.convert(doc.root_element(), 0)?;
@@ -109,16 +119,47 @@ pub(crate) fn read_tree(
             "missing \"version\" attribute".into(),
         )),
         Some(v) => match check_version(v) {
-            Ok(()) => Ok(root),
+            Ok(()) => check_defines(&reader.params, file, defines).map(|()| root),
             Err(m) => err(SceneErrorKind::Version(m)),
         },
     }
 }
 
+/// Refuses a define that is none of the scene's parameters (see [`Params`]).
+fn check_defines(
+    params: &Params,
+    file: Option<&Path>,
+    defines: &[(String, String)],
+) -> Result<(), SceneError> {
+    let Some(name) = params.unused_defines().first().copied() else {
+        return Ok(());
+    };
+    let value = defines
+        .iter()
+        .find(|(n, _)| n == name)
+        .map_or("", |(_, v)| v.as_str());
+    let declared = params.default_names();
+    let list = if declared.is_empty() {
+        "it declares no <default> parameter".to_string()
+    } else {
+        format!("its <default> parameters: {}", declared.join(", "))
+    };
+    Err(SceneError::new(
+        file,
+        None,
+        None,
+        None,
+        SceneErrorKind::UnknownDefine(format!(
+            "-D {name}={value}: the scene neither declares nor uses a parameter \"{name}\" \
+             ({list})"
+        )),
+    ))
+}
+
 /// The byte offset of the first start tag nested deeper than [`MAX_DEPTH`] or with more
 /// than [`MAX_ATTRIBUTES`] attributes, and what is wrong, by a scan that skips comments,
 /// CDATA, processing instructions and quoted attribute values.
-fn prescan(xml: &str) -> Option<(usize, String)> {
+pub(super) fn prescan(xml: &str) -> Option<(usize, String)> {
     let b = xml.as_bytes();
     let skip_to = |from: usize, end: &str| {
         xml[from..]
@@ -182,7 +223,7 @@ fn tag_end(b: &[u8], mut i: usize) -> (usize, bool, usize) {
 
 /// Accepts `major.minor.patch` with major 2 or more (older files need Mitsuba's
 /// camelCase upgrade, which is not supported).
-fn check_version(v: &str) -> Result<(), String> {
+pub(super) fn check_version(v: &str) -> Result<(), String> {
     let parts: Vec<&str> = v.split(['.', ' ']).filter(|s| !s.is_empty()).collect();
     let nums: Option<Vec<u32>> = parts.iter().map(|p| p.parse().ok()).collect();
     match nums {
@@ -196,14 +237,24 @@ fn check_version(v: &str) -> Result<(), String> {
     }
 }
 
-struct Reader<'a> {
-    positions: Positions<'a>,
-    file: Option<&'a Path>,
-    params: Params,
+pub(super) struct Reader<'a> {
+    pub(super) positions: Positions<'a>,
+    pub(super) file: Option<&'a Path>,
+    /// The file being read when it is an included one (shared by its elements).
+    pub(super) included: Option<Arc<Path>>,
+    /// The scene file's folder, against which `<include>` names resolve.
+    pub(super) base_dir: PathBuf,
+    /// The files being read, outermost first (for cycles and depth).
+    pub(super) stack: Vec<PathBuf>,
+    pub(super) params: Params,
 }
 
 impl Reader<'_> {
-    fn convert(&mut self, node: roxmltree::Node, depth: usize) -> Result<Elem, SceneError> {
+    pub(super) fn convert(
+        &mut self,
+        node: roxmltree::Node,
+        depth: usize,
+    ) -> Result<Elem, SceneError> {
         let (line, column) = self.positions.at(node.range().start);
         // Describe with the raw attributes until substitution succeeds.
         let mut elem = Elem {
@@ -215,6 +266,7 @@ impl Reader<'_> {
             children: Vec::new(),
             line,
             column,
+            file: self.included.clone(),
         };
         for i in 0..elem.attrs.len() {
             let value = self.substitute(&elem.attrs[i].1);
@@ -242,6 +294,9 @@ impl Reader<'_> {
                 let c = self.convert(child, depth + 1)?;
                 if c.tag == "default" {
                     self.add_default(&c)?;
+                } else if c.tag == "include" {
+                    let inner = self.include(&c, depth)?;
+                    elem.children.extend(inner);
                 } else {
                     elem.children.push(c);
                 }
@@ -269,7 +324,7 @@ impl Reader<'_> {
                 SceneErrorKind::InvalidValue("<default> needs a non-empty name".into()),
             ));
         }
-        self.params.add(name, value);
+        self.params.declare(name, value);
         Ok(())
     }
 
@@ -285,9 +340,9 @@ impl Reader<'_> {
         })
     }
 
-    fn err(&self, e: &Elem, kind: SceneErrorKind) -> SceneError {
+    pub(super) fn err(&self, e: &Elem, kind: SceneErrorKind) -> SceneError {
         SceneError::new(
-            self.file,
+            e.file.as_deref().or(self.file),
             Some(e.line),
             Some(e.column),
             Some(e.describe()),

@@ -46,7 +46,7 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
     scene: &S,
     p: &LoopParams<'_>,
     bdpt: &Bdpt,
-    mut rng: R,
+    mut sampler: R,
     (x0, y0, x1, y1): (u32, u32, u32, u32),
     (s0, s1): (u32, u32),
 ) -> TileOut {
@@ -67,8 +67,8 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
                     out.pixels.push((index, acc));
                     return out;
                 }
-                rng.start_pixel_sample([x, y], s);
-                let off = p.filter.sample(rng.next_2d());
+                sampler.start_pixel_sample([x, y], s);
+                let off = p.filter.sample(sampler.next_2d());
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
                 let (ray, t_max) = p.camera.generate_ray_with_tmax(film);
                 let r = bdpt.sample(
@@ -76,7 +76,7 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
                     ray.origin,
                     ray.dir,
                     t_max.min(p.t_max),
-                    &mut rng,
+                    &mut sampler,
                     &mut buf,
                     &mut out.splats,
                     Some(&mut out.stats),
@@ -96,7 +96,8 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
     out
 }
 
-/// Renders `spp` bidirectional samples per pixel (fewer if cancelled).
+/// Renders the sample range in the window with bidirectional samples (fewer if cancelled);
+/// light tracing splats over the whole film.
 pub(crate) fn render_loop_bdpt<S: BidirectionalScene + Sync>(
     scene: &S,
     p: &LoopParams<'_>,
@@ -107,13 +108,13 @@ pub(crate) fn render_loop_bdpt<S: BidirectionalScene + Sync>(
         strategies: Some(StrategyStats::default()),
         ..LoopStats::default()
     };
-    let all = tiles(p.width, p.height);
-    let total = p.spp as u64 * p.width as u64 * p.height as u64;
+    let all = tiles(p.window);
+    let total = p.samples.len() as u64 * p.window.area();
     let done = AtomicU64::new(0);
-    let step = pass_size(p.spp).min(MAX_PASS);
-    let mut s0 = 0;
-    while s0 < p.spp && !p.cancel.load(Ordering::Relaxed) {
-        let s1 = (s0 + step).min(p.spp);
+    let step = pass_size(p.samples.len()).min(MAX_PASS);
+    let mut s0 = p.samples.start;
+    while s0 < p.samples.end && !p.cancel.load(Ordering::Relaxed) {
+        let s1 = (s0 + step).min(p.samples.end);
         for batch in all.chunks(BATCH) {
             let results: Vec<Option<TileOut>> = batch
                 .par_iter()
@@ -153,8 +154,10 @@ pub(crate) fn render_loop_bdpt<S: BidirectionalScene + Sync>(
         s0 = s1;
     }
     // Light tracing made one light subpath per pixel sample: a pixel's splats divided by
-    // the samples per pixel taken (the same for every pixel unless cancelled).
-    let taken = stats.samples as f64 / (p.width as f64 * p.height as f64);
-    film.set_splat_scale(if taken > 0.0 { 1.0 / taken } else { 0.0 });
+    // the samples per pixel taken (the same for every pixel of the window unless cancelled).
+    film.set_splat_scale(crate::scene::film::splat_scale(
+        stats.samples,
+        p.window.area(),
+    ));
     (film, stats)
 }

@@ -10,12 +10,12 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> BidirectionalScene
 {
     fn sample_emission(&self, u_pick: Vec2, u_pos: Vec2, u_dir: Vec2) -> Option<EmissionSample> {
         self.lights
-            .sample_emission(self.geo, self.world, u_pick, u_pos, u_dir)
+            .sample_emission(self.geometry, self.world, u_pick, u_pos, u_dir)
     }
 
     fn emission_pdf(&self, light: u32, point: &SurfacePoint, dir: Vec3) -> (f32, f32) {
         self.lights
-            .emission_pdf(self.geo, self.world, light, point, dir)
+            .emission_pdf(self.geometry, self.world, light, point, dir)
     }
 
     fn emitter_at(&self, sp: &SurfacePoint) -> Option<u32> {

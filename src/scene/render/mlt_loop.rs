@@ -82,14 +82,14 @@ fn brightness_per_length<S: BidirectionalScene + Sync>(
                 let u = lattice - lattice.floor();
                 let raster = (u * film).min(film * (1.0 - f32::EPSILON));
                 let (origin, dir, t_max) = scene.camera_ray(raster);
-                let mut rng = PrimarySamples::new(combine(key, i as u64), 0.0, 1.0);
+                let mut primary = PrimarySamples::new(combine(key, i as u64), 0.0, 1.0);
                 splats.clear();
                 bdpt.sample(
                     scene,
                     origin,
                     dir,
                     t_max,
-                    &mut rng,
+                    &mut primary,
                     &mut buf,
                     &mut splats,
                     Some(&mut st),

@@ -25,20 +25,17 @@ mod bidir;
 mod bidir_tests;
 mod bidir_view;
 mod effects;
+mod error;
 mod mlt_loop;
+mod split;
 mod tiles;
 mod view;
 
 pub use effects::Effects;
-pub use view::SceneView;
+pub use error::RenderError;
+pub(crate) use view::SceneView;
 
-/// The geometry and camera the renderer uses (one place to switch implementations).
-pub(crate) mod geo {
-    pub use crate::scene::camera::Camera;
-    pub use crate::scene::geometry::*;
-}
-
-pub use geo::{AccelKind, ShapeSampling};
+pub use crate::scene::geometry::{AccelKind, ShapeSampling};
 
 use crate::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
 use crate::sampling::sampler::{
@@ -47,28 +44,17 @@ use crate::sampling::sampler::{
 };
 use crate::sampling::SamplingError;
 use crate::scene::bsdf::{AnyBsdf, Sided};
+use crate::scene::camera::Camera;
 use crate::scene::description::{
     IntegratorDesc, IntegratorKind, SamplerKind, SceneDescription, ShapeKind,
 };
-use crate::scene::film::{write_exr, write_png, Film, ImageError, PixelFilter};
+use crate::scene::film::{write_exr, write_png, Crop, Film, ImageError, PixelFilter, SampleRange};
+use crate::scene::geometry::Geometry;
 use crate::scene::light::Lights;
-use geo::{Camera, Geometry};
 use glam::{Vec3, Vec4Swizzles};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
-
-/// A scene could not be prepared for rendering.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct RenderError(pub String);
-
-impl std::fmt::Display for RenderError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for RenderError {}
 
 /// Overrides of what the scene file says.
 #[derive(Debug, Clone, PartialEq)]
@@ -100,6 +86,13 @@ pub struct RenderOptions {
     /// runs the general loop (every material type, point lights and environment checked at
     /// run time); for benchmarks and tests of the specialisation.
     pub specialize: bool,
+    /// Render only the pixel samples with these indices (`render --samples START..END`),
+    /// exactly those a render of every sample draws for them; else all of them. Not with
+    /// `mlt`, whose Markov chains are not divided by pixel sample.
+    pub samples: Option<SampleRange>,
+    /// Render only these pixels (`render --crop x0,y0,x1,y1`); else the whole image. Not
+    /// with `mlt`.
+    pub crop: Option<Crop>,
 }
 
 impl Default for RenderOptions {
@@ -115,13 +108,15 @@ impl Default for RenderOptions {
             specialize: true,
             integrator: None,
             bdpt_only: None,
+            samples: None,
+            crop: None,
         }
     }
 }
 
 /// A scene ready to render.
 pub struct Renderer {
-    geo: Geometry,
+    geometry: Geometry,
     lights: Lights,
     bsdfs: Vec<Sided<AnyBsdf>>,
     camera: Camera,
@@ -135,6 +130,9 @@ pub struct Renderer {
     effects: Effects,
     specialize: bool,
     seed: u64,
+    samples: SampleRange,
+    crop: Crop,
+    identity: u64,
 }
 
 /// A finished (or cancelled) render.
@@ -201,11 +199,7 @@ impl Renderer {
     /// refuses (with `opts.spp` in place of the file's sample count, if given).
     pub fn new(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {
         let spp = opts.spp.unwrap_or(desc.sensor.sampler.sample_count);
-        crate::scene::validate::scene(desc, spp).map_err(RenderError)?;
-        let base: Option<PathBuf> = desc
-            .source
-            .as_ref()
-            .and_then(|p| p.parent().map(Path::to_path_buf));
+        crate::scene::validate::scene(desc, spp).map_err(RenderError::Invalid)?;
         // The bidirectional estimators' s = 1 strategy samples rectangles and triangles by
         // area: their other strategies cover what solid-angle sampling adds near a light,
         // at a fraction of its cost (spheres keep cone sampling either way).
@@ -214,19 +208,23 @@ impl Renderer {
             IntegratorKind::Bdpt | IntegratorKind::Mlt => ShapeSampling::Area,
             _ => opts.light_sampling,
         };
-        let geo = Geometry::new(&desc.shapes, base.as_deref(), opts.accel)
-            .map_err(|e| RenderError(format!("geometry: {e}")))?
+        // The loader has resolved mesh file names against the scene file's folder already
+        // (a description built in code names them relative to the working directory).
+        let geo = Geometry::new(&desc.shapes, None, opts.accel)
+            .map_err(RenderError::Geometry)?
             .with_shape_sampling(shape_sampling);
-        let lights =
-            Lights::new(desc, &geo, scene_radius(desc)).map_err(|e| RenderError(e.to_string()))?;
-        let camera = Camera::new(&desc.sensor).map_err(|e| RenderError(format!("camera: {e}")))?;
+        let lights = Lights::new(desc, &geo, scene_radius(desc)).map_err(RenderError::Lights)?;
+        let camera = Camera::new(&desc.sensor).map_err(RenderError::Camera)?;
         let bsdfs = desc
             .shapes
             .iter()
             .enumerate()
             .map(|(i, s)| {
-                AnyBsdf::from_desc(&s.bsdf)
-                    .map_err(|e| RenderError(format!("material of shape {i} ({:?}): {e}", s.id)))
+                AnyBsdf::from_desc(&s.bsdf).map_err(|error| RenderError::Material {
+                    shape: i,
+                    id: s.id.clone(),
+                    error,
+                })
             })
             .collect::<Result<Vec<_>, _>>()?;
         let strategy = opts.strategy.unwrap_or_default();
@@ -279,27 +277,30 @@ impl Renderer {
         };
         if matches!(integrator, Integrator::Bdpt(_) | Integrator::Mlt(_)) {
             if !camera.is_similarity() {
-                return Err(RenderError(format!(
-                    "{}: the camera's to_world must be a rotation, uniform scale and \
-                     translation (its importance is exact only then)",
-                    integrator.name()
-                )));
+                return Err(RenderError::Unsupported {
+                    integrator: integrator.name(),
+                    reason: "the camera's to_world must be a rotation, uniform scale and \
+                             translation (its importance is exact only then)",
+                });
             }
             if matches!(strategy, Strategy::BsdfOnly | Strategy::LightOnly)
                 && matches!(integrator, Integrator::Mlt(_))
             {
-                return Err(RenderError(
-                    "mlt weighs its strategies by MIS: use --strategy balance or power".into(),
-                ));
+                return Err(RenderError::Unsupported {
+                    integrator: "mlt",
+                    reason: "it weighs its strategies by MIS: use --strategy balance or power",
+                });
             }
         }
         let film = &desc.sensor.film;
         if film.width == 0 || film.height == 0 {
-            return Err(RenderError(format!(
-                "film size {}×{} is empty",
-                film.width, film.height
-            )));
+            return Err(RenderError::EmptyFilm {
+                width: film.width,
+                height: film.height,
+            });
         }
+        // The rendered window: the whole film, or its crop window (the camera maps it).
+        let (width, height) = (camera.width(), camera.height());
         let effects = Effects::of(&bsdfs, &lights, &integrator);
         let file_spp = match integrator {
             Integrator::Mlt(m) => m.mutations_per_pixel,
@@ -308,23 +309,43 @@ impl Renderer {
         let spp = opts.spp.unwrap_or(file_spp);
         let seed = opts.seed.unwrap_or(desc.sensor.sampler.seed);
         let kind = opts.sampler.unwrap_or(desc.sensor.sampler.kind);
-        let sampler =
-            make_sampler(kind, spp, seed).map_err(|e| RenderError(format!("sampler: {e}")))?;
+        let sampler = make_sampler(kind, spp, seed).map_err(RenderError::Sampler)?;
+        let spp = sampler.samples_per_pixel();
+        let (samples, crop) = split::window(opts, &integrator, spp, width, height)?;
+        let mut resolved = desc.clone();
+        resolved.integrator = integrator_desc;
+        resolved.sensor.sampler = crate::scene::description::SamplerDesc {
+            kind,
+            sample_count: spp,
+            seed,
+        };
+        let identity = split::render_identity(
+            &resolved,
+            None,
+            &format!(
+                "{integrator:?} {:?} {shape_sampling:?} {}",
+                opts.accel, opts.specialize
+            ),
+        )
+        .map_err(RenderError::Invalid)?;
         Ok(Self {
-            geo,
+            geometry: geo,
             lights,
             bsdfs,
             camera,
             integrator,
             filter: PixelFilter::from_desc(&film.filter),
-            width: film.width,
-            height: film.height,
-            spp: sampler.samples_per_pixel(),
+            width,
+            height,
+            spp,
             sampler,
             threads: opts.threads,
             effects,
             specialize: opts.specialize,
             seed,
+            samples,
+            crop,
+            identity,
         })
     }
 
@@ -353,9 +374,10 @@ impl Renderer {
         &self.integrator
     }
 
-    /// Renders; `progress(done, total)` is called with sample counts from worker threads,
-    /// and setting `cancel` stops early, keeping every sample taken (pixels then report
-    /// their own counts).
+    /// Renders the sample range and crop; `progress(done, total)` is called with sample
+    /// counts from worker threads, and setting `cancel` stops early, keeping every sample
+    /// taken (pixels then report their own counts). The film is the whole image; pixels
+    /// outside the crop hold no sample.
     pub fn render(
         &self,
         progress: &(dyn Fn(u64, u64) + Sync),
@@ -369,6 +391,8 @@ impl Renderer {
             width: self.width,
             height: self.height,
             spp: self.spp,
+            samples: self.samples,
+            window: self.crop,
             sampler: &self.sampler,
             seed: self.seed,
             t_max: f32::INFINITY,
@@ -413,13 +437,13 @@ impl Renderer {
                     two_sided: b.two_sided,
                 })
                 .collect();
-            self.run_flags(bsdfs, p)
+            self.run_specialised(bsdfs, p)
         } else {
-            self.run_flags(self.bsdfs.clone(), p)
+            self.run_specialised(self.bsdfs.clone(), p)
         }
     }
 
-    fn run_flags<B: crate::integrator::Bsdf + Sync>(
+    fn run_specialised<B: crate::integrator::Bsdf + Sync>(
         &self,
         bsdfs: Vec<B>,
         p: &tiles::LoopParams<'_>,
@@ -438,11 +462,11 @@ impl Renderer {
         bsdfs: Vec<B>,
     ) -> SceneView<'_, B, DELTA, ENV> {
         SceneView {
-            geo: &self.geo,
+            geometry: &self.geometry,
             bsdfs,
             lights: &self.lights,
             camera: &self.camera,
-            world: self.geo.bounding_sphere(),
+            world: self.geometry.bounding_sphere(),
             filter: &self.filter,
         }
     }

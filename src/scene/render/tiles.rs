@@ -1,12 +1,14 @@
-//! The parallel render loop: passes over the image, tiles in parallel (rayon), per-pixel
-//! accumulation merged in a fixed order so the result does not depend on the thread count.
+//! The parallel render loop: passes over the sample range, tiles of the crop in parallel
+//! (rayon), per-pixel accumulation merged in a fixed order so the result does not depend on
+//! the thread count. A pixel sample is seeded by its pixel and its index alone, so a render
+//! of a sample range or a crop draws exactly the samples a whole render draws for them.
 //! The cancel flag is read before every pixel sample, so cancelling takes effect within
 //! one pixel sample (bounded by the loader's limits on per-sample work).
 
-use super::geo::Camera;
 use crate::integrator::{Integrator, Scene};
 use crate::sampling::sampler::{AnySampler, Sampler};
-use crate::scene::film::{Film, PixelAccum, PixelFilter};
+use crate::scene::camera::Camera;
+use crate::scene::film::{Crop, Film, PixelAccum, PixelFilter, SampleRange};
 use glam::Vec2;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -21,7 +23,12 @@ pub(crate) struct LoopParams<'a> {
     pub filter: &'a PixelFilter,
     pub width: u32,
     pub height: u32,
+    /// Samples per pixel of the whole render (the sampler's layout).
     pub spp: u32,
+    /// The sample indices to render.
+    pub samples: SampleRange,
+    /// The pixels to render.
+    pub window: Crop,
     pub sampler: &'a AnySampler,
     /// The render's seed (Metropolis chains derive theirs from it).
     pub seed: u64,
@@ -44,11 +51,12 @@ pub(crate) struct LoopStats {
     pub nonfinite: u64,
 }
 
-pub(crate) fn tiles(w: u32, h: u32) -> Vec<(u32, u32, u32, u32)> {
+/// The tiles of window `c`, row by row.
+pub(crate) fn tiles(c: Crop) -> Vec<(u32, u32, u32, u32)> {
     let mut v = Vec::new();
-    for y0 in (0..h).step_by(TILE as usize) {
-        for x0 in (0..w).step_by(TILE as usize) {
-            v.push((x0, y0, (x0 + TILE).min(w), (y0 + TILE).min(h)));
+    for y0 in (c.y0..c.y1).step_by(TILE as usize) {
+        for x0 in (c.x0..c.x1).step_by(TILE as usize) {
+            v.push((x0, y0, (x0 + TILE).min(c.x1), (y0 + TILE).min(c.y1)));
         }
     }
     v
@@ -118,17 +126,17 @@ fn render_tile_with<S: Scene, R: Sampler>(
     (out, rays, nonfinite)
 }
 
-/// Renders `spp` samples per pixel (fewer if cancelled) into a film.
+/// Renders the sample range in the window (fewer samples if cancelled) into a film.
 pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Film, LoopStats) {
     let mut film = Film::new(p.width, p.height);
     let mut stats = LoopStats::default();
-    let tiles = tiles(p.width, p.height);
-    let total = p.spp as u64 * p.width as u64 * p.height as u64;
+    let tiles = tiles(p.window);
+    let total = p.samples.len() as u64 * p.window.area();
     let done = AtomicU64::new(0);
-    let step = pass_size(p.spp);
-    let mut s0 = 0;
-    while s0 < p.spp && !p.cancel.load(Ordering::Relaxed) {
-        let s1 = (s0 + step).min(p.spp);
+    let step = pass_size(p.samples.len());
+    let mut s0 = p.samples.start;
+    while s0 < p.samples.end && !p.cancel.load(Ordering::Relaxed) {
+        let s1 = (s0 + step).min(p.samples.end);
         let results: Vec<Option<TileResult>> = tiles
             .par_iter()
             .map(|&t| {

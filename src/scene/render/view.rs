@@ -2,23 +2,21 @@
 //! [`crate::integrator::Scene`], specialised at compile time on the material type and on
 //! whether the scene has delta lights and an environment.
 
-use super::geo::{offset_origin, Geometry, Hit, Ray};
 use crate::integrator::{Bsdf, Frame, LightSample, Scene, SurfacePoint};
+use crate::scene::camera::Camera;
+use crate::scene::geometry::{offset_origin, Geometry, Hit, Ray};
 use crate::scene::light::Lights;
 use glam::{Vec2, Vec3};
-
-/// Relative shortening of shadow rays, so the light's own surface does not occlude itself.
-const SHADOW_EPSILON: f32 = 1e-3;
 
 /// A scene specialised on its material type `B` and on whether delta lights (`DELTA`) and
 /// an environment (`ENV`) may be present: when a flag is `false` the code paths for it are
 /// constant false and compiled out; when `true` the lights are asked at run time.
-pub struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
-    pub(crate) geo: &'a Geometry,
+pub(crate) struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
+    pub(crate) geometry: &'a Geometry,
     pub(crate) bsdfs: Vec<B>,
     pub(crate) lights: &'a Lights,
     /// The camera, for the bidirectional estimators' camera endpoint.
-    pub(crate) camera: &'a super::geo::Camera,
+    pub(crate) camera: &'a Camera,
     /// The scene's bounding sphere (centre, radius): where lights at infinity emit from.
     pub(crate) world: (Vec3, f32),
     /// The pixel filter, by which the camera places its film samples.
@@ -43,13 +41,15 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
 
     #[inline]
     fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfacePoint> {
-        self.geo.intersect(&Ray { origin, dir }, t_max).map(surface)
+        self.geometry
+            .intersect(&Ray { origin, dir }, t_max)
+            .map(surface)
     }
 
     #[inline(always)]
     fn trace(&self, from: &SurfacePoint, dir: Vec3) -> Option<SurfacePoint> {
         let origin = offset_origin(from.p, from.ng, dir);
-        self.geo
+        self.geometry
             .intersect(&Ray { origin, dir }, f32::INFINITY)
             .map(surface)
     }
@@ -57,12 +57,7 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
     #[inline(always)]
     fn occluded(&self, from: &SurfacePoint, dir: Vec3, dist: f32) -> bool {
         let origin = offset_origin(from.p, from.ng, dir);
-        let t_max = if dist.is_finite() {
-            dist * (1.0 - SHADOW_EPSILON)
-        } else {
-            f32::INFINITY
-        };
-        self.geo.occluded(&Ray { origin, dir }, t_max)
+        self.geometry.occluded(&Ray { origin, dir }, dist)
     }
 
     #[inline]
@@ -104,7 +99,7 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
 
     #[inline]
     fn sample_light(&self, from: &SurfacePoint, u_pick: Vec2, u: Vec2) -> Option<LightSample> {
-        self.lights.sample(self.geo, from, u_pick, u)
+        self.lights.sample(self.geometry, from, u_pick, u)
     }
 
     #[inline]
@@ -114,7 +109,7 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
 
     #[inline]
     fn light_pdf(&self, from: &SurfacePoint, hit: &SurfacePoint) -> f32 {
-        self.lights.pdf_hit(self.geo, from, hit)
+        self.lights.pdf_hit(self.geometry, from, hit)
     }
 
     #[inline]
@@ -166,7 +161,7 @@ mod tests {
             .collect();
         let camera = Camera::new(&desc.sensor).unwrap();
         let scene = SceneView::<_, true, false> {
-            geo: &geo,
+            geometry: &geo,
             bsdfs,
             lights: &lights,
             camera: &camera,

@@ -6,7 +6,7 @@ use glam::Vec2;
 mod burley;
 
 use super::hash::{combine, mix64, pixel_key_of_mixed};
-use super::{check_spp, Sampler};
+use super::{check_spp, stream_dimension, SampleSource, Sampler};
 use crate::sampling::SamplingError;
 
 /// Sample indices per Sobol block: `sobol_burley` supports indices below 2¹⁶.
@@ -26,8 +26,9 @@ const BLOCK_BITS: u32 = 16;
 /// Exactly: let `i` be the sample index modulo 2¹⁶, `k` a 64-bit hash of (seed, pixel,
 /// `⌊index / 2¹⁶⌋`), and `s_d = (k ⊕ (k >> 32)) + d · 0x9e3779b9 mod 2³²` the 32-bit scramble
 /// seed of dimension `d` (1D and 2D calls since [`Sampler::start_pixel_sample`] both count).
-/// Then [`Sampler::next_2d`] returns `(sobol_burley::sample(i, 0, s_d),
-/// sobol_burley::sample(i, 1, s_d))` and [`Sampler::next_1d`] returns
+/// Then [`SampleSource::next_2d`](super::SampleSource::next_2d) returns
+/// `(sobol_burley::sample(i, 0, s_d), sobol_burley::sample(i, 1, s_d))` and
+/// [`SampleSource::next_1d`](super::SampleSource::next_1d) returns
 /// `sobol_burley::sample(i, 0, s_d)` (crate version 0.5). The crate hashes the seed again for
 /// its index shuffle and for each Owen scramble, so one full hash per pixel sample plus a Weyl
 /// step per dimension decorrelates the dimensions (the crate's own padding example steps the
@@ -42,7 +43,7 @@ const BLOCK_BITS: u32 = 16;
 /// Values lie in `[0, 1)` (multiples of 2⁻²³). Mitsuba 3's `ldsampler` maps here.
 ///
 /// ```
-/// use mcrt::sampling::sampler::{Sampler, SobolSampler};
+/// use mcrt::sampling::sampler::{SampleSource, Sampler, SobolSampler};
 ///
 /// let mut s = SobolSampler::new(16, 1).unwrap();
 /// let mut cells = [0; 16];
@@ -127,6 +128,12 @@ impl Sampler for SobolSampler {
             .wrapping_add(dim.wrapping_mul(DIMENSION_STEP));
     }
 
+    fn samples_per_pixel(&self) -> u32 {
+        self.spp
+    }
+}
+
+impl SampleSource for SobolSampler {
     #[inline]
     fn next_1d(&mut self) -> f32 {
         let seed = self.take_seed();
@@ -140,8 +147,9 @@ impl Sampler for SobolSampler {
         Vec2::new(x, y)
     }
 
-    fn samples_per_pixel(&self) -> u32 {
-        self.spp
+    #[inline]
+    fn start_stream(&mut self, stream: u32) {
+        self.skip_to_dimension(stream_dimension(stream));
     }
 }
 

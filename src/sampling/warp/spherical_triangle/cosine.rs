@@ -4,9 +4,9 @@
 use glam::{Vec2, Vec3};
 
 use super::super::linear::Bilinear;
-use super::super::sphere::polar::ONE_MINUS_EPSILON;
 use super::super::{InvertibleWarp, Warp};
 use super::SphericalTriangle;
+use crate::sampling::unit::ONE_MINUS_EPSILON;
 use crate::sampling::SamplingError;
 
 /// The smallest corner weight, relative to the largest: a corner whose cosine is 0 keeps a

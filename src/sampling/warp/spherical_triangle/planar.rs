@@ -281,7 +281,7 @@ impl Planar {
 pub(crate) fn clamp_unit_f64(u1: f64, u2: f64) -> Vec2 {
     let c = |x: f64| {
         if x >= 0.0 {
-            (x as f32).min(1.0 - f32::EPSILON / 2.0)
+            (x as f32).min(crate::sampling::ONE_MINUS_EPSILON)
         } else {
             0.0
         }

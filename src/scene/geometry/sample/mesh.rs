@@ -1,13 +1,12 @@
-//! Sampling triangle meshes (and cubes) triangle by triangle, rectangles as a whole, by
-//! solid angle through the spherical warps (which fall back to area sampling themselves for
+//! Sampling triangle meshes (and cubes) triangle by triangle (rectangles as a whole, through
+//! [`super::rectangle`]), by solid angle through the spherical warp (which fall back to area sampling themselves for
 //! tiny or sliver solid angles); by area where a warp cannot be built (the reference in the
 //! shape's plane, non-finite input).
 
 use super::{area_to_solid_angle, ShapeSampling};
-use crate::sampling::warp::{SphericalRectangle, SphericalTriangle, Warp};
-use crate::sampling::SamplingError;
+use crate::sampling::warp::{SphericalTriangle, Warp};
 use crate::scene::geometry::build::MeshData;
-use crate::scene::geometry::{Hit, ShapeSample};
+use crate::scene::geometry::ShapeSample;
 use glam::{Vec2, Vec3};
 
 /// The spherical warp, if solid-angle sampling is asked for and the warp can be built.
@@ -24,7 +23,7 @@ fn triangle(m: &MeshData, k: usize) -> [Vec3; 3] {
 }
 
 /// The front normal of a triangle.
-fn front_normal(m: &MeshData, [a, b, c]: [Vec3; 3]) -> Vec3 {
+pub(crate) fn front_normal(m: &MeshData, [a, b, c]: [Vec3; 3]) -> Vec3 {
     let n = (b - a).cross(c - a).normalize_or_zero();
     if m.flip {
         -n
@@ -47,8 +46,8 @@ pub(super) fn sample(
     u_pick: f32,
     u: Vec2,
 ) -> Option<ShapeSample> {
-    if let Some(par) = &m.parallelogram {
-        return sample_parallelogram(m, how, par, reference, u);
+    if let Some(r) = &m.rectangle {
+        return r.sample(how, reference, u);
     }
     let (k, pmf) = m.pick.as_ref()?.sample_with_pmf(u_pick);
     let tri = triangle(m, k);
@@ -72,22 +71,25 @@ pub(super) fn sample(
 /// A point uniform by area over the whole mesh (a triangle by its area, then a uniform
 /// point on it) and the front normal there.
 pub(super) fn sample_area(m: &MeshData, u_pick: f32, u: Vec2) -> Option<(Vec3, Vec3)> {
-    if let Some([corner, ex, ey]) = m.parallelogram {
-        return Some((
-            corner + u.x * ex + u.y * ey,
-            front_normal(m, triangle(m, 0)),
-        ));
+    if let Some(r) = &m.rectangle {
+        return Some((r.point(u), r.normal()));
     }
     let (k, _) = m.pick.as_ref()?.sample_with_pmf(u_pick);
     let tri = triangle(m, k);
     Some((uniform_point(tri, u), front_normal(m, tri)))
 }
 
-pub(super) fn pdf(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) -> Option<f32> {
-    if m.parallelogram.is_some() {
-        return pdf_parallelogram(m, how, reference, hit);
+/// The density of [`sample`] at point `p` (front normal `ng`) of triangle `prim`.
+pub(super) fn pdf(
+    m: &MeshData,
+    how: ShapeSampling,
+    reference: Vec3,
+    (p, ng, prim): (Vec3, Vec3, u32),
+) -> Option<f32> {
+    if let Some(r) = &m.rectangle {
+        return r.pdf(how, reference, p);
     }
-    let k = hit.prim as usize;
+    let k = prim as usize;
     if k >= m.indices.len() {
         return None;
     }
@@ -96,56 +98,12 @@ pub(super) fn pdf(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) 
     let pdf = match solid_angle(how, || {
         SphericalTriangle::new(reference, tri[0], tri[1], tri[2])
     }) {
-        Some(st) => st.pdf((hit.p - reference).normalize_or_zero()),
-        None => area_to_solid_angle(1.0 / triangle_area(tri), reference, hit.p, hit.ng)?,
+        Some(st) => st.pdf((p - reference).normalize_or_zero()),
+        None => area_to_solid_angle(1.0 / triangle_area(tri), reference, p, ng)?,
     };
     Some(pmf * pdf)
 }
 
-/// The rectangle seen from `reference`, from the frame precomputed at build time.
-#[inline]
-fn rectangle(m: &MeshData, reference: Vec3) -> Result<SphericalRectangle, SamplingError> {
-    match &m.rect_frame {
-        Some(f) => f.seen_from(reference),
-        None => Err(SamplingError::Degenerate {
-            what: "not a valid rectangle",
-        }),
-    }
-}
-
 fn triangle_area([a, b, c]: [Vec3; 3]) -> f32 {
     0.5 * (b - a).cross(c - a).length()
-}
-
-/// A rectangle mesh's corner and edges, its unit front normal and its area (`None` for
-/// other meshes).
-pub(super) fn parallelogram(m: &MeshData) -> Option<([Vec3; 3], Vec3, f32)> {
-    let par = m.parallelogram?;
-    Some((par, front_normal(m, triangle(m, 0)), m.area))
-}
-
-/// A rectangle `corner + s·ex + t·ey`, s, t ∈ [0, 1], as a whole.
-fn sample_parallelogram(
-    m: &MeshData,
-    how: ShapeSampling,
-    &[corner, ex, ey]: &[Vec3; 3],
-    reference: Vec3,
-    u: Vec2,
-) -> Option<ShapeSample> {
-    let n = front_normal(m, triangle(m, 0));
-    let (p, pdf) = match solid_angle(how, || rectangle(m, reference)) {
-        Some(sr) => sr.sample_point(u)?,
-        None => {
-            let p = corner + u.x * ex + u.y * ey;
-            (p, area_to_solid_angle(1.0 / m.area, reference, p, n)?)
-        }
-    };
-    (pdf.is_finite() && pdf > 0.0).then_some(ShapeSample { p, n, pdf })
-}
-
-fn pdf_parallelogram(m: &MeshData, how: ShapeSampling, reference: Vec3, hit: &Hit) -> Option<f32> {
-    match solid_angle(how, || rectangle(m, reference)) {
-        Some(sr) => Some(sr.pdf((hit.p - reference).normalize_or_zero())),
-        None => area_to_solid_angle(1.0 / m.area, reference, hit.p, hit.ng),
-    }
 }

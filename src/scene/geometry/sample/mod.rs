@@ -17,7 +17,11 @@
 //! `θ'` the angle at the sampled point between its normal and the way back).
 
 mod mesh;
+mod rectangle;
 mod sphere;
+
+pub(crate) use mesh::front_normal;
+pub(crate) use rectangle::RectangleSampler;
 
 use super::build::ShapeData;
 use super::{Geometry, Hit, ShapeSample};
@@ -72,13 +76,11 @@ impl Geometry {
         }
     }
 
-    /// Shape `shape` as a rectangle sampled as a whole: its corner and edges
-    /// (`corner + s·ex + t·ey`, s, t ∈ [0, 1]), unit front normal and area; `None` for any
-    /// other shape. With [`ShapeSampling::Area`], [`Geometry::sample_shape`] samples it as
-    /// `corner + u.x·ex + u.y·ey`, so a light can do the same without the shape lookup.
-    pub(crate) fn parallelogram(&self, shape: u32) -> Option<([Vec3; 3], Vec3, f32)> {
+    /// The sampler of shape `shape` if it is a `rectangle` (sampled as a whole): the one
+    /// [`Geometry::sample_shape`] uses, for a light to call without the shape lookup.
+    pub(crate) fn rectangle_sampler(&self, shape: u32) -> Option<&RectangleSampler> {
         match self.shapes.get(shape as usize)? {
-            ShapeData::Mesh(m) => mesh::parallelogram(m),
+            ShapeData::Mesh(m) => m.rectangle.as_ref(),
             _ => None,
         }
     }
@@ -108,7 +110,7 @@ impl Geometry {
     pub(crate) fn shape_reads_pick(&self, shape: u32) -> bool {
         matches!(
             self.shapes.get(shape as usize),
-            Some(ShapeData::Mesh(m)) if m.parallelogram.is_none()
+            Some(ShapeData::Mesh(m)) if m.rectangle.is_none()
         )
     }
 
@@ -182,12 +184,18 @@ impl Geometry {
         if hit.shape != shape {
             return 0.0;
         }
+        self.shape_pdf_at(shape, reference, (hit.p, hit.ng, hit.prim))
+    }
+
+    /// [`Geometry::shape_pdf`] at point `p` with front normal `ng` of primitive `prim` of
+    /// shape `shape` (what the estimators' surface points carry).
+    pub(crate) fn shape_pdf_at(&self, shape: u32, reference: Vec3, at: (Vec3, Vec3, u32)) -> f32 {
         let pdf = match self.shapes.get(shape as usize) {
-            Some(ShapeData::Mesh(m)) => mesh::pdf(m, self.shape_sampling, reference, hit),
+            Some(ShapeData::Mesh(m)) => mesh::pdf(m, self.shape_sampling, reference, at),
             Some(&ShapeData::Sphere { center, radius, .. }) => {
-                sphere::pdf(center, radius, reference, hit)
+                sphere::pdf(center, radius, reference, at.0)
             }
-            Some(ShapeData::Disk(d)) => area_to_solid_angle(1.0 / d.area, reference, hit.p, hit.ng),
+            Some(ShapeData::Disk(d)) => area_to_solid_angle(1.0 / d.area, reference, at.0, at.1),
             None => None,
         };
         pdf.unwrap_or(0.0)

@@ -2,7 +2,7 @@
 
 use super::area_to_solid_angle;
 use crate::sampling::warp::{UniformCone, UniformSphere, Warp};
-use crate::scene::geometry::{Hit, ShapeSample};
+use crate::scene::geometry::ShapeSample;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -70,14 +70,15 @@ pub(super) fn sample(
     })
 }
 
-pub(super) fn pdf(center: Vec3, radius: f32, reference: Vec3, hit: &Hit) -> Option<f32> {
+/// The density of [`sample`] at point `p` of the sphere.
+pub(super) fn pdf(center: Vec3, radius: f32, reference: Vec3, p: Vec3) -> Option<f32> {
     let Some((cone, _, d)) = cone(center, radius, reference) else {
-        let n = (hit.p - center).normalize_or_zero();
-        return area_to_solid_angle(1.0 / (4.0 * PI * radius * radius), reference, hit.p, n);
+        let n = (p - center).normalize_or_zero();
+        return area_to_solid_angle(1.0 / (4.0 * PI * radius * radius), reference, p, n);
     };
     // Only the cap visible from the reference is ever sampled: (p − c)·(ref − c) ≥ r²
     // (with slack for rounding at the silhouette).
-    let visible = (hit.p - center).dot(reference - center) >= radius * radius - 1e-3 * radius * d;
+    let visible = (p - center).dot(reference - center) >= radius * radius - 1e-3 * radius * d;
     visible.then(|| 1.0 / cone.solid_angle())
 }
 

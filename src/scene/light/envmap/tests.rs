@@ -1,4 +1,5 @@
 use super::*;
+use std::f32::consts::PI;
 
 /// The local direction of map coordinates `(u, v)` (identity `to_world`).
 fn dir(u: f32, v: f32) -> Vec3 {

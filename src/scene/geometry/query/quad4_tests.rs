@@ -1,7 +1,7 @@
 //! Unit tests of the quad packet test against the two-triangle watertight test.
 
 use super::*;
-use crate::scene::geometry::intersect::{TriRay, TriSoa};
+use crate::scene::geometry::query::scalar::{TriRay, TriSoa};
 use rand_core::{RngCore, SeedableRng};
 
 /// Uniform in [-1, 1), on a grid of 2⁻²⁰ so that sums of a few points are exact.

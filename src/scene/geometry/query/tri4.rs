@@ -3,7 +3,7 @@
 //! lane `i`.
 //!
 //! Every lane computes exactly the same floating-point operations in the same order as the
-//! one-triangle test ([`super::intersect::TriRay::hit`]), so both agree bit for bit on
+//! one-triangle test ([`super::scalar::TriRay::hit`]), so both agree bit for bit on
 //! every triangle (including the exact-zero edge case, redone in f64 per lane).
 
 use glam::{BVec4A, DVec3, Vec3, Vec4};
@@ -179,8 +179,8 @@ fn edges_f64(e: &mut [Vec4; 3], lanes: u32, x: [Vec4; 3], y: [Vec4; 3]) {
 
 #[cfg(test)]
 mod tests {
+    use super::super::scalar::{TriRay, TriSoa};
     use super::*;
-    use crate::scene::geometry::intersect::{TriRay, TriSoa};
 
     /// The one-triangle test on each lane's triangle against the same bound; the nearest
     /// hit wins, the lowest lane on a tie. (A scalar loop that lowers the bound after each

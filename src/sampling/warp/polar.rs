@@ -1,38 +1,21 @@
-//! Small helpers shared by the basic warps: the azimuth and its inverse, spherical directions
-//! from (sin θ, cos θ), a stable 1 − cos θ, and the clamp of inverse outputs into `[0, 1)`.
+//! Polar and spherical coordinates shared by the warps of the disk, the sphere, the
+//! hemisphere, cones and lobes: the azimuth and its inverse, directions from (sin θ, cos θ),
+//! a stable 1 − cos θ.
 
-use glam::{Vec2, Vec3};
+use crate::sampling::unit::clamp_unit;
+use glam::Vec3;
 use std::f32::consts::TAU;
-
-/// The largest `f32` below 1: `1 − 2⁻²⁴`.
-pub(in crate::sampling::warp) const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
-
-/// Clamps `x` into `[0, 1 − 2⁻²⁴]`; NaN maps to 0.
-#[inline]
-pub(in crate::sampling::warp) fn clamp_unit(x: f32) -> f32 {
-    if x >= 0.0 {
-        x.min(ONE_MINUS_EPSILON)
-    } else {
-        0.0
-    }
-}
-
-/// Clamps both coordinates of an inverse into `[0, 1)`.
-#[inline]
-pub(in crate::sampling::warp) fn clamp_unit2(u1: f32, u2: f32) -> Vec2 {
-    Vec2::new(clamp_unit(u1), clamp_unit(u2))
-}
 
 /// (cos φ, sin φ) for φ = 2π u₂.
 #[inline]
-pub(in crate::sampling::warp) fn azimuth(u2: f32) -> (f32, f32) {
+pub(crate) fn azimuth(u2: f32) -> (f32, f32) {
     let (s, c) = (TAU * u2).sin_cos();
     (c, s)
 }
 
 /// The u₂ ∈ [0, 1) whose azimuth φ = 2π u₂ points along `(x, y)`; 0 at the origin.
 #[inline]
-pub(in crate::sampling::warp) fn azimuth_to_unit(x: f32, y: f32) -> f32 {
+pub(crate) fn azimuth_to_unit(x: f32, y: f32) -> f32 {
     let mut phi = y.atan2(x);
     if phi < 0.0 {
         phi += TAU;
@@ -42,21 +25,21 @@ pub(in crate::sampling::warp) fn azimuth_to_unit(x: f32, y: f32) -> f32 {
 
 /// The unit direction with the given sin θ, cos θ and azimuth 2π u₂ about +z.
 #[inline]
-pub(in crate::sampling::warp) fn direction(sin_theta: f32, cos_theta: f32, u2: f32) -> Vec3 {
+pub(crate) fn direction(sin_theta: f32, cos_theta: f32, u2: f32) -> Vec3 {
     let (c, s) = azimuth(u2);
     Vec3::new(sin_theta * c, sin_theta * s, cos_theta)
 }
 
 /// sin²θ = x² + y² of a direction (exact for unit vectors, accurate near the pole).
 #[inline]
-pub(in crate::sampling::warp) fn sin2_theta(w: Vec3) -> f32 {
+pub(crate) fn sin2_theta(w: Vec3) -> f32 {
     w.x * w.x + w.y * w.y
 }
 
 /// 1 − cos θ of a unit direction, computed as (x² + y²)/(1 + z) where z is near 1 (no
 /// cancellation) and as 1 − z elsewhere.
 #[inline]
-pub(in crate::sampling::warp) fn one_minus_cos_theta(w: Vec3) -> f32 {
+pub(crate) fn one_minus_cos_theta(w: Vec3) -> f32 {
     if w.z > 0.5 {
         sin2_theta(w) / (1.0 + w.z)
     } else {
@@ -66,21 +49,13 @@ pub(in crate::sampling::warp) fn one_minus_cos_theta(w: Vec3) -> f32 {
 
 /// sin θ from t = 1 − cos θ ∈ [0, 2]: √(t (2 − t)), never NaN.
 #[inline]
-pub(in crate::sampling::warp) fn sin_from_one_minus_cos(t: f32) -> f32 {
+pub(crate) fn sin_from_one_minus_cos(t: f32) -> f32 {
     (t * (2.0 - t)).max(0.0).sqrt()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn clamp_handles_nan_and_edges() {
-        assert_eq!(clamp_unit(f32::NAN), 0.0);
-        assert_eq!(clamp_unit(-1.0), 0.0);
-        assert_eq!(clamp_unit(1.0), ONE_MINUS_EPSILON);
-        assert_eq!(ONE_MINUS_EPSILON, 1.0 - 2f32.powi(-24));
-    }
 
     #[test]
     fn azimuth_round_trip() {

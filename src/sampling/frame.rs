@@ -1,18 +1,28 @@
-//! An orthonormal shading frame: converts directions between world space and the z-up local
-//! frame in which BSDFs are written.
+//! An orthonormal frame: converts directions between world space and a z-up local frame,
+//! the one in which the warps sample directions and BSDFs are written.
 
 use glam::Vec3;
 
 /// An orthonormal basis `(s, t, n)`; local coordinates are `(x, y, z) = (·s, ·t, ·n)`.
 ///
+/// The warps of [`crate::sampling::warp`] sample about `+z`; [`Frame::to_world`] turns such a
+/// sample into a direction about any unit axis `n` (a cone toward a light, a lobe about a
+/// normal). Also [`crate::integrator::Frame`], the shading frame of a surface point.
+///
 /// ```
-/// use mcrt::glam::Vec3;
-/// use mcrt::integrator::Frame;
+/// use mcrt::glam::{Vec2, Vec3};
+/// use mcrt::sampling::warp::{UniformCone, Warp};
+/// use mcrt::sampling::Frame;
 ///
 /// let f = Frame::from_normal(Vec3::new(0.0, 1.0, 0.0));
 /// let w = Vec3::new(0.3, 0.8, -0.2).normalize();
 /// assert!((f.to_world(f.to_local(w)) - w).length() < 1e-6);
 /// assert!((f.to_local(w).z - w.y).abs() < 1e-6);
+///
+/// // A cone of half-angle 0.1 rad about +y instead of +z.
+/// let cone = UniformCone::from_angle(0.1).unwrap();
+/// let d = f.to_world(cone.sample(Vec2::new(0.3, 0.7)));
+/// assert!(d.y >= 0.1f32.cos() - 1e-6);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame {

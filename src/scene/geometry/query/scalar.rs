@@ -51,14 +51,6 @@ pub(crate) struct TriRay {
 }
 
 impl TriRay {
-    /// A placeholder for calls that never reach a triangle.
-    pub(crate) const DUMMY: Self = Self {
-        origin: Vec3::ZERO,
-        rx: Vec3::X,
-        ry: Vec3::Y,
-        rz: Vec3::Z,
-    };
-
     #[inline]
     pub(crate) fn new(origin: Vec3, dir: Vec3) -> Self {
         let kz = dir.abs().max_position();

@@ -1,4 +1,4 @@
-//! Four parallelograms ("quads", each two mesh triangles; see [`super::pair`]) tested
+//! Four parallelograms ("quads", each two mesh triangles; see [`super::pairing`]) tested
 //! against one ray at once, parallelogram `i` in SIMD lane `i`.
 //!
 //! With `w = corner − o`, the test intersects the plane, `t = n·w / n·d` (`n = e1 × e2`),
@@ -16,7 +16,7 @@
 //! caught by one side or both. The price: every quad reaches `SLACK` times its edge lengths
 //! past its true border.
 
-use super::pair::Quad;
+use super::pairing::Quad;
 use glam::{DVec3, Vec3, Vec4};
 
 /// Slack on the parallelogram parameters: hits with `u, v ∈ [−SLACK, 1 + SLACK]` count.
@@ -166,5 +166,5 @@ impl QuadRay4 {
 }
 
 #[cfg(test)]
-#[path = "quad_tests.rs"]
+#[path = "quad4_tests.rs"]
 mod tests;

@@ -1,5 +1,5 @@
 //! Finding pairs of mesh triangles that form a planar parallelogram, so that the BVH can
-//! store them as one quad primitive ([`super::quad::QuadPacket`]).
+//! store them as one quad primitive ([`super::quad4::QuadPacket`]).
 //!
 //! Two triangles of one mesh pair up when they share an edge (the same two vertex
 //! positions, bit for bit) and the fourth vertex lies within 10⁻⁶ of the shorter
@@ -7,7 +7,7 @@
 //! `a c`). That also makes them coplanar. Pairing is greedy in triangle order, so it is
 //! deterministic; triangles left over stay triangles.
 
-use super::build::{Built, Prim, ShapeData};
+use super::super::build::{Built, Prim, ShapeData};
 use glam::Vec3;
 
 /// Relative tolerance on the fourth vertex, in units of the shorter parallelogram edge.
@@ -152,9 +152,9 @@ pub(crate) fn units(built: &Built) -> Vec<Unit> {
 
 /// Greedy pairing of the triangles `range` of one mesh through a sorted list of their edges
 /// (vertex positions' bits, each with its triangle): the triangles that share an edge are
-/// neighbours in the list, in input order. Sorting one flat list allocates once, where a map
-/// of edge to triangles allocated per edge (twice the BVH build time on a 100 000-triangle
-/// soup); each triangle finds its edges' places in the list by index, not by search.
+/// neighbours in the list, in input order. Sorting one flat list allocates once (a map of
+/// edge to triangles would allocate per edge); each triangle finds its edges' places in the
+/// list by index, not by search.
 fn pair_range(
     prims: &[Prim],
     range: std::ops::Range<usize>,

@@ -1,39 +1,22 @@
-//! A reader for Wavefront OBJ triangle meshes: positions, normals and faces.
+//! A reader for Wavefront OBJ triangle meshes: positions, texture coordinates, normals and
+//! faces.
 //!
 //! Faces may be polygons (fan-triangulated from their first vertex) and use the forms
 //! `v`, `v/vt`, `v//vn` and `v/vt/vn`, with 1-based or negative (relative) indices. As in
 //! Mitsuba 3, every distinct (position, texture coordinate, normal) triple becomes one
 //! vertex. Other statements (`o`, `g`, `s`, `usemtl`, `mtllib`, lines, points) are ignored.
+//! Texture coordinates are kept as the file gives them; the `obj` shape flips `v` to
+//! `1 − v` unless `flip_tex_coords` is false, as Mitsuba does.
 
 use crate::scene::loader::{SceneError, SceneErrorKind};
-use glam::Vec3;
+pub use crate::scene::mesh_file::TriangleMesh as ObjMesh;
+use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::Path;
 
-/// A triangle mesh read from an OBJ file.
-///
-/// ```
-/// use mcrt::scene::obj::parse_obj;
-/// let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
-/// let mesh = parse_obj(text, None).unwrap();
-/// assert_eq!(mesh.positions.len(), 4);
-/// assert_eq!(mesh.indices, vec![[0, 1, 2], [0, 2, 3]]);
-/// assert!(mesh.normals.is_empty());
-/// ```
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct ObjMesh {
-    /// Vertex positions.
-    pub positions: Vec<Vec3>,
-    /// Per-vertex normals, as many as positions; empty when some face vertex has no
-    /// normal in the file (Mitsuba then computes smooth normals unless `face_normals`).
-    pub normals: Vec<Vec3>,
-    /// Triangles as indices into `positions` (and `normals`).
-    pub indices: Vec<[u32; 3]>,
-}
-
 /// Reads the OBJ file at `path`, a regular file of at most
 /// [`MAX_OBJ_BYTES`](crate::scene::loader::MAX_OBJ_BYTES). Errors name the file and the
-/// line.
+/// line. Normals (or texture coordinates) are empty when some face corner has none.
 pub fn read_obj(path: &Path) -> Result<ObjMesh, SceneError> {
     let text = crate::scene::loader::read_capped(path, crate::scene::loader::MAX_OBJ_BYTES)
         .map_err(|e| SceneError::io(path, &e))?;
@@ -41,6 +24,15 @@ pub fn read_obj(path: &Path) -> Result<ObjMesh, SceneError> {
 }
 
 /// Parses OBJ text; `path` is used in messages.
+///
+/// ```
+/// use mcrt::scene::mesh_file::obj::parse_obj;
+/// let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+/// let mesh = parse_obj(text, None).unwrap();
+/// assert_eq!(mesh.positions.len(), 4);
+/// assert_eq!(mesh.indices, vec![[0, 1, 2], [0, 2, 3]]);
+/// assert!(mesh.normals.is_empty() && mesh.uvs.is_empty());
+/// ```
 pub fn parse_obj(text: &str, path: Option<&Path>) -> Result<ObjMesh, SceneError> {
     let mut r = Reader::default();
     for (i, line) in text.lines().enumerate() {
@@ -62,6 +54,9 @@ pub fn parse_obj(text: &str, path: Option<&Path>) -> Result<ObjMesh, SceneError>
     if r.missing_normal {
         r.mesh.normals.clear();
     }
+    if r.missing_uv {
+        r.mesh.uvs.clear();
+    }
     Ok(r.mesh)
 }
 
@@ -72,9 +67,10 @@ type Corner = (usize, Option<usize>, Option<usize>);
 struct Reader {
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
-    tex_count: usize,
+    uvs: Vec<Vec2>,
     vertex_of: HashMap<Corner, u32>,
     missing_normal: bool,
+    missing_uv: bool,
     mesh: ObjMesh,
 }
 
@@ -85,7 +81,7 @@ impl Reader {
         match words.next() {
             Some("v") => self.positions.push(vec3(words)?),
             Some("vn") => self.normals.push(vec3(words)?),
-            Some("vt") => self.tex_count += 1,
+            Some("vt") => self.uvs.push(vec2(words)?),
             Some("f") => self.face(words)?,
             _ => {}
         }
@@ -112,7 +108,7 @@ impl Reader {
     fn corner(&mut self, word: &str) -> Result<u32, String> {
         let mut parts = word.split('/');
         let v = index(parts.next(), self.positions.len(), "position", word)?;
-        let vt = index(parts.next(), self.tex_count, "texture", word)?;
+        let vt = index(parts.next(), self.uvs.len(), "texture", word)?;
         let vn = index(parts.next(), self.normals.len(), "normal", word)?;
         if parts.next().is_some() {
             return Err(format!("malformed face vertex \"{word}\""));
@@ -132,6 +128,13 @@ impl Reader {
                 self.mesh.normals.push(Vec3::ZERO);
             }
         }
+        match vt {
+            Some(t) => self.mesh.uvs.push(self.uvs[t]),
+            None => {
+                self.missing_uv = true;
+                self.mesh.uvs.push(Vec2::ZERO);
+            }
+        }
         self.vertex_of.insert(key, id);
         Ok(id)
     }
@@ -148,6 +151,25 @@ fn vec3<'a>(mut words: impl Iterator<Item = &'a str>) -> Result<Vec3, String> {
         };
     }
     Ok(Vec3::from(c))
+}
+
+/// Two finite texture coordinates `u v` (a missing `v` is 0, as OBJ allows; a third, `w`,
+/// is ignored).
+fn vec2<'a>(mut words: impl Iterator<Item = &'a str>) -> Result<Vec2, String> {
+    let mut c = [0.0f32; 2];
+    for (k, x) in c.iter_mut().enumerate() {
+        let Some(w) = words.next() else {
+            if k == 0 {
+                return Err("expected texture coordinates".into());
+            }
+            break;
+        };
+        *x = match w.parse::<f32>() {
+            Ok(v) if v.is_finite() => v,
+            _ => return Err(format!("\"{w}\" is not a finite number")),
+        };
+    }
+    Ok(Vec2::from(c))
 }
 
 /// A 1-based or negative index into a list of `count` items; empty is `None`.
@@ -186,6 +208,19 @@ mod tests {
         assert_eq!(m.positions.len(), 6);
         assert_eq!(m.normals, vec![Vec3::Z; 6]);
         assert_eq!(m.indices, vec![[0, 1, 2], [3, 4, 5], [0, 1, 2]]);
+        // One corner without a texture coordinate: none are kept.
+        assert!(m.uvs.is_empty());
+        let uv = parse_obj(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25 0.5\nvt 1\nf 1/1 2/2 3/1\n",
+            None,
+        )
+        .unwrap();
+        assert_eq!(
+            uv.uvs,
+            vec![Vec2::new(0.25, 0.5), Vec2::X, Vec2::new(0.25, 0.5)]
+        );
+        assert!(parse_obj("vt\n", None).is_err());
+        assert!(parse_obj("vt 0 nan\n", None).is_err());
     }
 
     #[test]

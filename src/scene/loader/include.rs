@@ -1,0 +1,107 @@
+//! `<include filename="…"/>`: the children of another scene file's `<scene>` in place of
+//! the element, read with the parameters known so far, as Mitsuba 3 does.
+
+use super::error::{SceneError, SceneErrorKind};
+use super::params::Params;
+use super::position::Positions;
+use super::tree::{check_version, prescan, Elem, Reader};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Deepest chain of `<include>`s (a file that includes itself is refused before this).
+const MAX_INCLUDE_DEPTH: usize = 16;
+
+/// A path made absolute and free of `..` where the file system allows, for cycle checks.
+pub(super) fn canonical(p: &Path) -> PathBuf {
+    std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+impl Reader<'_> {
+    /// `<include filename>`: the children of the named file's `<scene>`, read with the
+    /// parameters known so far. The name resolves against the scene file's folder; the
+    /// file must be a regular scene file of at most 256 MiB, not one already being read.
+    pub(super) fn include(&mut self, e: &Elem, depth: usize) -> Result<Vec<Elem>, SceneError> {
+        if let Some((n, _)) = e.attrs.iter().find(|(n, _)| n != "filename") {
+            return Err(self.err(e, SceneErrorKind::UnknownAttribute(n.clone())));
+        }
+        if let Some(k) = e.children.first() {
+            let m = format!("<{}> inside <include>", k.tag);
+            return Err(self.err(k, SceneErrorKind::Misplaced(m)));
+        }
+        let name = e
+            .attr("filename")
+            .ok_or_else(|| self.err(e, SceneErrorKind::MissingAttribute("filename".into())))?;
+        let path = self.base_dir.join(name);
+        let io = |reason: String| SceneErrorKind::Io {
+            path: path.clone(),
+            reason,
+        };
+        if name.is_empty() {
+            return Err(self.err(e, io("empty file name".into())));
+        }
+        let bytes = super::file::read_capped(&path, super::MAX_SCENE_BYTES)
+            .map_err(|x| self.err(e, io(x.to_string())))?;
+        let key = canonical(&path);
+        if self.stack.contains(&key) {
+            let m = format!("\"{name}\" includes itself (directly or through other files)");
+            return Err(self.err(e, SceneErrorKind::InvalidValue(m)));
+        }
+        if self.stack.len() > MAX_INCLUDE_DEPTH {
+            let m = format!("includes nested deeper than {MAX_INCLUDE_DEPTH}");
+            return Err(self.err(e, SceneErrorKind::InvalidValue(m)));
+        }
+        let xml = String::from_utf8(bytes).map_err(|_| self.err(e, io("not UTF-8 text".into())))?;
+        // Parse the included text with its own positions; defaults and parameters carry on.
+        let here: Arc<Path> = Arc::from(path.as_path());
+        let text_err =
+            |line, column, kind| SceneError::new(Some(&path), Some(line), Some(column), None, kind);
+        if let Some((offset, message)) = prescan(&xml) {
+            let (line, column) = Positions::new(&xml).at(offset);
+            return Err(text_err(line, column, SceneErrorKind::Xml(message)));
+        }
+        let opts = roxmltree::ParsingOptions {
+            allow_dtd: false,
+            nodes_limit: 10_000_000,
+        };
+        let doc = roxmltree::Document::parse_with_options(&xml, opts).map_err(|x| {
+            let p = x.pos();
+            text_err(p.row, p.col, SceneErrorKind::Xml(x.to_string()))
+        })?;
+        let mut sub = Reader {
+            positions: Positions::new(&xml),
+            file: Some(&path),
+            included: Some(here),
+            base_dir: self.base_dir.clone(),
+            stack: std::mem::take(&mut self.stack),
+            params: std::mem::replace(&mut self.params, Params::new(&[])),
+        };
+        sub.stack.push(key);
+        let root = sub.convert(doc.root_element(), depth);
+        sub.stack.pop();
+        self.stack = std::mem::take(&mut sub.stack);
+        self.params = sub.params;
+        let root = root?;
+        if root.tag != "scene" {
+            let m = format!(
+                "an included file's root must be <scene>, not <{}>",
+                root.tag
+            );
+            return Err(sub_err(&root, SceneErrorKind::Misplaced(m)));
+        }
+        if let Some(Err(m)) = root.attr("version").map(check_version) {
+            return Err(sub_err(&root, SceneErrorKind::Version(m)));
+        }
+        Ok(root.children)
+    }
+}
+
+/// An error at an element of an included file (which the element names).
+fn sub_err(e: &Elem, kind: SceneErrorKind) -> SceneError {
+    SceneError::new(
+        e.file.as_deref(),
+        Some(e.line),
+        Some(e.column),
+        Some(e.describe()),
+        kind,
+    )
+}
