@@ -5,7 +5,8 @@
 //!   independently by casting uniformly distributed rays (both estimates with their standard
 //!   errors; the test allows 5 combined standard errors plus 0.5%);
 //!
-//! both with `ShapeSampling::SolidAngle` (the default) and `ShapeSampling::Area`.
+//! both with `ShapeSampling::SolidAngle` and `ShapeSampling::Area` (the default, `Auto`, is one of
+//! the two at each point: `tests/chi2_lights.rs` checks it where it switches).
 
 use mcrt::glam::{Mat4, Quat, Vec2, Vec3};
 use mcrt::scene::description::{ShapeDesc, ShapeKind};
