@@ -281,7 +281,9 @@ fn solid_angle_sampling_gives_constant_pdf() {
         center: Vec3::new(0.0, 0.5, 0.0),
         radius: 0.2,
     });
-    let g = Geometry::new(&[light, one_triangle, ball], None, AccelKind::Bvh).unwrap();
+    let g = Geometry::new(&[light, one_triangle, ball], None, AccelKind::Bvh)
+        .unwrap()
+        .with_shape_sampling(ShapeSampling::SolidAngle);
     let reference = Vec3::new(0.3, -1.0, 0.2);
     let mut r = Pcg64::seed_from_u64(20);
     for shape in 0..3 {
