@@ -24,7 +24,8 @@ pub(crate) use mesh::front_normal;
 pub(crate) use rectangle::RectangleSampler;
 
 use super::build::ShapeData;
-use super::{Geometry, Hit, ShapeSample};
+use super::{Geometry, ShapeSample};
+use crate::integrator::SurfacePoint;
 
 /// How [`Geometry::sample_shape`] samples triangles and rectangles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -209,7 +210,7 @@ impl Geometry {
     /// The density per unit solid angle at `reference` with which
     /// [`Geometry::sample_shape`] produces the point of `hit` (a hit on shape `shape`, as
     /// returned by [`Geometry::intersect`]); 0 if it never does.
-    pub fn shape_pdf(&self, shape: u32, reference: Vec3, hit: &Hit) -> f32 {
+    pub fn shape_pdf(&self, shape: u32, reference: Vec3, hit: &SurfacePoint) -> f32 {
         if hit.shape != shape {
             return 0.0;
         }
