@@ -304,7 +304,9 @@ impl Vertex {
         }
         match self.kind {
             Kind::Light(EmitterKind::Infinite) => scene.environment(self.w_env),
-            Kind::Light(EmitterKind::Point) => self.intensity,
+            Kind::Light(EmitterKind::Point) => scene
+                .point_intensity(self.light, self.dir_to(to).0)
+                .unwrap_or(self.intensity),
             _ => scene.emitted(&self.sp, self.dir_to(to).0),
         }
     }

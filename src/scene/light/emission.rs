@@ -4,6 +4,9 @@
 //! - area lights: a point uniform by area ([`Geometry::sample_area`]), a direction
 //!   cosine-distributed about the front normal (`pdf = cos θ / π`);
 //! - point lights: the position, a direction uniform over the sphere (`1/(4π)`);
+//! - spot lights: the position, a direction uniform in the cutoff cone;
+//! - directional lights: none yet (the renderer refuses bidirectional estimators with
+//!   them);
 //! - environments: a direction `w` toward the light by the light's own sampling, then a
 //!   ray origin uniform on the disk of the scene's bounding sphere's radius perpendicular
 //!   to `w`, one radius out (`1/(πR²)` per unit area), travelling along `−w`.
@@ -45,6 +48,15 @@ impl Lights {
     /// The light index of the environment.
     pub fn environment_index(&self) -> Option<u32> {
         self.env
+    }
+
+    /// Intensity (W/sr) that light `light`, a spot light, sends along the unit direction
+    /// `dir`; `None` for every other light.
+    pub(crate) fn spot_intensity(&self, light: u32, dir: Vec3) -> Option<Vec3> {
+        match self.lights.get(light as usize)? {
+            Light::Spot(spot) => Some(spot.intensity_toward(dir)),
+            _ => None,
+        }
     }
 
     /// An emitted ray: a light by power (`u_pick.x`), a triangle of a mesh light by area
@@ -93,6 +105,19 @@ impl Lights {
                 pdf_pos: pick,
                 pdf_dir: 1.0 / (4.0 * PI),
             }),
+            Light::Spot(spot) => {
+                let (dir, intensity, pdf_dir) = spot.sample_direction(u_dir);
+                Some(EmissionSample {
+                    light,
+                    kind: EmitterKind::Point,
+                    point: bare(spot.position(), Vec3::ZERO, u32::MAX),
+                    dir,
+                    radiance: intensity,
+                    pdf_pos: pick,
+                    pdf_dir,
+                })
+            }
+            Light::Directional { .. } => None,
             Light::Constant { .. } | Light::EnvMap(_) => {
                 let (w, radiance, pdf_w) = match &self.lights[i] {
                     Light::EnvMap(m) => m.sample(u_pos)?,
@@ -139,6 +164,8 @@ impl Lights {
                 (if area > 0.0 { pick / area } else { 0.0 }, pdf_dir)
             }
             Some(Light::Point { .. }) => (pick, 1.0 / (4.0 * PI)),
+            Some(Light::Spot(spot)) => (pick, spot.pdf_direction(dir)),
+            Some(Light::Directional { .. }) => (0.0, 0.0),
             Some(Light::EnvMap(m)) => (pick * m.pdf(-dir), disk_pdf(world)),
             Some(Light::Constant { .. }) => (pick / (4.0 * PI), disk_pdf(world)),
             None => (0.0, 0.0),

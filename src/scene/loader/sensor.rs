@@ -1,4 +1,4 @@
-//! `<sensor type="perspective">` with its `<sampler>`, `<film type="hdrfilm">` and
+//! `<sensor type="perspective">` or `"thinlens"` with its `<sampler>`, `<film type="hdrfilm">` and
 //! `<rfilter>`.
 
 use super::context::{Ctx, Res};
@@ -8,6 +8,7 @@ use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::scene::description::{
     CropWindow, FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc,
+    ThinLensDesc,
 };
 use crate::scene::validate::{self, MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
 
@@ -17,11 +18,14 @@ pub(crate) const MAX_RESOLUTION: i64 = MAX_FILM_PIXELS as i64;
 /// Reads a `<sensor>` element.
 pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
     let ty = plugin_type(ctx, e)?;
-    if ty != "perspective" {
+    if ty != "perspective" && ty != "thinlens" {
         return Err(unknown_plugin(ctx, e, ty));
     }
     let mut p = Props::new(ctx, e)?;
     let mut s = SensorDesc::default();
+    if ty == "thinlens" {
+        s.lens = Some(read_lens(ctx, e, &mut p)?);
+    }
     if let Some(fov) = p.float("fov")? {
         if !(fov > 0.0 && fov < 180.0) {
             return Err(p.invalid("fov", e, "must lie strictly between 0 and 180 degrees"));
@@ -72,6 +76,30 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
     s.sampler = sampler.unwrap_or_default();
     p.finish()?;
     Ok(s)
+}
+
+/// The lens parameters of a `thinlens` sensor: `aperture_radius` (required, as in
+/// Mitsuba 3) and `focus_distance`.
+fn read_lens(ctx: &Ctx, e: &Elem, p: &mut Props) -> Res<ThinLensDesc> {
+    let aperture_radius = p.float("aperture_radius")?.ok_or_else(|| {
+        ctx.err(
+            e,
+            SceneErrorKind::MissingAttribute("parameter \"aperture_radius\"".into()),
+        )
+    })?;
+    if !(aperture_radius.is_finite() && aperture_radius >= 0.0) {
+        return Err(p.invalid("aperture_radius", e, "must be finite and non-negative"));
+    }
+    let focus_distance = p
+        .float("focus_distance")?
+        .unwrap_or(ThinLensDesc::FOCUS_DISTANCE);
+    if !(focus_distance.is_finite() && focus_distance > 0.0) {
+        return Err(p.invalid("focus_distance", e, "must be finite and positive"));
+    }
+    Ok(ThinLensDesc {
+        aperture_radius,
+        focus_distance,
+    })
 }
 
 /// Reads a `<sampler>` element.
