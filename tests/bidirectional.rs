@@ -405,7 +405,10 @@ fn bdpt_and_mlt_with_a_spot_light_match_the_path_tracer() {
 #[test]
 fn bdpt_and_mlt_refuse_directional_lights_and_thin_lenses() {
     for kind in [IntegratorKind::Bdpt, IntegratorKind::Mlt] {
-        for (scene, what) in [("spot-directional.xml", "directional"), ("thinlens.xml", "thinlens")] {
+        for (scene, what) in [
+            ("spot-directional.xml", "directional"),
+            ("thinlens.xml", "thinlens"),
+        ] {
             let err = Renderer::new(&load(scene), &opts(kind, 1))
                 .err()
                 .unwrap_or_else(|| panic!("{kind:?} accepted {scene}"))

@@ -46,7 +46,10 @@ fn cases() -> Vec<Case> {
                 rows: Vec::new(),
             });
         } else if let Some((kind, nums)) = line.split_once(' ') {
-            let v = nums.split(' ').map(|x| x.parse().expect("number")).collect();
+            let v = nums
+                .split(' ')
+                .map(|x| x.parse().expect("number"))
+                .collect();
             let case = out.last_mut().expect("a case first");
             case.rows.push((kind.chars().next().expect("kind"), v));
         }
@@ -91,13 +94,26 @@ fn spot_and_directional_lights_match_mitsuba() {
             let got = lights.sample(&geo, &sp, Vec2::splat(0.5), Vec2::splat(0.5));
             if want == Vec3::ZERO {
                 let r = got.map_or(Vec3::ZERO, |s| s.radiance);
-                assert!(r == Vec3::ZERO, "{}: at {p} radiance {r}, Mitsuba 0", case.name);
+                assert!(
+                    r == Vec3::ZERO,
+                    "{}: at {p} radiance {r}, Mitsuba 0",
+                    case.name
+                );
                 checked.1 += 1;
                 continue;
             }
             let s = got.unwrap_or_else(|| panic!("{}: no sample at {p}", case.name));
-            assert!(s.delta && s.pdf == 1.0, "{}: a delta light's sample", case.name);
-            assert!(close(s.wi, wi, 0.0, 2e-5), "{}: at {p} wi {} vs {wi}", case.name, s.wi);
+            assert!(
+                s.delta && s.pdf == 1.0,
+                "{}: a delta light's sample",
+                case.name
+            );
+            assert!(
+                close(s.wi, wi, 0.0, 2e-5),
+                "{}: at {p} wi {} vs {wi}",
+                case.name,
+                s.wi
+            );
             assert!(
                 close(s.radiance, want, 2e-4, 0.0),
                 "{}: at {p} radiance {} vs Mitsuba's {want}",

@@ -515,6 +515,10 @@ fn spot_directional_and_thinlens_with_their_defaults() {
     let (_, dir) = directional(5);
     assert!((dir - Vec3::NEG_Y).length() < 1e-6, "{dir}");
     // A perspective sensor has no lens.
-    let p = parse(r#"<scene version="3.0.0"><sensor type="perspective"/></scene>"#, &[]).unwrap();
+    let p = parse(
+        r#"<scene version="3.0.0"><sensor type="perspective"/></scene>"#,
+        &[],
+    )
+    .unwrap();
     assert_eq!(p.sensor.lens, None);
 }

@@ -86,16 +86,26 @@ mod tests {
             let (pin, _) = cam.generate_ray_with_tmax(film);
             let t_pin = (3.0 - (pin.origin - eye).dot(axis)) / pin.dir.dot(axis);
             let target = pin.origin + pin.dir * t_pin;
-            for u in [Vec2::new(0.1, 0.9), Vec2::new(0.7, 0.3), Vec2::new(0.999, 0.5)] {
+            for u in [
+                Vec2::new(0.1, 0.9),
+                Vec2::new(0.7, 0.3),
+                Vec2::new(0.999, 0.5),
+            ] {
                 let (ray, t_max) = cam.generate_ray_through_lens(film, u);
                 let t = (3.0 - (ray.origin - eye).dot(axis)) / ray.dir.dot(axis);
                 let hit = ray.origin + ray.dir * t;
                 let err = (hit - target).length();
                 assert!(err.is_finite() && err < 1e-4, "{film} {u}: off by {err}");
                 let near = (ray.origin - eye).dot(axis);
-                assert!(near.is_finite() && (near - 0.01).abs() < 1e-5, "near {near}");
+                assert!(
+                    near.is_finite() && (near - 0.01).abs() < 1e-5,
+                    "near {near}"
+                );
                 let far = (ray.origin + ray.dir * t_max - eye).dot(axis);
-                assert!(far.is_finite() && (far / 1e4 - 1.0).abs() < 1e-4, "far {far}");
+                assert!(
+                    far.is_finite() && (far / 1e4 - 1.0).abs() < 1e-4,
+                    "far {far}"
+                );
                 let len = ray.dir.length();
                 assert!(len.is_finite() && (len - 1.0).abs() < 1e-5);
             }
@@ -125,7 +135,12 @@ mod tests {
     fn a_zero_aperture_needs_no_lens_sample_and_bad_lenses_are_refused() {
         assert!(!lens_camera(0.0, 3.0).has_lens());
         assert!(lens_camera(0.1, 3.0).has_lens());
-        for (r, f) in [(-0.1, 1.0), (f32::NAN, 1.0), (0.1, 0.0), (0.1, f32::INFINITY)] {
+        for (r, f) in [
+            (-0.1, 1.0),
+            (f32::NAN, 1.0),
+            (0.1, 0.0),
+            (0.1, f32::INFINITY),
+        ] {
             let sensor = SensorDesc {
                 lens: Some(ThinLensDesc {
                     aperture_radius: r,

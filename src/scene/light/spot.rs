@@ -85,13 +85,14 @@ impl Spot {
     /// The share of the peak intensity sent at angle `θ` to the axis, from `cos θ`: 1
     /// inside the beam, falling linearly in `θ` to 0 at the cutoff, 0 beyond.
     pub fn falloff(&self, cos_theta: f32) -> f32 {
-        if !(cos_theta > self.cos_cutoff) {
-            0.0
-        } else if cos_theta >= self.cos_beam {
+        // NaN falls through to 0.
+        if cos_theta >= self.cos_beam && cos_theta > self.cos_cutoff {
             1.0
-        } else {
+        } else if cos_theta > self.cos_cutoff {
             let theta = cos_theta.clamp(-1.0, 1.0).acos();
             ((self.cutoff - theta) / (self.cutoff - self.beam)).clamp(0.0, 1.0)
+        } else {
+            0.0
         }
     }
 
@@ -152,7 +153,10 @@ mod tests {
             (25.0, 0.0),
         ] {
             let got = s.falloff(f32::to_radians(deg).cos());
-            assert!(got.is_finite() && (got - want).abs() < 2e-4, "{deg}°: {got}");
+            assert!(
+                got.is_finite() && (got - want).abs() < 2e-4,
+                "{deg}°: {got}"
+            );
         }
         // A beam wider than the cutoff is the cutoff: full intensity up to it.
         let wide = spot(20.0, 30.0);
@@ -163,7 +167,13 @@ mod tests {
     /// The power's closed form against a midpoint rule over θ.
     #[test]
     fn power_is_the_integral_of_the_intensity() {
-        for (c, b) in [(20.0, 15.0), (30.0, 10.0), (120.0, 90.0), (45.0, 45.0), (180.0, 0.0)] {
+        for (c, b) in [
+            (20.0, 15.0),
+            (30.0, 10.0),
+            (120.0, 90.0),
+            (45.0, 45.0),
+            (180.0, 0.0),
+        ] {
             let s = spot(c, b);
             let n = 200_000;
             let mut sum = 0.0f64;
@@ -173,7 +183,10 @@ mod tests {
             }
             let want = sum * std::f64::consts::PI / n as f64 * 2.0 * std::f64::consts::PI;
             let got = f64::from(s.power()) / (7.0 / 3.0);
-            assert!(got.is_finite() && (got / want - 1.0).abs() < 1e-3, "{c} {b}: {got} {want}");
+            assert!(
+                got.is_finite() && (got / want - 1.0).abs() < 1e-3,
+                "{c} {b}: {got} {want}"
+            );
         }
     }
 

@@ -7,8 +7,7 @@ use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::scene::description::{
-    CropWindow, FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc,
-    ThinLensDesc,
+    CropWindow, FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc, ThinLensDesc,
 };
 use crate::scene::validate::{self, MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
 
