@@ -24,6 +24,10 @@ pub enum EmitterKind {
     /// A light at infinity (environment): `pdf_pos` is the density of the arrival
     /// direction per steradian, `pdf_dir` that of the ray origin per unit area of the disk.
     Infinite,
+    /// A directional light: at infinity like [`EmitterKind::Infinite`], but a Dirac delta
+    /// in direction (`pdf_pos` is the choice probability alone); `pdf_dir` is the density
+    /// of the ray origin per unit area of the disk, `radiance` holds the irradiance (W/m²).
+    Directional,
 }
 
 /// One emitted ray, the start of a light subpath.

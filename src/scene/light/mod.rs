@@ -150,13 +150,6 @@ impl Lights {
         self.has_delta
     }
 
-    /// Whether any light is directional.
-    pub(crate) fn has_directional(&self) -> bool {
-        self.lights
-            .iter()
-            .any(|l| matches!(l, Light::Directional { .. }))
-    }
-
     /// Whether there is an environment light.
     pub fn has_environment(&self) -> bool {
         self.env.is_some()

@@ -283,13 +283,6 @@ impl Renderer {
                              to yet: use the path or direct integrator",
                 });
             }
-            if lights.has_directional() {
-                return Err(RenderError::Unsupported {
-                    integrator: integrator.name(),
-                    reason: "directional emitters do not start light subpaths yet: use the \
-                             path or direct integrator",
-                });
-            }
             if !camera.is_similarity() {
                 return Err(RenderError::Unsupported {
                     integrator: integrator.name(),
