@@ -522,3 +522,60 @@ fn spot_directional_and_thinlens_with_their_defaults() {
     .unwrap();
     assert_eq!(p.sensor.lens, None);
 }
+
+/// Without `fov`, Mitsuba 3's sensors take `focal_length` (default 50 mm on a 36 × 24 mm
+/// frame, a diagonal field of view); `fov_axis="diagonal"` is read too. The horizontal
+/// fields of view Mitsuba 3.9.1 reports (`x_fov`) for the same elements.
+#[test]
+fn field_of_view_from_focal_length_and_diagonal_as_mitsuba() {
+    let cases = [
+        ("perspective", 768, 576, "", 38.1848),
+        ("perspective", 64, 80, "", 30.2495),
+        (
+            "thinlens",
+            4,
+            4,
+            r#"<float name="aperture_radius" value="0.1"/>"#,
+            34.0221,
+        ),
+        (
+            "perspective",
+            100,
+            100,
+            r#"<string name="focal_length" value="35mm"/>"#,
+            47.2163,
+        ),
+        (
+            "perspective",
+            64,
+            80,
+            r#"<string name="focal_length" value="20"/>"#,
+            68.0947,
+        ),
+        (
+            "perspective",
+            64,
+            80,
+            r#"<float name="fov" value="30"/><string name="fov_axis" value="diagonal"/>"#,
+            19.0049,
+        ),
+    ];
+    for (ty, w, h, params, want) in cases {
+        let xml = format!(
+            r#"<scene version="3.0.0"><sensor type="{ty}">{params}<film type="hdrfilm">
+            <integer name="width" value="{w}"/><integer name="height" value="{h}"/></film>
+            </sensor></scene>"#
+        );
+        let s = parse(&xml, &[]).unwrap().sensor;
+        assert_eq!(s.fov_axis, FovAxis::X, "{params}");
+        assert!(
+            s.fov.is_finite() && (s.fov - want).abs() < 1e-3,
+            "{ty} {w}x{h} {params}: fov {} vs Mitsuba's {want}",
+            s.fov
+        );
+    }
+    let both = r#"<scene version="3.0.0"><sensor type="perspective"><float name="fov" value="30"/>
+        <string name="focal_length" value="35mm"/></sensor></scene>"#;
+    let e = parse(both, &[]).unwrap_err().to_string();
+    assert!(e.contains("focal_length cannot both be given"), "{e}");
+}

@@ -161,7 +161,7 @@ fn missing_or_unreadable_files() {
 
 #[test]
 fn unsupported_and_misplaced() {
-    let cases: [(&str, u32, &str, &str); 25] = [
+    let cases: [(&str, u32, &str, &str); 26] = [
         ("<bsdf type=\"twosided\">\n<bsdf type=\"dielectric\"/></bsdf>",
             2, "<bsdf type=\"twosided\">", "lets light through"),
         ("<bsdf type=\"blendbsdf\"><bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/></bsdf>",
@@ -180,8 +180,10 @@ fn unsupported_and_misplaced() {
             3, "<rgb name=\"diffuse_reflectance\">", "diverge"),
         ("<integrator type=\"path\"><boolean name=\"hide_emitters\" value=\"true\"/></integrator>",
             2, "<integrator type=\"path\">", "hide_emitters"),
-        ("<sensor type=\"perspective\">\n<string name=\"fov_axis\" value=\"diagonal\"/></sensor>",
-            3, "<string name=\"fov_axis\">", "diagonal"),
+        ("<sensor type=\"perspective\"><float name=\"fov\" value=\"30\"/>\n<string name=\"fov_axis\" value=\"z\"/></sensor>",
+            3, "<string name=\"fov_axis\">", "\"z\" is not supported"),
+        ("<sensor type=\"perspective\">\n<string name=\"focal_length\" value=\"35cm\"/></sensor>",
+            3, "<string name=\"focal_length\">", "not a positive length in mm"),
         ("<bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.2\"/></bsdf>",
             2, "<float name=\"alpha_u\">", "anisotropy"),
         ("<emitter type=\"area\"/>", 2, "<emitter type=\"area\">", "inside a <shape>"),

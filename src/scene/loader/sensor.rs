@@ -25,26 +25,53 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
     if ty == "thinlens" {
         s.lens = Some(read_lens(ctx, e, &mut p)?);
     }
+    // Mitsuba 3 reads `fov` (with `fov_axis`) or `focal_length` (default 50 mm on a 36 × 24
+    // mm frame: a diagonal field of view), and refuses both. A diagonal fov becomes the
+    // horizontal one once the film's aspect is known.
+    let mut diagonal = None;
+    let focal = p.string("focal_length")?;
     if let Some(fov) = p.float("fov")? {
+        if focal.is_some() {
+            return Err(p.invalid("fov", e, "and focal_length cannot both be given"));
+        }
         if !(fov > 0.0 && fov < 180.0) {
             return Err(p.invalid("fov", e, "must lie strictly between 0 and 180 degrees"));
         }
         s.fov = fov;
-    }
-    if let Some(axis) = p.string("fov_axis")? {
-        s.fov_axis = match axis.to_ascii_lowercase().as_str() {
-            "x" => FovAxis::X,
-            "y" => FovAxis::Y,
-            "smaller" => FovAxis::Smaller,
-            "larger" => FovAxis::Larger,
-            _ => {
-                return Err(p.invalid(
-                    "fov_axis",
-                    e,
-                    &format!("\"{axis}\" is not supported (x, y, smaller or larger)"),
-                ))
-            }
+        if let Some(axis) = p.string("fov_axis")? {
+            s.fov_axis = match axis.to_ascii_lowercase().as_str() {
+                "x" => FovAxis::X,
+                "y" => FovAxis::Y,
+                "smaller" => FovAxis::Smaller,
+                "larger" => FovAxis::Larger,
+                "diagonal" => {
+                    diagonal = Some(fov.to_radians());
+                    FovAxis::X
+                }
+                _ => {
+                    return Err(p.invalid(
+                        "fov_axis",
+                        e,
+                        &format!("\"{axis}\" is not supported (x, y, diagonal, smaller or larger)"),
+                    ))
+                }
+            };
+        }
+    } else {
+        let mm = match focal.as_deref() {
+            None => 50.0,
+            Some(text) => match parse_focal_length(text) {
+                Some(mm) => mm,
+                None => {
+                    return Err(p.invalid(
+                        "focal_length",
+                        e,
+                        &format!("\"{text}\" is not a positive length in mm (such as \"35mm\")"),
+                    ))
+                }
+            },
         };
+        diagonal = Some(diagonal_fov(mm));
     }
     s.near_clip = p.float("near_clip")?.unwrap_or(s.near_clip);
     s.far_clip = p.float("far_clip")?.unwrap_or(s.far_clip);
@@ -72,9 +99,34 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
         }
     }
     s.film = film.unwrap_or_default();
+    if let Some(d) = diagonal {
+        s.fov = horizontal_fov(d, s.film.width as f32 / s.film.height as f32);
+        s.fov_axis = FovAxis::X;
+    }
     s.sampler = sampler.unwrap_or_default();
     p.finish()?;
     Ok(s)
+}
+
+/// Mitsuba 3's `focal_length`: `N` or `Nmm`, N > 0 millimetres.
+fn parse_focal_length(text: &str) -> Option<f32> {
+    let t = text.trim();
+    let mm: f32 = t.strip_suffix("mm").unwrap_or(t).trim().parse().ok()?;
+    (mm.is_finite() && mm > 0.0).then_some(mm)
+}
+
+/// The diagonal field of view in radians of a lens of focal length `mm` on a 36 × 24 mm
+/// frame (Mitsuba 3's rule for `focal_length`).
+fn diagonal_fov(mm: f32) -> f32 {
+    2.0 * (36f32.hypot(24.0) / (2.0 * mm)).atan()
+}
+
+/// The horizontal field of view in degrees of a diagonal one of `diag` radians on a film
+/// of aspect `a = w/h`: `tan(x/2) = tan(d/2) · a/√(1 + a²)` (as Mitsuba 3 converts it).
+fn horizontal_fov(diag: f32, a: f32) -> f32 {
+    2.0 * ((0.5 * diag).tan() * a / (1.0 + a * a).sqrt())
+        .atan()
+        .to_degrees()
 }
 
 /// The lens parameters of a `thinlens` sensor: `aperture_radius` (required, as in
