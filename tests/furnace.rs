@@ -4,7 +4,7 @@
 //! lossless glass 1 (after every internal bounce; radiance scaled by 1/η² inside and back).
 //!
 //! Also analytic checks of the other light types: a uniform environment map (through its
-//! importance sampling) and a point light over a diffuse plane.
+//! importance sampling) and point, spot and directional lights over a diffuse plane.
 //!
 //! The coated and thin materials: a white plastic sphere (ρ = 1) returns 1, a thin glass
 //! sphere 1, rough glass nearly 1 at α = 0.01; rough glass at α = 0.3 and white rough
@@ -174,6 +174,57 @@ fn point_light_over_a_diffuse_plane() {
             m[c].is_finite() && (m[c] / want[c] - 1.0).abs() < 1e-3,
             "{m} vs {want}"
         );
+    }
+}
+
+/// A directional light at angle θ to a diffuse plane gives irradiance `E cos θ` (the
+/// radiance `ρ/π · E cos θ` everywhere, with no falloff); a spot light straight above gives
+/// `ρ/π · I f(0) / d²` under it, its full intensity inside the beam.
+#[test]
+fn directional_and_spot_lights_over_a_diffuse_plane() {
+    let rho = Vec3::new(0.3, 0.5, 0.7);
+    let mut floor = ShapeDesc::new(ShapeKind::Rectangle);
+    floor.to_world = Mat4::from_scale(Vec3::splat(10.0));
+    floor.bsdf = BsdfDesc::Diffuse { reflectance: rho };
+    let theta = 50f32.to_radians();
+    let lights = [
+        (
+            EmitterDesc::Directional {
+                irradiance: Vec3::splat(2.0),
+                direction: Vec3::new(theta.sin(), 0.0, -theta.cos()),
+            },
+            2.0 * theta.cos(),
+        ),
+        (
+            EmitterDesc::Spot {
+                intensity: Vec3::splat(3.0),
+                cutoff_angle: 20.0,
+                beam_width: 15.0,
+                to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0))
+                    * Mat4::from_rotation_x(std::f32::consts::PI),
+            },
+            3.0 / 4.0,
+        ),
+    ];
+    for (light, irradiance) in lights {
+        let desc = SceneDescription {
+            integrator: IntegratorDesc::Path {
+                max_depth: 2,
+                rr_depth: 5,
+            },
+            sensor: camera(Vec3::new(0.0, 0.0, 5.0), 0.45, 16),
+            shapes: vec![floor.clone()],
+            emitters: vec![light.clone()],
+            source: None,
+        };
+        let (m, _) = render(&desc, 4);
+        let want = rho / std::f32::consts::PI * irradiance;
+        for c in 0..3 {
+            assert!(
+                m[c].is_finite() && (m[c] / want[c] - 1.0).abs() < 1e-3,
+                "{light:?}: {m} vs {want}"
+            );
+        }
     }
 }
 

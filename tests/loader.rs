@@ -4,8 +4,8 @@
 use mcrt::glam::{Mat4, Vec3};
 use mcrt::scene::cornell_box::{cornell_box, cornell_box_with};
 use mcrt::scene::description::{
-    BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
-    SceneDescription, ShapeKind,
+    BsdfDesc, ConductorFresnel, EmitterDesc, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
+    SceneDescription, ShapeKind, ThinLensDesc,
 };
 use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError, SceneErrorKind};
 use std::path::Path;
@@ -460,4 +460,122 @@ fn mesh_scene_with_include_spectra_tent_and_crop() {
     let f = x.sensor.film;
     assert_eq!(f.filter, FilterDesc::Tent { radius: 1.0 });
     assert_eq!((f.window().width, f.window().height), (6, 576));
+}
+
+/// Spot and directional emitters and the thinlens sensor with Mitsuba 3's defaults (checked
+/// against Mitsuba 3.9.1 itself: a spot's cutoff 20° and beam ¾ of the cutoff, a directional
+/// light travelling along +z of its `to_world`, a thin lens focused at 10⁴ whose
+/// `aperture_radius` is required), and the parameters given.
+#[test]
+fn spot_directional_and_thinlens_with_their_defaults() {
+    let xml = r#"<scene version="3.0.0">
+        <sensor type="thinlens"><float name="aperture_radius" value="0.2"/></sensor>
+        <emitter type="spot"/>
+        <emitter type="spot"><float name="cutoff_angle" value="40"/></emitter>
+        <emitter type="spot"><float name="cutoff_angle" value="40"/><float name="beam_width" value="5"/>
+            <rgb name="intensity" value="1, 2, 3"/>
+            <transform name="to_world"><translate x="1"/></transform></emitter>
+        <emitter type="directional"/>
+        <emitter type="directional"><vector name="direction" x="0" y="-3" z="0"/>
+            <rgb name="irradiance" value="2"/></emitter>
+        <emitter type="directional"><transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>
+    </scene>"#;
+    let d = parse(xml, &[]).unwrap();
+    assert_eq!(
+        d.sensor.lens,
+        Some(ThinLensDesc {
+            aperture_radius: 0.2,
+            focus_distance: 1e4
+        })
+    );
+    let spot = |i: usize| match &d.emitters[i] {
+        EmitterDesc::Spot {
+            intensity,
+            cutoff_angle,
+            beam_width,
+            to_world,
+        } => (*intensity, *cutoff_angle, *beam_width, *to_world),
+        e => panic!("{e:?}"),
+    };
+    assert_eq!(spot(0), (Vec3::ONE, 20.0, 15.0, Mat4::IDENTITY));
+    assert_eq!((spot(1).1, spot(1).2), (40.0, 30.0));
+    let (i, c, b, m) = spot(2);
+    assert_eq!((i, c, b), (Vec3::new(1.0, 2.0, 3.0), 40.0, 5.0));
+    assert_eq!(m.transform_point3(Vec3::ZERO), Vec3::X);
+    let directional = |i: usize| match &d.emitters[i] {
+        EmitterDesc::Directional {
+            irradiance,
+            direction,
+        } => (*irradiance, *direction),
+        e => panic!("{e:?}"),
+    };
+    assert_eq!(directional(3), (Vec3::ONE, Vec3::Z));
+    assert_eq!(directional(4), (Vec3::splat(2.0), Vec3::NEG_Y));
+    // Rotating +z by 90° about x gives −y.
+    let (_, dir) = directional(5);
+    assert!((dir - Vec3::NEG_Y).length() < 1e-6, "{dir}");
+    // A perspective sensor has no lens.
+    let p = parse(
+        r#"<scene version="3.0.0"><sensor type="perspective"/></scene>"#,
+        &[],
+    )
+    .unwrap();
+    assert_eq!(p.sensor.lens, None);
+}
+
+/// Without `fov`, Mitsuba 3's sensors take `focal_length` (default 50 mm on a 36 × 24 mm
+/// frame, a diagonal field of view); `fov_axis="diagonal"` is read too. The horizontal
+/// fields of view Mitsuba 3.9.1 reports (`x_fov`) for the same elements.
+#[test]
+fn field_of_view_from_focal_length_and_diagonal_as_mitsuba() {
+    let cases = [
+        ("perspective", 768, 576, "", 38.1848),
+        ("perspective", 64, 80, "", 30.2495),
+        (
+            "thinlens",
+            4,
+            4,
+            r#"<float name="aperture_radius" value="0.1"/>"#,
+            34.0221,
+        ),
+        (
+            "perspective",
+            100,
+            100,
+            r#"<string name="focal_length" value="35mm"/>"#,
+            47.2163,
+        ),
+        (
+            "perspective",
+            64,
+            80,
+            r#"<string name="focal_length" value="20"/>"#,
+            68.0947,
+        ),
+        (
+            "perspective",
+            64,
+            80,
+            r#"<float name="fov" value="30"/><string name="fov_axis" value="diagonal"/>"#,
+            19.0049,
+        ),
+    ];
+    for (ty, w, h, params, want) in cases {
+        let xml = format!(
+            r#"<scene version="3.0.0"><sensor type="{ty}">{params}<film type="hdrfilm">
+            <integer name="width" value="{w}"/><integer name="height" value="{h}"/></film>
+            </sensor></scene>"#
+        );
+        let s = parse(&xml, &[]).unwrap().sensor;
+        assert_eq!(s.fov_axis, FovAxis::X, "{params}");
+        assert!(
+            s.fov.is_finite() && (s.fov - want).abs() < 1e-3,
+            "{ty} {w}x{h} {params}: fov {} vs Mitsuba's {want}",
+            s.fov
+        );
+    }
+    let both = r#"<scene version="3.0.0"><sensor type="perspective"><float name="fov" value="30"/>
+        <string name="focal_length" value="35mm"/></sensor></scene>"#;
+    let e = parse(both, &[]).unwrap_err().to_string();
+    assert!(e.contains("focal_length cannot both be given"), "{e}");
 }

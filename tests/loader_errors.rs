@@ -161,7 +161,7 @@ fn missing_or_unreadable_files() {
 
 #[test]
 fn unsupported_and_misplaced() {
-    let cases: [(&str, u32, &str, &str); 16] = [
+    let cases: [(&str, u32, &str, &str); 26] = [
         ("<bsdf type=\"twosided\">\n<bsdf type=\"dielectric\"/></bsdf>",
             2, "<bsdf type=\"twosided\">", "lets light through"),
         ("<bsdf type=\"blendbsdf\"><bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/></bsdf>",
@@ -180,8 +180,10 @@ fn unsupported_and_misplaced() {
             3, "<rgb name=\"diffuse_reflectance\">", "diverge"),
         ("<integrator type=\"path\"><boolean name=\"hide_emitters\" value=\"true\"/></integrator>",
             2, "<integrator type=\"path\">", "hide_emitters"),
-        ("<sensor type=\"perspective\">\n<string name=\"fov_axis\" value=\"diagonal\"/></sensor>",
-            3, "<string name=\"fov_axis\">", "diagonal"),
+        ("<sensor type=\"perspective\"><float name=\"fov\" value=\"30\"/>\n<string name=\"fov_axis\" value=\"z\"/></sensor>",
+            3, "<string name=\"fov_axis\">", "\"z\" is not supported"),
+        ("<sensor type=\"perspective\">\n<string name=\"focal_length\" value=\"35cm\"/></sensor>",
+            3, "<string name=\"focal_length\">", "not a positive length in mm"),
         ("<bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.2\"/></bsdf>",
             2, "<float name=\"alpha_u\">", "anisotropy"),
         ("<emitter type=\"area\"/>", 2, "<emitter type=\"area\">", "inside a <shape>"),
@@ -189,6 +191,23 @@ fn unsupported_and_misplaced() {
         ("<shape type=\"cube\">\n<texture type=\"bitmap\"/></shape>", 3, "<texture type=\"bitmap\">", "unsupported"),
         ("<shape type=\"cube\"><translate x=\"1\"/></shape>", 2, "<translate>", "outside a <transform>"),
         ("<shape type=\"sphere\"><float name=\"radius\" value=\"-1\"/></shape>", 2, "<float name=\"radius\">", "positive"),
+        ("<emitter type=\"spot\">\n<float name=\"cutoff_angle\" value=\"0\"/></emitter>",
+            3, "<float name=\"cutoff_angle\">", "(0, 180]"),
+        ("<emitter type=\"spot\">\n<float name=\"beam_width\" value=\"-2\"/></emitter>",
+            3, "<float name=\"beam_width\">", "non-negative"),
+        ("<emitter type=\"spot\">\n<transform name=\"to_world\"><scale x=\"2\"/></transform></emitter>",
+            3, "<transform name=\"to_world\">", "uniform scale"),
+        ("<emitter type=\"directional\"><vector name=\"direction\" value=\"0, 1, 0\"/>\n<transform name=\"to_world\"/></emitter>",
+            2, "<vector name=\"direction\">", "cannot both be given"),
+        ("<emitter type=\"directional\">\n<vector name=\"direction\" value=\"0, 0, 0\"/></emitter>",
+            3, "<vector name=\"direction\">", "non-zero"),
+        ("<emitter type=\"envmap\"><string name=\"filename\" value=\"sky.exr\"/>\n<transform name=\"to_world\"><scale value=\"2\"/></transform></emitter>",
+            3, "<transform name=\"to_world\">", "must be a rotation"),
+        ("<shape type=\"cube\"><emitter type=\"spot\"/></shape>", 2, "<emitter type=\"spot\">", "only \"area\""),
+        ("<sensor type=\"thinlens\">\n<float name=\"fov\" value=\"30\"/></sensor>",
+            2, "<sensor type=\"thinlens\">", "aperture_radius"),
+        ("<sensor type=\"thinlens\"><float name=\"aperture_radius\" value=\"0.1\"/>\n<float name=\"focus_distance\" value=\"-1\"/></sensor>",
+            3, "<float name=\"focus_distance\">", "positive"),
     ];
     for (body, line, element, words) in cases {
         let e = err(body);

@@ -293,3 +293,17 @@ fn tent_filter_and_crop_window_match_mitsuba() {
         },
     );
 }
+
+/// A spot light (cutoff 30°, beam 18°, aimed by a `lookat`) and a directional light
+/// (`direction`) in an open box: the falloff cone and hard shadows (issue 16).
+#[test]
+fn spot_and_directional_lights_match_mitsuba() {
+    check_low_spp("spot-directional.xml", &[], "spot-directional.exr", 64);
+}
+
+/// A thin-lens sensor (aperture 0.12, focus 4.2) over spheres lit by an environment map
+/// turned by a `to_world` of two rotations (issue 16).
+#[test]
+fn thin_lens_and_rotated_envmap_match_mitsuba() {
+    check_low_spp("thinlens.xml", &[], "thinlens.exr", 64);
+}

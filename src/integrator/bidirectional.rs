@@ -18,11 +18,16 @@ pub enum EmitterKind {
     /// steradian, emitted radiance `Scene::emitted`.
     Area,
     /// A point light: a Dirac delta in position (`pdf_pos` is the choice probability
-    /// alone); `radiance` holds the intensity (W/sr).
+    /// alone); `radiance` holds the intensity (W/sr) along the sampled direction (see
+    /// [`BidirectionalScene::point_intensity`] for lights that are not isotropic).
     Point,
     /// A light at infinity (environment): `pdf_pos` is the density of the arrival
     /// direction per steradian, `pdf_dir` that of the ray origin per unit area of the disk.
     Infinite,
+    /// A directional light: at infinity like [`EmitterKind::Infinite`], but a Dirac delta
+    /// in direction (`pdf_pos` is the choice probability alone); `pdf_dir` is the density
+    /// of the ray origin per unit area of the disk, `radiance` holds the irradiance (W/m²).
+    Directional,
 }
 
 /// One emitted ray, the start of a light subpath.
@@ -77,6 +82,15 @@ pub trait BidirectionalScene: Scene {
     /// `light`'s point `point` and the direction `dir` leaving it (for a light at infinity,
     /// `dir` is the direction of travel and `point` is ignored).
     fn emission_pdf(&self, light: u32, point: &SurfacePoint, dir: Vec3) -> (f32, f32);
+
+    /// Intensity (W/sr) that the point-like light `light` (an [`EmitterKind::Point`]
+    /// emitter) sends along the unit direction `dir`, for a light whose intensity varies
+    /// with direction, such as a spot light. The default, `None`, means isotropic: the
+    /// intensity its [`EmissionSample::radiance`] carried, in every direction.
+    #[inline]
+    fn point_intensity(&self, _light: u32, _dir: Vec3) -> Option<Vec3> {
+        None
+    }
 
     /// The light index of the area emitter under `sp`, if any.
     fn emitter_at(&self, sp: &SurfacePoint) -> Option<u32>;

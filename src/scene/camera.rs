@@ -25,6 +25,8 @@
 //! assert!(cam.generate_ray(Vec2::new(0.0, 288.0)).dir.x > 0.0);
 //! ```
 
+mod thin_lens;
+
 use crate::scene::description::{FovAxis, SensorDesc};
 use crate::scene::geometry::Ray;
 use glam::{Affine3A, Mat3, Vec2, Vec3};
@@ -52,6 +54,14 @@ pub enum CameraError {
     },
     /// `to_world` is not finite, affine and invertible.
     BadTransform,
+    /// A thin lens's aperture radius is negative or not finite, or its focus distance is
+    /// not finite and positive.
+    InvalidLens {
+        /// `aperture_radius`.
+        aperture_radius: f32,
+        /// `focus_distance`.
+        focus_distance: f32,
+    },
 }
 
 impl fmt::Display for CameraError {
@@ -66,15 +76,26 @@ impl fmt::Display for CameraError {
                 )
             }
             Self::BadTransform => write!(f, "sensor to_world is not finite, affine and invertible"),
+            Self::InvalidLens {
+                aperture_radius,
+                focus_distance,
+            } => write!(
+                f,
+                "thin lens aperture_radius {aperture_radius}, focus_distance {focus_distance}: \
+                 need a finite radius >= 0 and a finite distance > 0"
+            ),
         }
     }
 }
 
 impl std::error::Error for CameraError {}
 
-/// A pinhole perspective camera.
+/// A perspective camera: a pinhole, or a thin lens (Mitsuba 3's `thinlens`; see
+/// [`Camera::generate_ray_through_lens`]).
 #[derive(Debug, Clone)]
 pub struct Camera {
+    /// The thin lens: aperture radius and focus distance; `None` for a pinhole.
+    lens: Option<(f32, f32)>,
     to_world: Affine3A,
     to_camera: Affine3A,
     /// The rendered window's size in pixels (the whole film unless it is cropped).
@@ -135,7 +156,21 @@ impl Camera {
                 height: win.height,
             });
         }
+        let lens = match sensor.lens {
+            None => None,
+            Some(l) => {
+                let (r, f) = (l.aperture_radius, l.focus_distance);
+                if !(r.is_finite() && r >= 0.0 && f.is_finite() && f > 0.0) {
+                    return Err(CameraError::InvalidLens {
+                        aperture_radius: r,
+                        focus_distance: f,
+                    });
+                }
+                Some((r, f))
+            }
+        };
         Ok(Self {
+            lens,
             to_world: Affine3A::from_mat4(m),
             to_camera: Affine3A::from_mat4(m).inverse(),
             width: win.width,

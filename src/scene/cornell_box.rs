@@ -122,6 +122,7 @@ fn sensor(spp: u32, res: u32) -> SensorDesc {
             sample_count: spp,
             seed: 0,
         },
+        lens: None,
     }
 }
 

@@ -15,7 +15,8 @@ pub struct SceneDescription {
     pub sensor: SensorDesc,
     /// Every shape, in file order.
     pub shapes: Vec<ShapeDesc>,
-    /// Emitters not attached to a shape (point, constant environment, environment map).
+    /// Emitters not attached to a shape (point, spot, directional, constant environment,
+    /// environment map).
     pub emitters: Vec<EmitterDesc>,
     /// The file the description was read from, if any (for messages and relative paths).
     pub source: Option<PathBuf>,
@@ -222,6 +223,8 @@ pub struct SensorDesc {
     pub film: FilmDesc,
     /// The sampler.
     pub sampler: SamplerDesc,
+    /// The thin lens of a `thinlens` sensor; `None` for a pinhole (`perspective`).
+    pub lens: Option<ThinLensDesc>,
 }
 
 impl Default for SensorDesc {
@@ -234,6 +237,7 @@ impl Default for SensorDesc {
             to_world: Mat4::IDENTITY,
             film: FilmDesc::default(),
             sampler: SamplerDesc::default(),
+            lens: None,
         }
     }
 }
@@ -637,4 +641,45 @@ pub enum EmitterDesc {
         /// Map-to-world transform.
         to_world: Mat4,
     },
+    /// `spot`: a point light whose intensity falls off inside a cone about its local +z
+    /// axis (Mitsuba 3's `spot`).
+    Spot {
+        /// Peak radiant intensity, linear RGB (W/sr), along the axis.
+        intensity: Vec3,
+        /// Half-angle in degrees beyond which nothing is emitted (default 20).
+        cutoff_angle: f32,
+        /// Half-angle in degrees up to which the intensity is the peak's; it falls off
+        /// linearly in the angle from there to `cutoff_angle` (default ¾ of the cutoff).
+        beam_width: f32,
+        /// Light-to-world transform: the light sits at its origin and shines along its +z.
+        to_world: Mat4,
+    },
+    /// `directional`: light arriving from one direction everywhere (Mitsuba 3's
+    /// `directional`).
+    Directional {
+        /// Irradiance on a surface facing the light, linear RGB (W/m²).
+        irradiance: Vec3,
+        /// Unit direction the light travels along, world space (default +z).
+        direction: Vec3,
+    },
+}
+
+impl EmitterDesc {
+    /// Mitsuba 3's default `cutoff_angle` of a `spot`, in degrees.
+    pub const SPOT_CUTOFF_ANGLE: f32 = 20.0;
+}
+
+/// A thin lens in front of the perspective camera (Mitsuba 3's `thinlens` sensor): rays
+/// leave a disk of radius `aperture_radius` and meet on the plane `focus_distance` in front.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThinLensDesc {
+    /// Radius of the aperture disk, in world units (required by Mitsuba; no default).
+    pub aperture_radius: f32,
+    /// Distance of the plane in focus along the viewing axis (default 10⁴, Mitsuba's).
+    pub focus_distance: f32,
+}
+
+impl ThinLensDesc {
+    /// Mitsuba 3's default `focus_distance`.
+    pub const FOCUS_DISTANCE: f32 = 1e4;
 }

@@ -459,9 +459,68 @@ pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
             if !(scale.is_finite() && *scale >= 0.0) {
                 return Err(invalid("scale", "must be finite and non-negative"));
             }
-            transform("to_world", to_world)
+            transform("to_world", to_world)?;
+            if !is_rotation(to_world) {
+                return Err(invalid(
+                    "to_world",
+                    "must be a rotation (with any translation): Mitsuba 3 looks an environment \
+                     map up along a scaled or sheared direction without normalising it",
+                ));
+            }
+            Ok(())
+        }
+        EmitterDesc::Spot {
+            intensity,
+            cutoff_angle,
+            beam_width,
+            to_world,
+        } => {
+            if !(cutoff_angle.is_finite() && *cutoff_angle > 0.0 && *cutoff_angle <= 180.0) {
+                return Err(invalid("cutoff_angle", "must lie in (0, 180] degrees"));
+            }
+            if !(beam_width.is_finite() && *beam_width >= 0.0) {
+                return Err(invalid("beam_width", "must be finite and non-negative"));
+            }
+            transform("to_world", to_world)?;
+            if !is_similarity(to_world) {
+                return Err(invalid(
+                    "to_world",
+                    "must be a rotation, uniform scale and translation for a spot light",
+                ));
+            }
+            colour("intensity", *intensity)
+        }
+        EmitterDesc::Directional {
+            irradiance,
+            direction,
+        } => {
+            if !(direction.is_finite() && (direction.length() - 1.0).abs() < 1e-3) {
+                return Err(invalid("direction", "must be a finite unit vector"));
+            }
+            colour("irradiance", *irradiance)
         }
     }
+}
+
+/// Whether the linear part of `m` is a rotation or reflection (orthonormal columns), to
+/// a relative tolerance of 10⁻⁴.
+fn is_rotation(m: &Mat4) -> bool {
+    let s = glam::Mat3::from_mat4(*m).x_axis.length_squared();
+    is_similarity(m) && (s - 1.0).abs() < 1e-4
+}
+
+/// Whether the linear part of `m` has orthogonal columns of one length (a rotation or
+/// reflection times a uniform scale), to a relative tolerance of 10⁻⁴.
+pub(crate) fn is_similarity(m: &Mat4) -> bool {
+    let r = glam::Mat3::from_mat4(*m);
+    let g = r.transpose() * r;
+    let s = g.x_axis.x;
+    s > 0.0
+        && s.is_finite()
+        && (g - glam::Mat3::from_diagonal(Vec3::splat(s)))
+            .to_cols_array()
+            .iter()
+            .all(|v| v.abs() < 1e-4 * s)
 }
 
 /// A shape: its geometry, transform, material and area emitter.

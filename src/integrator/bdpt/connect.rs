@@ -138,8 +138,8 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
 }
 
 /// Strategy `s = 1` by the scene's emission sampling (a light by power, a point by area):
-/// the same density as a light subpath's first vertex. Used in scenes with point lights,
-/// which next-event estimation does not identify. Returns the contribution and the light
+/// the same density as a light subpath's first vertex. Used in scenes with delta lights
+/// (point, spot, directional), which next-event estimation does not identify. Returns the contribution and the light
 /// vertex.
 fn light_by_emission<S: BidirectionalScene>(
     scene: &S,

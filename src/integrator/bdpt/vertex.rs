@@ -110,15 +110,24 @@ impl Vertex {
         v.light = es.light;
         match es.kind {
             EmitterKind::Infinite => v.w_env = -es.dir,
+            EmitterKind::Directional => {
+                v.w_env = -es.dir;
+                v.intensity = es.radiance;
+            }
             EmitterKind::Point => v.intensity = es.radiance,
             EmitterKind::Area => {}
         }
         v
     }
 
+    /// At infinity: an environment or a directional light (directions toward it do not
+    /// depend on the position; densities toward it stay per steradian).
     #[inline]
     pub(crate) fn is_infinite(&self) -> bool {
-        self.kind == Kind::Light(EmitterKind::Infinite)
+        matches!(
+            self.kind,
+            Kind::Light(EmitterKind::Infinite | EmitterKind::Directional)
+        )
     }
 
     /// On a surface with a normal (densities toward it carry its cosine).
@@ -127,10 +136,14 @@ impl Vertex {
         matches!(self.kind, Kind::Surface | Kind::Light(EmitterKind::Area))
     }
 
-    /// A Dirac delta in position (a point light; the pinhole is handled by the estimators).
+    /// A Dirac delta in position or direction (a point, spot or directional light: no
+    /// camera path can hit it; the pinhole is handled by the estimators).
     #[inline]
     pub(crate) fn is_delta_light(&self) -> bool {
-        self.kind == Kind::Light(EmitterKind::Point)
+        matches!(
+            self.kind,
+            Kind::Light(EmitterKind::Point | EmitterKind::Directional)
+        )
     }
 
     /// This vertex as a connection that ends here sees it: not delta, its forward density
@@ -304,7 +317,10 @@ impl Vertex {
         }
         match self.kind {
             Kind::Light(EmitterKind::Infinite) => scene.environment(self.w_env),
-            Kind::Light(EmitterKind::Point) => self.intensity,
+            Kind::Light(EmitterKind::Directional) => self.intensity,
+            Kind::Light(EmitterKind::Point) => scene
+                .point_intensity(self.light, self.dir_to(to).0)
+                .unwrap_or(self.intensity),
             _ => scene.emitted(&self.sp, self.dir_to(to).0),
         }
     }

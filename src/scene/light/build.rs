@@ -2,7 +2,7 @@
 //! choice of lights and the sampling plan.
 
 use super::choice::{LightChoice, LightPlace};
-use super::{mean, EnvMap, Light, LightError, Lights, SamplePlan};
+use super::{mean, EnvMap, Light, LightError, Lights, SamplePlan, Spot};
 use crate::scene::description::{EmitterDesc, SceneDescription};
 use crate::scene::geometry::{Geometry, RectangleSampler, ShapeSampling};
 use std::f32::consts::PI;
@@ -37,6 +37,29 @@ impl Lights {
                     lights.push(Light::Point {
                         position: *position,
                         intensity: *intensity,
+                    });
+                }
+                EmitterDesc::Spot {
+                    intensity,
+                    cutoff_angle,
+                    beam_width,
+                    to_world,
+                } => {
+                    let spot = Spot::new(*intensity, *cutoff_angle, *beam_width, *to_world)?;
+                    has_delta = true;
+                    power.push(spot.power());
+                    lights.push(Light::Spot(Box::new(spot)));
+                }
+                EmitterDesc::Directional {
+                    irradiance,
+                    direction,
+                } => {
+                    // The light through the disk of the scene's bounding sphere.
+                    has_delta = true;
+                    power.push(PI * radius * radius * mean(*irradiance).max(0.0));
+                    lights.push(Light::Directional {
+                        direction: direction.normalize_or_zero(),
+                        irradiance: *irradiance,
                     });
                 }
                 EmitterDesc::Constant { radiance } => {
@@ -87,7 +110,11 @@ impl Lights {
                     center: position,
                     radius: 0.0,
                 }),
-                Light::Constant { .. } | Light::EnvMap(_) => None,
+                Light::Spot(ref s) => Some(LightPlace {
+                    center: s.position(),
+                    radius: 0.0,
+                }),
+                Light::Constant { .. } | Light::EnvMap(_) | Light::Directional { .. } => None,
             })
             .collect();
         let picker = LightChoice::new(&power, &places);

@@ -4,6 +4,11 @@
 //! - area lights: a point uniform by area ([`Geometry::sample_area`]), a direction
 //!   cosine-distributed about the front normal (`pdf = cos θ / π`);
 //! - point lights: the position, a direction uniform over the sphere (`1/(4π)`);
+//! - spot lights: the position, a direction uniform in the cutoff cone;
+//! - directional lights: the ray origin uniform on the disk of the scene's bounding
+//!   sphere's radius perpendicular to the light's direction, one radius out against it
+//!   (`1/(πR²)` per unit area), travelling along it (the choice probability alone for its
+//!   Dirac delta of direction);
 //! - environments: a direction `w` toward the light by the light's own sampling, then a
 //!   ray origin uniform on the disk of the scene's bounding sphere's radius perpendicular
 //!   to `w`, one radius out (`1/(πR²)` per unit area), travelling along `−w`.
@@ -45,6 +50,15 @@ impl Lights {
     /// The light index of the environment.
     pub fn environment_index(&self) -> Option<u32> {
         self.env
+    }
+
+    /// Intensity (W/sr) that light `light`, a spot light, sends along the unit direction
+    /// `dir`; `None` for every other light.
+    pub(crate) fn spot_intensity(&self, light: u32, dir: Vec3) -> Option<Vec3> {
+        match self.lights.get(light as usize)? {
+            Light::Spot(spot) => Some(spot.intensity_toward(dir)),
+            _ => None,
+        }
     }
 
     /// An emitted ray: a light by power (`u_pick.x`), a triangle of a mesh light by area
@@ -93,6 +107,33 @@ impl Lights {
                 pdf_pos: pick,
                 pdf_dir: 1.0 / (4.0 * PI),
             }),
+            Light::Spot(spot) => {
+                let (dir, intensity, pdf_dir) = spot.sample_direction(u_dir);
+                Some(EmissionSample {
+                    light,
+                    kind: EmitterKind::Point,
+                    point: bare(spot.position(), Vec3::ZERO, u32::MAX),
+                    dir,
+                    radiance: intensity,
+                    pdf_pos: pick,
+                    pdf_dir,
+                })
+            }
+            &Light::Directional {
+                direction,
+                irradiance,
+            } => {
+                let (origin, pdf_disk) = disk_origin(world, -direction, u_dir);
+                Some(EmissionSample {
+                    light,
+                    kind: EmitterKind::Directional,
+                    point: bare(origin, Vec3::ZERO, u32::MAX),
+                    dir: direction,
+                    radiance: irradiance,
+                    pdf_pos: pick,
+                    pdf_dir: pdf_disk,
+                })
+            }
             Light::Constant { .. } | Light::EnvMap(_) => {
                 let (w, radiance, pdf_w) = match &self.lights[i] {
                     Light::EnvMap(m) => m.sample(u_pos)?,
@@ -101,11 +142,7 @@ impl Lights {
                     }
                     _ => return None,
                 };
-                let (center, radius) = world;
-                let radius = radius.max(1e-3);
-                let frame = crate::integrator::Frame::from_normal(w);
-                let d = UniformDiskConcentric.sample(u_dir) * radius;
-                let origin = center + radius * w + frame.s * d.x + frame.t * d.y;
+                let (origin, pdf_disk) = disk_origin(world, w, u_dir);
                 Some(EmissionSample {
                     light,
                     kind: EmitterKind::Infinite,
@@ -113,7 +150,7 @@ impl Lights {
                     dir: -w,
                     radiance,
                     pdf_pos: pdf_w * pick,
-                    pdf_dir: 1.0 / (PI * radius * radius),
+                    pdf_dir: pdf_disk,
                 })
             }
         }
@@ -139,11 +176,24 @@ impl Lights {
                 (if area > 0.0 { pick / area } else { 0.0 }, pdf_dir)
             }
             Some(Light::Point { .. }) => (pick, 1.0 / (4.0 * PI)),
+            Some(Light::Spot(spot)) => (pick, spot.pdf_direction(dir)),
+            Some(Light::Directional { .. }) => (pick, disk_pdf(world)),
             Some(Light::EnvMap(m)) => (pick * m.pdf(-dir), disk_pdf(world)),
             Some(Light::Constant { .. }) => (pick / (4.0 * PI), disk_pdf(world)),
             None => (0.0, 0.0),
         }
     }
+}
+
+/// A ray origin for a light at infinity arriving from the unit direction `w`: uniform on
+/// the disk of the world's radius perpendicular to `w`, one radius out toward the light;
+/// with its density per unit area.
+fn disk_origin((center, radius): (Vec3, f32), w: Vec3, u: Vec2) -> (Vec3, f32) {
+    let radius = radius.max(1e-3);
+    let frame = crate::integrator::Frame::from_normal(w);
+    let d = UniformDiskConcentric.sample(u) * radius;
+    let origin = center + radius * w + frame.s * d.x + frame.t * d.y;
+    (origin, 1.0 / (PI * radius * radius))
 }
 
 /// Density per unit area of the emission disk of a light at infinity.

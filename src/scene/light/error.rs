@@ -16,6 +16,8 @@ pub enum LightError {
         /// What is wrong with it.
         reason: String,
     },
+    /// A spot light's parameters are out of range (the message says which).
+    Spot(String),
 }
 
 impl fmt::Display for LightError {
@@ -27,6 +29,7 @@ impl fmt::Display for LightError {
             LightError::EnvMap { path, reason } => {
                 write!(f, "light setup: {}: {reason}", path.display())
             }
+            LightError::Spot(what) => write!(f, "light setup: spot light: {what}"),
         }
     }
 }

@@ -1,5 +1,5 @@
-//! Lights: area emitters on shapes (front side only), point lights, a constant environment
-//! and an environment map, chosen for next-event estimation by power, or, with a few lights
+//! Lights: area emitters on shapes (front side only), point and spot lights, directional
+//! lights, a constant environment and an environment map, chosen for next-event estimation by power, or, with a few lights
 //! that all have a position, by their estimated contribution at the shading point
 //! (`choice.rs`).
 
@@ -8,6 +8,7 @@ mod choice;
 mod emission;
 mod envmap;
 mod error;
+mod spot;
 #[cfg(test)]
 mod tests;
 
@@ -15,6 +16,7 @@ use choice::LightChoice;
 
 pub use envmap::EnvMap;
 pub use error::LightError;
+pub use spot::Spot;
 
 use crate::integrator::{is_positive, LightSample, SurfacePoint};
 use crate::sampling::warp::{UniformSphere, Warp};
@@ -46,6 +48,15 @@ pub enum Light {
     },
     /// An environment map.
     EnvMap(Box<EnvMap>),
+    /// A spot light: a point light whose intensity falls off in a cone.
+    Spot(Box<Spot>),
+    /// Light arriving along one direction everywhere: a Dirac delta in direction.
+    Directional {
+        /// Unit direction the light travels along.
+        direction: Vec3,
+        /// Irradiance on a surface facing the light (W/m²).
+        irradiance: Vec3,
+    },
 }
 
 /// All lights of a scene with the distribution that chooses among them.
@@ -138,7 +149,7 @@ impl Lights {
         self.reads_pick
     }
 
-    /// Whether any light is a point light.
+    /// Whether any light is a Dirac delta (point, spot or directional light).
     pub(crate) fn has_delta(&self) -> bool {
         self.has_delta
     }
@@ -259,6 +270,36 @@ impl Lights {
                     delta: true,
                 })
             }
+            Light::Spot(ref spot) => {
+                let d = spot.position() - from.p;
+                let d2 = d.length_squared();
+                if !is_positive(d2) {
+                    return None;
+                }
+                let dist = d2.sqrt();
+                let wi = d / dist;
+                let intensity = spot.intensity_toward(-wi);
+                if intensity == Vec3::ZERO {
+                    return None;
+                }
+                Some(LightSample {
+                    wi,
+                    dist,
+                    radiance: intensity / d2,
+                    pdf: pick,
+                    delta: true,
+                })
+            }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => Some(LightSample {
+                wi: -direction,
+                dist: f32::INFINITY,
+                radiance: irradiance,
+                pdf: pick,
+                delta: true,
+            }),
             Light::EnvMap(ref m) => {
                 let (wi, radiance, pdf) = m.sample(u)?;
                 Some(LightSample {

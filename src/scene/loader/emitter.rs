@@ -1,4 +1,5 @@
-//! `<emitter>`: `area` (inside a shape), `point`, `constant` and `envmap`.
+//! `<emitter>`: `area` (inside a shape), `point`, `spot`, `directional`, `constant` and
+//! `envmap`.
 
 use super::context::{Ctx, Res};
 use super::error::SceneErrorKind;
@@ -17,7 +18,7 @@ const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<AreaEmitterDesc> {
     let ty = plugin_type(ctx, e)?;
     if ty != "area" {
-        let msg = if matches!(ty, "point" | "constant" | "envmap") {
+        let msg = if matches!(ty, "point" | "spot" | "directional" | "constant" | "envmap") {
             format!("a \"{ty}\" emitter inside a <shape> (only \"area\" belongs there)")
         } else {
             return Err(unknown_plugin(ctx, e, ty));
@@ -31,7 +32,7 @@ pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<AreaEmitterDesc> {
     Ok(AreaEmitterDesc { radiance })
 }
 
-/// Reads a top-level `<emitter>`: `point`, `constant` or `envmap`.
+/// Reads a top-level `<emitter>`: `point`, `spot`, `directional`, `constant` or `envmap`.
 pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
     let ty = plugin_type(ctx, e)?;
     let mut p = Props::new(ctx, e)?;
@@ -50,6 +51,39 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
             EmitterDesc::Point {
                 position,
                 intensity,
+            }
+        }
+        "spot" => {
+            let intensity = non_negative(e, &mut p, "intensity")?;
+            let cutoff_angle = p
+                .float("cutoff_angle")?
+                .unwrap_or(EmitterDesc::SPOT_CUTOFF_ANGLE);
+            // Mitsuba 3's default beam width: three quarters of the cutoff angle.
+            let beam_width = p.float("beam_width")?.unwrap_or(0.75 * cutoff_angle);
+            EmitterDesc::Spot {
+                intensity,
+                cutoff_angle,
+                beam_width,
+                to_world: p.transform("to_world")?.unwrap_or(Mat4::IDENTITY),
+            }
+        }
+        "directional" => {
+            let irradiance = non_negative(e, &mut p, "irradiance")?;
+            // The light travels along +z of its to_world (Mitsuba 3's `directional`).
+            let direction = match (p.point("direction")?, p.transform("to_world")?) {
+                (Some(_), Some(_)) => {
+                    return Err(p.invalid("direction", e, "and to_world cannot both be given"))
+                }
+                (Some(d), None) => d,
+                (None, Some(m)) => m.transform_vector3(Vec3::Z),
+                (None, None) => Vec3::Z,
+            };
+            let Some(direction) = direction.try_normalize() else {
+                return Err(p.invalid("direction", e, "must be a finite, non-zero vector"));
+            };
+            EmitterDesc::Directional {
+                irradiance,
+                direction,
             }
         }
         "constant" => EmitterDesc::Constant {

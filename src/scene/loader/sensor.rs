@@ -1,4 +1,4 @@
-//! `<sensor type="perspective">` with its `<sampler>`, `<film type="hdrfilm">` and
+//! `<sensor type="perspective">` or `"thinlens"` with its `<sampler>`, `<film type="hdrfilm">` and
 //! `<rfilter>`.
 
 use super::context::{Ctx, Res};
@@ -7,7 +7,7 @@ use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::scene::description::{
-    CropWindow, FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc,
+    CropWindow, FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc, ThinLensDesc,
 };
 use crate::scene::validate::{self, MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
 
@@ -17,31 +17,61 @@ pub(crate) const MAX_RESOLUTION: i64 = MAX_FILM_PIXELS as i64;
 /// Reads a `<sensor>` element.
 pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
     let ty = plugin_type(ctx, e)?;
-    if ty != "perspective" {
+    if ty != "perspective" && ty != "thinlens" {
         return Err(unknown_plugin(ctx, e, ty));
     }
     let mut p = Props::new(ctx, e)?;
     let mut s = SensorDesc::default();
+    if ty == "thinlens" {
+        s.lens = Some(read_lens(ctx, e, &mut p)?);
+    }
+    // Mitsuba 3 reads `fov` (with `fov_axis`) or `focal_length` (default 50 mm on a 36 × 24
+    // mm frame: a diagonal field of view), and refuses both. A diagonal fov becomes the
+    // horizontal one once the film's aspect is known.
+    let mut diagonal = None;
+    let focal = p.string("focal_length")?;
     if let Some(fov) = p.float("fov")? {
+        if focal.is_some() {
+            return Err(p.invalid("fov", e, "and focal_length cannot both be given"));
+        }
         if !(fov > 0.0 && fov < 180.0) {
             return Err(p.invalid("fov", e, "must lie strictly between 0 and 180 degrees"));
         }
         s.fov = fov;
-    }
-    if let Some(axis) = p.string("fov_axis")? {
-        s.fov_axis = match axis.to_ascii_lowercase().as_str() {
-            "x" => FovAxis::X,
-            "y" => FovAxis::Y,
-            "smaller" => FovAxis::Smaller,
-            "larger" => FovAxis::Larger,
-            _ => {
-                return Err(p.invalid(
-                    "fov_axis",
-                    e,
-                    &format!("\"{axis}\" is not supported (x, y, smaller or larger)"),
-                ))
-            }
+        if let Some(axis) = p.string("fov_axis")? {
+            s.fov_axis = match axis.to_ascii_lowercase().as_str() {
+                "x" => FovAxis::X,
+                "y" => FovAxis::Y,
+                "smaller" => FovAxis::Smaller,
+                "larger" => FovAxis::Larger,
+                "diagonal" => {
+                    diagonal = Some(fov.to_radians());
+                    FovAxis::X
+                }
+                _ => {
+                    return Err(p.invalid(
+                        "fov_axis",
+                        e,
+                        &format!("\"{axis}\" is not supported (x, y, diagonal, smaller or larger)"),
+                    ))
+                }
+            };
+        }
+    } else {
+        let mm = match focal.as_deref() {
+            None => 50.0,
+            Some(text) => match parse_focal_length(text) {
+                Some(mm) => mm,
+                None => {
+                    return Err(p.invalid(
+                        "focal_length",
+                        e,
+                        &format!("\"{text}\" is not a positive length in mm (such as \"35mm\")"),
+                    ))
+                }
+            },
         };
+        diagonal = Some(diagonal_fov(mm));
     }
     s.near_clip = p.float("near_clip")?.unwrap_or(s.near_clip);
     s.far_clip = p.float("far_clip")?.unwrap_or(s.far_clip);
@@ -69,9 +99,58 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
         }
     }
     s.film = film.unwrap_or_default();
+    if let Some(d) = diagonal {
+        s.fov = horizontal_fov(d, s.film.width as f32 / s.film.height as f32);
+        s.fov_axis = FovAxis::X;
+    }
     s.sampler = sampler.unwrap_or_default();
     p.finish()?;
     Ok(s)
+}
+
+/// Mitsuba 3's `focal_length`: `N` or `Nmm`, N > 0 millimetres.
+fn parse_focal_length(text: &str) -> Option<f32> {
+    let t = text.trim();
+    let mm: f32 = t.strip_suffix("mm").unwrap_or(t).trim().parse().ok()?;
+    (mm.is_finite() && mm > 0.0).then_some(mm)
+}
+
+/// The diagonal field of view in radians of a lens of focal length `mm` on a 36 × 24 mm
+/// frame (Mitsuba 3's rule for `focal_length`).
+fn diagonal_fov(mm: f32) -> f32 {
+    2.0 * (36f32.hypot(24.0) / (2.0 * mm)).atan()
+}
+
+/// The horizontal field of view in degrees of a diagonal one of `diag` radians on a film
+/// of aspect `a = w/h`: `tan(x/2) = tan(d/2) · a/√(1 + a²)` (as Mitsuba 3 converts it).
+fn horizontal_fov(diag: f32, a: f32) -> f32 {
+    2.0 * ((0.5 * diag).tan() * a / (1.0 + a * a).sqrt())
+        .atan()
+        .to_degrees()
+}
+
+/// The lens parameters of a `thinlens` sensor: `aperture_radius` (required, as in
+/// Mitsuba 3) and `focus_distance`.
+fn read_lens(ctx: &Ctx, e: &Elem, p: &mut Props) -> Res<ThinLensDesc> {
+    let aperture_radius = p.float("aperture_radius")?.ok_or_else(|| {
+        ctx.err(
+            e,
+            SceneErrorKind::MissingAttribute("parameter \"aperture_radius\"".into()),
+        )
+    })?;
+    if !(aperture_radius.is_finite() && aperture_radius >= 0.0) {
+        return Err(p.invalid("aperture_radius", e, "must be finite and non-negative"));
+    }
+    let focus_distance = p
+        .float("focus_distance")?
+        .unwrap_or(ThinLensDesc::FOCUS_DISTANCE);
+    if !(focus_distance.is_finite() && focus_distance > 0.0) {
+        return Err(p.invalid("focus_distance", e, "must be finite and positive"));
+    }
+    Ok(ThinLensDesc {
+        aperture_radius,
+        focus_distance,
+    })
 }
 
 /// Reads a `<sampler>` element.

@@ -18,6 +18,10 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> BidirectionalScene
             .emission_pdf(self.geometry, self.world, light, point, dir)
     }
 
+    fn point_intensity(&self, light: u32, dir: Vec3) -> Option<Vec3> {
+        self.lights.spot_intensity(light, dir)
+    }
+
     fn emitter_at(&self, sp: &SurfacePoint) -> Option<u32> {
         self.lights.light_of_shape(sp.shape)
     }

@@ -60,7 +60,7 @@ impl Effects {
             (self.glossy, "glossy"),
             (self.specular, "specular"),
             (self.refraction, "refraction"),
-            (self.delta_lights, "point lights"),
+            (self.delta_lights, "delta lights"),
             (self.environment, "environment"),
         ] {
             if on {

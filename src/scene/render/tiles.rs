@@ -107,7 +107,13 @@ fn render_tile_with<S: Scene, R: Sampler>(
                 rng.start_pixel_sample([x, y], s);
                 let off = p.filter.sample(rng.next_2d());
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
-                let (ray, t_max) = p.camera.generate_ray_with_tmax(film);
+                // A thin lens draws its lens sample after the film position (as Mitsuba
+                // 3's integrators do); a pinhole draws none.
+                let (ray, t_max) = if p.camera.has_lens() {
+                    p.camera.generate_ray_through_lens(film, rng.next_2d())
+                } else {
+                    p.camera.generate_ray_with_tmax(film)
+                };
                 let r = p
                     .integrator
                     .li(scene, ray.origin, ray.dir, t_max.min(p.t_max), &mut rng);
