@@ -40,6 +40,7 @@ mod props;
 mod sensor;
 mod shape;
 mod spectrum;
+mod texture;
 mod transform;
 mod tree;
 mod values;
@@ -104,6 +105,9 @@ pub fn parse_scene(
             // Declared for `ref`; built here too so that its errors surface even if unused.
             "bsdf" => {
                 bsdf::read_bsdf(&ctx, c)?;
+            }
+            "texture" => {
+                texture::read_texture(&ctx, c)?;
             }
             _ => return Err(top_level_error(&ctx, c)),
         }
@@ -190,6 +194,7 @@ pub(crate) fn unknown_plugin(ctx: &Ctx, e: &Elem, ty: &str) -> SceneError {
 pub(crate) fn no_objects(ctx: &Ctx, p: &Props) -> Res<()> {
     match p.objects.first() {
         None => Ok(()),
+        Some(o) if texture::texture_elem(ctx, o).is_some() => Err(texture::not_here(ctx, o)),
         Some(o) => Err(ctx.err(
             o,
             SceneErrorKind::Misplaced(format!("<{}> cannot be nested here", o.tag)),
