@@ -122,6 +122,13 @@ pub(crate) fn take_textures<'a>(
     let mut out: Vec<(TextureParam, Texture, &'a Elem)> = Vec::new();
     let mut rest = Vec::new();
     for &o in &p.objects {
+        let id = o.attr("id").unwrap_or("");
+        if o.tag == "ref" && !ctx.ids.contains_key(id) {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::UndefinedReference(format!("no object has id \"{id}\"")),
+            ));
+        }
         let Some(target) = texture_elem(ctx, o) else {
             rest.push(o);
             continue;

@@ -11,9 +11,10 @@
 //! image row 0 is `v ∈ [0, 1/h)` (no flip); pixel centres at `(i + ½)/w`; 8- and 16-bit
 //! PNG and JPEG values are sRGB-decoded at load (before any filtering) unless `raw`; EXR
 //! values are linear; `to_uv` is the 2D affine part (x and y rows, x, y and translation
-//! columns) of the 4×4 transform; a texture used for a single value (`blendbsdf`'s
-//! `weight`, `mask`'s `opacity`) gives its luminance; a texture's mean is its mean
-//! luminance.
+//! columns) of the 4×4 transform; a bitmap used for a single value (`blendbsdf`'s
+//! `weight`, `mask`'s `opacity`) gives its luminance, a checkerboard the channel mean of
+//! the *other* square's colour (Mitsuba 3.9.1's `eval_1` swaps them); means are the
+//! bitmap's mean luminance and the checkerboard's mean channel value.
 //!
 //! [`BsdfDesc::Textured`]: crate::scene::description::BsdfDesc::Textured
 
@@ -76,16 +77,35 @@ impl Default for Checkerboard {
 }
 
 impl Checkerboard {
+    /// Whether `uv` (before `to_uv`) lies on a `color0` square.
+    #[inline]
+    fn on_color0(&self, uv: Vec2) -> bool {
+        let p = self.to_uv.transform_point2(uv);
+        let f = p - p.floor();
+        (f.x < 0.5) == (f.y < 0.5)
+    }
+
     /// The colour at `uv` (before `to_uv`).
     #[inline]
     pub fn eval(&self, uv: Vec2) -> Vec3 {
-        let p = self.to_uv.transform_point2(uv);
-        let f = p - p.floor();
-        if (f.x < 0.5) == (f.y < 0.5) {
+        if self.on_color0(uv) {
             self.color0
         } else {
             self.color1
         }
+    }
+
+    /// The single value at `uv` as Mitsuba 3.9.1 computes it: the mean of the channels of
+    /// the *other* square's colour (its `eval_1` swaps the two colours relative to `eval`;
+    /// a blend weight or opacity so textured follows that).
+    #[inline]
+    pub fn eval_1(&self, uv: Vec2) -> f32 {
+        let c = if self.on_color0(uv) {
+            self.color1
+        } else {
+            self.color0
+        };
+        c.element_sum() / 3.0
     }
 }
 
@@ -110,17 +130,22 @@ impl Texture {
         }
     }
 
-    /// The value at `uv` where a single number is wanted: its luminance.
+    /// The value at `uv` where a single number is wanted, as Mitsuba 3.9.1 gives it: a
+    /// bitmap's luminance, a checkerboard's [`Checkerboard::eval_1`].
     #[inline]
     pub fn eval_1(&self, uv: Vec2) -> f32 {
-        luminance(self.eval(uv))
+        match self {
+            Self::Bitmap(_) => luminance(self.eval(uv)),
+            Self::Checkerboard(c) => c.eval_1(uv),
+        }
     }
 
-    /// The mean luminance (over the image's pixels; the checkerboard's two colours equally).
+    /// The mean as Mitsuba 3.9.1 reports it: a bitmap's mean luminance over its pixels, a
+    /// checkerboard's mean of its two colours' channel means.
     pub fn mean(&self) -> f32 {
         match self {
             Self::Bitmap(b) => b.image.mean_luminance(),
-            Self::Checkerboard(c) => 0.5 * (luminance(c.color0) + luminance(c.color1)),
+            Self::Checkerboard(c) => (c.color0 + c.color1).element_sum() / 6.0,
         }
     }
 }
@@ -194,6 +219,32 @@ mod tests {
         let t = Texture::Checkerboard(c);
         let m = t.mean();
         assert!(m.is_finite() && (m - 0.3).abs() < 1e-6);
+    }
+
+    /// Mitsuba 3.9.1 with color0 = (0.9, 0.5, 0.1), color1 = 0.1: `eval_1` is 0.1 on the
+    /// color0 squares and 0.5 (color0's channel mean) on the others; the mean 0.3.
+    #[test]
+    fn checkerboard_scalar_value_swaps_colours() {
+        let t = Texture::Checkerboard(Checkerboard {
+            color0: Vec3::new(0.9, 0.5, 0.1),
+            color1: Vec3::splat(0.1),
+            to_uv: Affine2::IDENTITY,
+        });
+        let want = [
+            ((0.25, 0.25), 0.1),
+            ((0.75, 0.25), 0.5),
+            ((0.25, 0.75), 0.5),
+            ((1.3, 0.1), 0.1),
+        ];
+        for ((u, v), w) in want {
+            let got = t.eval_1(Vec2::new(u, v));
+            assert!(
+                got.is_finite() && (got - w).abs() < 1e-6,
+                "({u}, {v}): {got}"
+            );
+        }
+        let m = t.mean();
+        assert!(m.is_finite() && (m - 0.3).abs() < 1e-6, "{m}");
     }
 
     /// `to_uv` as Mitsuba applies it: scale (4, 2); translate 0.5 in u; rotate 90° about z.
