@@ -16,6 +16,9 @@ fn data(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// A pixel's `(x, y)` and its RGB value.
+type Pixel = ((usize, usize), [f32; 3]);
+
 fn close(a: Vec3, b: Vec3, tol: f32) -> bool {
     a.is_finite() && (a - b).abs().max_element() <= tol
 }
@@ -25,7 +28,7 @@ fn close(a: Vec3, b: Vec3, tol: f32) -> bool {
 /// stored. The JPEG decoders may differ by an IDCT rounding step (1/255 before the curve).
 #[test]
 fn images_decode_as_mitsuba_reads_them() {
-    let cases: [(&str, f32, [((usize, usize), [f32; 3]); 4]); 3] = [
+    let cases: [(&str, f32, [Pixel; 4]); 3] = [
         (
             "grid.png",
             1e-5,

@@ -610,27 +610,40 @@ impl BsdfDesc {
 }
 
 impl BsdfDesc {
+    /// Whether a texture drives any parameter of this material or of those nested in it.
+    pub fn is_textured(&self) -> bool {
+        match self {
+            Self::Textured { .. } => true,
+            Self::TwoSided(inner) | Self::Mask { inner, .. } => inner.is_textured(),
+            Self::Blend { first, second, .. } => first.is_textured() || second.is_textured(),
+            _ => false,
+        }
+    }
+
     /// Whether this material (not looking into nested ones) has the parameter `p`, which
     /// a texture may then drive.
     pub fn has_param(&self, p: TextureParam) -> bool {
         use TextureParam as P;
-        match (self, p) {
+        matches!(
+            (self, p),
             (Self::Diffuse { .. }, P::Reflectance)
-            | (Self::Conductor { .. } | Self::RoughConductor { .. }, P::SpecularReflectance)
-            | (Self::Blend { .. }, P::Weight)
-            | (Self::Mask { .. }, P::Opacity) => true,
-            (
-                Self::Dielectric { .. }
-                | Self::RoughDielectric { .. }
-                | Self::ThinDielectric { .. },
-                P::SpecularReflectance | P::SpecularTransmittance,
-            ) => true,
-            (
-                Self::Plastic { .. } | Self::RoughPlastic { .. },
-                P::DiffuseReflectance | P::SpecularReflectance,
-            ) => true,
-            _ => false,
-        }
+                | (
+                    Self::Conductor { .. } | Self::RoughConductor { .. },
+                    P::SpecularReflectance
+                )
+                | (Self::Blend { .. }, P::Weight)
+                | (Self::Mask { .. }, P::Opacity)
+                | (
+                    Self::Dielectric { .. }
+                        | Self::RoughDielectric { .. }
+                        | Self::ThinDielectric { .. },
+                    P::SpecularReflectance | P::SpecularTransmittance,
+                )
+                | (
+                    Self::Plastic { .. } | Self::RoughPlastic { .. },
+                    P::DiffuseReflectance | P::SpecularReflectance,
+                )
+        )
     }
 }
 

@@ -86,10 +86,15 @@ impl TexturedBsdf {
     /// # Errors
     /// As [`AnyBsdf::from_desc`].
     pub fn from_desc(desc: &BsdfDesc) -> Result<Self, SamplingError> {
-        let base = AnyBsdf::from_desc(desc)?;
+        Ok(Self::with_base(AnyBsdf::from_desc(desc)?, desc))
+    }
+
+    /// The textured material of `desc` whose constant material `base` is already built
+    /// (`AnyBsdf::from_desc(desc)`).
+    pub fn with_base(base: Sided<AnyBsdf>, desc: &BsdfDesc) -> Self {
         let mut slots = Vec::new();
         collect(desc, &mut Vec::new(), &mut slots);
-        Ok(Self { base, slots })
+        Self { base, slots }
     }
 
     /// Whether any parameter is textured.

@@ -49,12 +49,16 @@ mod tests {
     use crate::scene::description::{ShapeDesc, ShapeKind};
     use crate::scene::geometry::{AccelKind, Geometry, Ray};
     use glam::{Vec2, Vec3};
+    use std::f32::consts::FRAC_1_SQRT_2;
+
+    /// A shape, a ray's origin and direction, and the texture coordinates of its hit.
+    type Case = (ShapeKind, [f32; 3], [f32; 3], [f32; 2]);
 
     /// Texture coordinates Mitsuba 3.9.1 reports for these rays (`si.uv` of
     /// `scene.ray_intersect`; the probe script is in tests/data/REFERENCES.md, "Textures").
     #[test]
     fn tex_coords_match_mitsuba() {
-        let cases: &[(ShapeKind, [f32; 3], [f32; 3], [f32; 2])] = &[
+        let cases: &[Case] = &[
             (
                 ShapeKind::Rectangle,
                 [0.5, 0.5, 1.0],
@@ -77,13 +81,13 @@ mod tests {
                 ShapeKind::Disk,
                 [0.5, 0.5, 1.0],
                 [0.0, 0.0, -1.0],
-                [0.707_107, 0.125],
+                [FRAC_1_SQRT_2, 0.125],
             ),
             (
                 ShapeKind::Disk,
                 [0.5, -0.5, 1.0],
                 [0.0, 0.0, -1.0],
-                [0.707_107, 0.875],
+                [FRAC_1_SQRT_2, 0.875],
             ),
             (
                 ShapeKind::Cube,

@@ -231,22 +231,13 @@ impl Renderer {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let textured = desc
-            .shapes
-            .iter()
-            .enumerate()
-            .map(|(i, s)| {
-                TexturedBsdf::from_desc(&s.bsdf).map_err(|error| RenderError::Material {
-                    shape: i,
-                    id: s.id.clone(),
-                    error,
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let textured = textured
-            .iter()
-            .any(TexturedBsdf::is_textured)
-            .then_some(textured);
+        let textured = desc.shapes.iter().any(|s| s.bsdf.is_textured()).then(|| {
+            bsdfs
+                .iter()
+                .zip(&desc.shapes)
+                .map(|(b, s)| TexturedBsdf::with_base(b.clone(), &s.bsdf))
+                .collect::<Vec<_>>()
+        });
         let strategy = opts.strategy.unwrap_or_default();
         let integrator_desc = match opts.integrator {
             Some(kind) => desc.integrator.with_kind(kind),
