@@ -131,7 +131,7 @@ impl GlowingSphere {
 }
 
 impl Scene for GlowingSphere {
-    type Bsdf = Lambert;
+    type Bsdf<'a> = &'a Lambert;
 
     fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfacePoint> {
         Self::wall_hit(origin, dir).filter(|h| h.t < t_max)

@@ -88,7 +88,7 @@ fn hit_sphere(o: Vec3, d: Vec3) -> Option<SurfacePoint> {
 }
 
 impl Scene for Furnace {
-    type Bsdf = Lambert;
+    type Bsdf<'a> = &'a Lambert;
     fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfacePoint> {
         hit_sphere(origin, dir).filter(|h| h.t < t_max)
     }
@@ -305,7 +305,7 @@ fn glowing_sphere_matches_its_analytic_radiance() {
 fn glowing_sphere_check_rejects_a_wrong_light_pdf() {
     struct WrongPdf(GlowingSphere);
     impl Scene for WrongPdf {
-        type Bsdf = ExampleLambert;
+        type Bsdf<'a> = &'a ExampleLambert;
         fn intersect(&self, o: Vec3, d: Vec3, t_max: f32) -> Option<SurfacePoint> {
             self.0.intersect(o, d, t_max)
         }

@@ -188,7 +188,7 @@ fn unsupported_and_misplaced() {
             2, "<float name=\"alpha_u\">", "anisotropy"),
         ("<emitter type=\"area\"/>", 2, "<emitter type=\"area\">", "inside a <shape>"),
         ("<shape type=\"cube\"><emitter type=\"point\"/></shape>", 2, "<emitter type=\"point\">", "only \"area\""),
-        ("<shape type=\"cube\">\n<texture type=\"bitmap\"/></shape>", 3, "<texture type=\"bitmap\">", "unsupported"),
+        ("<shape type=\"cube\">\n<texture type=\"bitmap\"/></shape>", 3, "<texture type=\"bitmap\">", "inside a <shape>"),
         ("<shape type=\"cube\"><translate x=\"1\"/></shape>", 2, "<translate>", "outside a <transform>"),
         ("<shape type=\"sphere\"><float name=\"radius\" value=\"-1\"/></shape>", 2, "<float name=\"radius\">", "positive"),
         ("<emitter type=\"spot\">\n<float name=\"cutoff_angle\" value=\"0\"/></emitter>",
@@ -376,4 +376,81 @@ fn spectrum_crop_tent_and_mesh_file_errors() {
     check(&e, 2, "<shape type=\"ply\">", "missing.ply");
     let e = err("<shape type=\"serialized\">\n<string name=\"filename\" value=\"meshes/shapes.serialized\"/>\n<integer name=\"shape_index\" value=\"-1\"/></shape>");
     check(&e, 4, "<integer name=\"shape_index\">", "outside");
+}
+
+/// Textures: files that are missing or not images, unknown modes and plugins, textures
+/// where none is taken, on parameters a material lacks, or given twice.
+#[test]
+fn texture_errors() {
+    let bitmap = |params: &str| {
+        format!(
+            "<bsdf type=\"diffuse\">\n<texture type=\"bitmap\" name=\"reflectance\">{params}</texture></bsdf>"
+        )
+    };
+    let file = |f: &str| format!("<string name=\"filename\" value=\"{f}\"/>");
+    let e = err(&bitmap(&file("missing.png")));
+    assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
+    check(
+        &e,
+        3,
+        "<texture type=\"bitmap\" name=\"reflectance\">",
+        "missing.png",
+    );
+    let e = err(&bitmap(&file("cornell-box.xml")));
+    assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
+    check(
+        &e,
+        3,
+        "<texture type=\"bitmap\"",
+        "not a PNG, JPEG or OpenEXR image",
+    );
+    let e = err(&bitmap(""));
+    check(&e, 3, "<texture type=\"bitmap\"", "needs a \"filename\"");
+
+    // A PNG cut short after its header: located, never a panic.
+    let dir = std::env::temp_dir().join(format!("mcrt-texture-errors-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = std::fs::read("tests/data/textures/grid.png").unwrap();
+    let cut = dir.join("cut.png");
+    std::fs::write(&cut, &png[..60]).unwrap();
+    let e = err(&bitmap(&file(cut.to_str().unwrap())));
+    check(&e, 3, "<texture type=\"bitmap\"", "PNG");
+    let jpg = std::fs::read("tests/data/textures/rings.jpg").unwrap();
+    let cut = dir.join("cut.jpg");
+    std::fs::write(&cut, &jpg[..jpg.len() / 3]).unwrap();
+    let e = err(&bitmap(&file(cut.to_str().unwrap())));
+    check(&e, 3, "<texture type=\"bitmap\"", "JPEG");
+    std::fs::remove_dir_all(&dir).unwrap();
+
+    let grid = file("textures/grid.png");
+    let cases: [(String, u32, &str, &str); 12] = [
+        (bitmap(&format!("{grid}\n<string name=\"wrap_mode\" value=\"tile\"/>")),
+            4, "<string name=\"wrap_mode\">", "\"tile\" is not repeat, mirror or clamp"),
+        (bitmap(&format!("{grid}\n<string name=\"filter_type\" value=\"cubic\"/>")),
+            4, "<string name=\"filter_type\">", "\"cubic\" is not bilinear or nearest"),
+        ("<bsdf type=\"diffuse\">\n<texture type=\"noise\" name=\"reflectance\"/></bsdf>".into(),
+            3, "<texture type=\"noise\"", "unknown texture plugin type \"noise\""),
+        ("<bsdf type=\"diffuse\">\n<texture type=\"checkerboard\"/></bsdf>".into(),
+            3, "<texture type=\"checkerboard\">", "missing attribute \"name"),
+        ("<bsdf type=\"conductor\">\n<texture type=\"checkerboard\" name=\"reflectance\"/></bsdf>".into(),
+            3, "<texture type=\"checkerboard\" name=\"reflectance\">", "unknown parameter \"reflectance\" for bsdf \"conductor\""),
+        ("<bsdf type=\"roughconductor\">\n<texture type=\"checkerboard\" name=\"alpha\"/></bsdf>".into(),
+            3, "<texture type=\"checkerboard\" name=\"alpha\">", "a texture for \"alpha\""),
+        ("<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.5\"/>\n<texture type=\"checkerboard\" name=\"reflectance\"/></bsdf>".into(),
+            3, "<texture type=\"checkerboard\"", "\"reflectance\" given twice"),
+        ("<shape type=\"cube\"><emitter type=\"area\">\n<texture type=\"checkerboard\" name=\"radiance\"/></emitter></shape>".into(),
+            3, "<texture type=\"checkerboard\" name=\"radiance\">", "a texture for \"radiance\" here"),
+        ("<texture type=\"checkerboard\">\n<texture type=\"checkerboard\" name=\"color0\"/></texture>".into(),
+            3, "<texture type=\"checkerboard\" name=\"color0\">", "a texture for \"color0\" here"),
+        ("<bsdf type=\"twosided\">\n<texture type=\"checkerboard\" name=\"reflectance\"/><bsdf type=\"diffuse\"/></bsdf>".into(),
+            3, "<texture type=\"checkerboard\"", "a texture for \"reflectance\" here"),
+        ("<texture type=\"checkerboard\" id=\"t\"/>\n<shape type=\"cube\"><ref id=\"t\"/></shape>".into(),
+            3, "<ref id=\"t\">", "not a <bsdf>"),
+        ("<bsdf type=\"diffuse\">\n<ref name=\"reflectance\" id=\"nothing\"/></bsdf>".into(),
+            3, "<ref", "no object has id \"nothing\""),
+    ];
+    for (body, line, element, words) in cases {
+        let e = err(&body);
+        check(&e, line, element, words);
+    }
 }

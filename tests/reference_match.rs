@@ -270,6 +270,21 @@ fn blend_and_mask_match_mitsuba() {
     check_material_scene("cornell-box-blend-mask.xml", "cornell-box-blend-mask.exr");
 }
 
+/// Textures (`textures.xml`): a checkerboard floor through a top-level `<texture>` and
+/// `<ref name>`, a PNG wall tiled by `to_uv`, an EXR box (nearest, mirror), a JPEG sphere
+/// (rough plastic, rotated), a checkerboard blend weight. On 16×16 blocks (64, so that a
+/// texture in the wrong place or orientation shows; each allowed 1% as the material
+/// scenes).
+#[test]
+fn textures_match_mitsuba() {
+    let blocks = Blocks {
+        size: 16,
+        min_count: 48,
+        allowance: 0.01,
+    };
+    check_blocks("textures.xml", &[], "textures.exr", 128, blocks);
+}
+
 /// PLY (binary little and big endian, ASCII) and `serialized` meshes, smooth shading from
 /// the file's normals and from computed ones, face normals, `<include>` and spectral
 /// colours (reference: `scripts/make_mesh_data.py --render`).

@@ -63,7 +63,7 @@ impl DirectIntegrator {
         if scene.is_emitter(&sp) {
             out.radiance += scene.emitted(&sp, -dir);
         }
-        let bsdf = scene.bsdf(&sp);
+        let bsdf = &scene.bsdf(&sp);
         let wo = sp.frame.to_local(-dir);
         let (n_l, n_b) = self.counts();
         let (nl, nb) = (n_l as f32, n_b as f32);

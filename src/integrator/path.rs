@@ -120,7 +120,7 @@ impl PathTracer {
             if depth + 1 >= max_depth {
                 break;
             }
-            let bsdf = scene.bsdf(&sp);
+            let bsdf = &scene.bsdf(&sp);
             let wo = sp.frame.to_local(wo_world);
             let flags = bsdf.flags();
             // Only the values the scene and the BSDF read are drawn.
@@ -169,7 +169,7 @@ impl PathTracer {
     fn nee<S: Scene>(
         &self,
         scene: &S,
-        bsdf: &S::Bsdf,
+        bsdf: &S::Bsdf<'_>,
         sp: &SurfacePoint,
         wo: Vec3,
         ls: &super::LightSample,

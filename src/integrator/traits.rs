@@ -131,6 +131,38 @@ pub trait Bsdf {
     }
 }
 
+/// A reference to a BSDF is the BSDF (what [`Scene::bsdf`] returns for stored materials).
+impl<B: Bsdf + ?Sized> Bsdf for &B {
+    #[inline(always)]
+    fn flags(&self) -> BsdfFlags {
+        (**self).flags()
+    }
+    #[inline(always)]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        (**self).eval(wo, wi)
+    }
+    #[inline(always)]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        (**self).pdf(wo, wi)
+    }
+    #[inline(always)]
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        (**self).eval_pdf(wo, wi)
+    }
+    #[inline(always)]
+    fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
+        (**self).sample(wo, u1, u2)
+    }
+    #[inline(always)]
+    fn eval_adjoint(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        (**self).eval_adjoint(wo, wi)
+    }
+    #[inline(always)]
+    fn samples_component(&self) -> bool {
+        (**self).samples_component()
+    }
+}
+
 /// One sample of the light arriving at a point, from next-event estimation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LightSample {
@@ -154,9 +186,13 @@ pub struct LightSample {
 /// scene without a light at infinity or point lights. `examples/custom_scene.rs` implements
 /// a complete scene (and a BSDF) and compares the path tracer with the analytic answer.
 pub trait Scene {
-    /// The material type; an enum or a single concrete type (the latter lets the compiler
-    /// drop every code path the scene does not need).
-    type Bsdf: Bsdf;
+    /// The material at a surface point; an enum or a single concrete type (the latter lets
+    /// the compiler drop every code path the scene does not need). Usually a reference to a
+    /// material the scene stores (`&'a M`); a scene with textures forms it per hit and
+    /// returns it by value.
+    type Bsdf<'a>: Bsdf
+    where
+        Self: 'a;
 
     /// First hit along a camera ray from `origin` in unit direction `dir`, up to `t_max`.
     fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfacePoint>;
@@ -175,7 +211,7 @@ pub trait Scene {
     fn occluded(&self, from: &SurfacePoint, dir: Vec3, dist: f32) -> bool;
 
     /// The material at a surface point.
-    fn bsdf(&self, sp: &SurfacePoint) -> &Self::Bsdf;
+    fn bsdf(&self, sp: &SurfacePoint) -> Self::Bsdf<'_>;
 
     /// Whether the surface point lies on an area emitter (cheap test before
     /// [`Scene::emitted`]).

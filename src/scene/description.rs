@@ -2,6 +2,7 @@
 //! renderer. Every default is Mitsuba 3's, so a description built in code with
 //! [`Default`] values means what the same XML without those attributes means to Mitsuba.
 
+pub use crate::scene::texture::{Texture, TextureParam};
 use glam::{Mat4, Vec3};
 use std::path::PathBuf;
 
@@ -580,6 +581,16 @@ pub enum BsdfDesc {
     },
     /// `twosided`: the nested BSDF on both sides of the surface.
     TwoSided(Box<BsdfDesc>),
+    /// A material (`diffuse`, a conductor, dielectric, plastic, `blendbsdf` or `mask`, never
+    /// `twosided`) some of whose parameters are textures. `inner` holds, for each textured
+    /// parameter, the texture's mean (Mitsuba 3 derives a plastic's sampling weights from
+    /// its textures' means); at each hit the renderer replaces it with the texture's value.
+    Textured {
+        /// The material, with textures' means in their parameters.
+        inner: Box<BsdfDesc>,
+        /// The textured parameters, each at most once.
+        textures: Vec<(TextureParam, Texture)>,
+    },
 }
 
 impl BsdfDesc {
@@ -592,13 +603,51 @@ impl BsdfDesc {
             | Self::ThinDielectric { .. }
             | Self::Mask { .. } => true,
             Self::Blend { first, second, .. } => first.transmits() || second.transmits(),
-            Self::TwoSided(inner) => inner.transmits(),
+            Self::TwoSided(inner) | Self::Textured { inner, .. } => inner.transmits(),
             Self::Diffuse { .. }
             | Self::Conductor { .. }
             | Self::RoughConductor { .. }
             | Self::Plastic { .. }
             | Self::RoughPlastic { .. } => false,
         }
+    }
+}
+
+impl BsdfDesc {
+    /// Whether a texture drives any parameter of this material or of those nested in it.
+    pub fn is_textured(&self) -> bool {
+        match self {
+            Self::Textured { .. } => true,
+            Self::TwoSided(inner) | Self::Mask { inner, .. } => inner.is_textured(),
+            Self::Blend { first, second, .. } => first.is_textured() || second.is_textured(),
+            _ => false,
+        }
+    }
+
+    /// Whether this material (not looking into nested ones) has the parameter `p`, which
+    /// a texture may then drive.
+    pub fn has_param(&self, p: TextureParam) -> bool {
+        use TextureParam as P;
+        matches!(
+            (self, p),
+            (Self::Diffuse { .. }, P::Reflectance)
+                | (
+                    Self::Conductor { .. } | Self::RoughConductor { .. },
+                    P::SpecularReflectance
+                )
+                | (Self::Blend { .. }, P::Weight)
+                | (Self::Mask { .. }, P::Opacity)
+                | (
+                    Self::Dielectric { .. }
+                        | Self::RoughDielectric { .. }
+                        | Self::ThinDielectric { .. },
+                    P::SpecularReflectance | P::SpecularTransmittance,
+                )
+                | (
+                    Self::Plastic { .. } | Self::RoughPlastic { .. },
+                    P::DiffuseReflectance | P::SpecularReflectance,
+                )
+        )
     }
 }
 

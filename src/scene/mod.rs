@@ -13,6 +13,7 @@
 //! | [`accel`] | acceleration structures over bounding boxes, knowing nothing of primitives |
 //! | [`geometry`] | shapes in world space: ray queries (`geometry/query/`: the one switch over backends), shape sampling (`geometry/sample/`: one sampler per shape), ray offsets |
 //! | [`bsdf`] | materials |
+//! | [`texture`] | `bitmap` and `checkerboard` textures: image decoding, filtering, wrapping |
 //! | [`light`] | emitters, the choice among them, and next-event and emission sampling through the geometry's shape samplers |
 //! | [`camera`] | the pinhole camera |
 //! | [`film`] | pixel filters, accumulation, image files, comparison with references |
@@ -30,4 +31,5 @@ pub mod light;
 pub mod loader;
 pub mod mesh_file;
 pub mod render;
+pub mod texture;
 pub mod validate;

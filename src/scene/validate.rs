@@ -374,6 +374,43 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             bsdf(inner)
         }
         BsdfDesc::TwoSided(inner) => bsdf(inner),
+        BsdfDesc::Textured { inner, textures } => {
+            if matches!(**inner, BsdfDesc::TwoSided(_) | BsdfDesc::Textured { .. }) {
+                return Err(invalid(
+                    "textures",
+                    "must be attached to a material, not to twosided or another texture list",
+                ));
+            }
+            for (i, (param, texture)) in textures.iter().enumerate() {
+                if !inner.has_param(*param) {
+                    return Err(invalid(param.name(), "is not a parameter of this material"));
+                }
+                if textures[..i].iter().any(|(p, _)| p == param) {
+                    return Err(invalid(param.name(), "is textured twice"));
+                }
+                texture_values(param.name(), texture)?;
+            }
+            bsdf(inner)
+        }
+    }
+}
+
+/// A texture's own numbers: finite colours and a finite `to_uv`.
+fn texture_values(param: &'static str, t: &crate::scene::texture::Texture) -> Result<(), Invalid> {
+    use crate::scene::texture::Texture;
+    let ok = match t {
+        Texture::Bitmap(b) => b.to_uv.is_finite(),
+        Texture::Checkerboard(c) => {
+            c.to_uv.is_finite() && c.color0.is_finite() && c.color1.is_finite()
+        }
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(invalid(
+            param,
+            "has a texture with a non-finite colour or to_uv",
+        ))
     }
 }
 

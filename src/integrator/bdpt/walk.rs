@@ -163,7 +163,7 @@ fn walk<S: BidirectionalScene, R: SampleSource>(
         if path.len() >= lim.max_vertices {
             return;
         }
-        let bsdf = scene.bsdf(&sp);
+        let bsdf = &scene.bsdf(&sp);
         let wo_world = -dir;
         let wo = sp.frame.to_local(wo_world);
         let Some(bs) = crate::integrator::sample_bsdf(bsdf, wo, samples) else {

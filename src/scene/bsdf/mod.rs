@@ -20,6 +20,7 @@ mod plastic;
 mod rough_conductor;
 mod rough_dielectric;
 mod rough_plastic;
+mod textured;
 mod thin_dielectric;
 
 pub use blend::Blend;
@@ -34,6 +35,7 @@ pub use plastic::Plastic;
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
+pub use textured::TexturedBsdf;
 pub use thin_dielectric::ThinDielectric;
 
 use super::description::{BsdfDesc, ConductorFresnel, MicrofacetKind};
@@ -197,6 +199,8 @@ impl AnyBsdf {
                 s.two_sided = !s.bsdf.flags().transmission;
                 return Ok(s);
             }
+            // The textures' means stand in the parameters; `TexturedBsdf` sets them per hit.
+            BsdfDesc::Textured { inner, .. } => return Self::from_desc(inner),
             BsdfDesc::Diffuse { reflectance } => AnyBsdf::Diffuse(Diffuse {
                 reflectance: *reflectance,
             }),

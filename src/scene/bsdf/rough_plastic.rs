@@ -43,7 +43,8 @@ pub struct RoughPlastic {
     /// Whether the internal scattering tints (`ρ / (1 − ρ R_int)`).
     pub nonlinear: bool,
     /// `T(θ)` at cos θ = i / 63 (the first at 10⁻⁶).
-    transmittance: Box<[f32; TABLE]>,
+    /// Shared, so that the per-hit copies of a textured material do not allocate.
+    transmittance: std::sync::Arc<[f32; TABLE]>,
     /// `R_int`: the interface's reflectance seen from inside, over a cosine-weighted
     /// hemisphere.
     internal_reflectance: f32,
@@ -66,7 +67,7 @@ impl RoughPlastic {
         nonlinear: bool,
     ) -> Result<Self, SamplingError> {
         let ndf = Ndf::new(ggx, alpha)?;
-        let mut transmittance = Box::new([0.0f32; TABLE]);
+        let mut transmittance = [0.0f32; TABLE];
         let mut internal = 0.0f64;
         for (i, t) in transmittance.iter_mut().enumerate() {
             let mu = (i as f32 / (TABLE - 1) as f32).max(1e-6);
@@ -80,7 +81,7 @@ impl RoughPlastic {
             specular_reflectance: specular,
             eta,
             nonlinear,
-            transmittance,
+            transmittance: std::sync::Arc::new(transmittance),
             // 2 ∫ R(μ) μ dμ as the mean over the table's cosines (Mitsuba's rule).
             internal_reflectance: (2.0 * internal / TABLE as f64) as f32,
             specular_sampling_weight: sampling_weight(diffuse, specular),

@@ -148,6 +148,8 @@ fn shape_data(
                 flip,
                 mirrored,
             )?;
+            // Mitsuba 3's rectangle: uv = (x + 1, y + 1) / 2 in object space.
+            mesh.uvs = vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y];
             let (corner, ex, ey) = (p[0], p[1] - p[0], p[3] - p[0]);
             let n = front_normal(&mesh, mesh.indices[0].map(|v| mesh.positions[v as usize]));
             mesh.rectangle = Some(RectangleSampler::new([corner, ex, ey], n, mesh.area));
@@ -155,8 +157,11 @@ fn shape_data(
         }
         ShapeKind::Cube => {
             let (pos, idx) = cube();
+            let uvs = cube_uvs(&pos);
             let pos = pos.into_iter().map(|p| m.transform_point3(p)).collect();
-            ShapeData::Mesh(mesh(i, pos, vec![], idx, flip, mirrored)?)
+            let mut mesh = mesh(i, pos, vec![], idx, flip, mirrored)?;
+            mesh.uvs = uvs;
+            ShapeData::Mesh(mesh)
         }
         ShapeKind::Mesh {
             positions,
@@ -260,6 +265,38 @@ pub(super) fn cube() -> (Vec<Vec3>, Vec<[u32; 3]>) {
         }
     }
     (pos, idx)
+}
+
+/// The texture coordinates of [`cube`]'s vertices: those of Mitsuba 3's cube mesh, an
+/// affine map of the position on each face (read from Mitsuba 3.9.1's vertex buffers;
+/// `tests/data/REFERENCES.md`, "Textures").
+pub(super) fn cube_uvs(pos: &[Vec3]) -> Vec<Vec2> {
+    pos.iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let h = |x: f32| 0.5 * (x + 1.0);
+            // Faces in `cube`'s order: −x, +x, −y, +y, −z, +z.
+            match i / 4 {
+                0 => Vec2::new(h(p.y), h(p.z)),
+                1 => Vec2::new(h(p.y), h(-p.z)),
+                2 => Vec2::new(h(p.z), h(p.x)),
+                3 => Vec2::new(h(-p.x), h(-p.z)),
+                4 => Vec2::new(h(-p.y), h(p.x)),
+                _ => Vec2::new(h(p.y), h(p.x)),
+            }
+        })
+        .collect()
+}
+
+/// World to object directions of a sphere's `to_world` (its rotation, possibly mirrored;
+/// the scale is undone by normalising), for its texture coordinates; the identity for other
+/// shapes and for transforms that are not invertible (refused elsewhere).
+pub(super) fn uv_frame(desc: &ShapeDesc) -> Mat3 {
+    let m = Mat3::from_mat4(desc.to_world);
+    match desc.kind {
+        ShapeKind::Sphere { .. } if m.determinant().is_normal() => m.inverse(),
+        _ => Mat3::IDENTITY,
+    }
 }
 
 fn sphere(

@@ -20,7 +20,8 @@
 //!   `flip_normals` negates it. The shading normal `frame.n` interpolates the mesh's vertex
 //!   normals where it has them, else equals `ng`; it is negated by `flip_normals` too.
 //! - [`SurfacePoint::uv`]: barycentric weights (b₁, b₂) of vertices 1 and 2 for triangles; for spheres
-//!   (φ/2π, θ/π) in object space; for disks (r, φ/2π).
+//!   (φ/2π, θ/π) of the object-space normal (the `to_world` rotation undone); for disks
+//!   (r, φ/2π).
 //!
 //! # Shape sampling
 //! See [`Geometry::sample_shape`]: densities are per unit solid angle at the reference point.
@@ -108,6 +109,9 @@ pub struct Geometry {
     /// Per stored primitive: a triangle's unit front normal ([`SurfacePoint::ng`]), else zero.
     face_ng: Vec<Vec3>,
     shapes: Vec<ShapeData>,
+    /// Per shape: world to object directions (a sphere's rotation, for its uv; else the
+    /// identity).
+    uv_frames: Vec<glam::Mat3>,
     bounds: Aabb,
     shape_sampling: ShapeSampling,
 }
@@ -136,6 +140,7 @@ impl Geometry {
             ids,
             query: q.query,
             shapes: built.shapes,
+            uv_frames: shapes.iter().map(build::uv_frame).collect(),
             bounds: q.bounds,
             shape_sampling: ShapeSampling::default(),
         })
@@ -221,10 +226,13 @@ impl Geometry {
             } => {
                 let n = (p - center).normalize_or(Vec3::Z);
                 p = center + radius * n;
+                let ng = if flip { -n } else { n };
+                // (φ, θ) of the object-space normal, as Mitsuba 3.
+                let frame = self.uv_frames.get(id.shape as usize);
+                let n = frame.map_or(n, |f| (*f * n).normalize_or(n));
                 let phi = n.y.atan2(n.x);
                 let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
                 uv = Vec2::new(phi / (2.0 * PI), n.z.clamp(-1.0, 1.0).acos() / PI);
-                let ng = if flip { -n } else { n };
                 (ng, ng)
             }
             ShapeData::Disk(d) => {

@@ -5,10 +5,11 @@
 use super::context::{Ctx, Res};
 use super::error::SceneErrorKind;
 use super::props::{Props, Value};
+use super::texture;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::scene::bsdf::named_conductor;
-use crate::scene::description::{BsdfDesc, ConductorFresnel, MicrofacetKind};
+use crate::scene::description::{BsdfDesc, ConductorFresnel, MicrofacetKind, TextureParam};
 use crate::scene::validate::{self, MIN_ROUGHNESS};
 use glam::Vec3;
 
@@ -61,37 +62,48 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
     }
     let ty = plugin_type(ctx, e)?;
     let mut p = Props::new(ctx, e)?;
+    let textures = texture::take_textures(ctx, ty, &mut p)?;
+    // A textured weight or opacity stands in as the texture's mean luminance.
+    let scalar = |q: TextureParam| {
+        textures
+            .iter()
+            .find(|t| t.0 == q)
+            .map(|t| t.1.mean().clamp(0.0, 1.0))
+    };
     match ty {
-        "twosided" => return twosided(ctx, e, p, depth),
+        "twosided" => {
+            if let Some((_, _, o)) = textures.first() {
+                return Err(texture::not_here(ctx, o));
+            }
+            return twosided(ctx, e, p, depth);
+        }
         "blendbsdf" => {
-            let weight = p.float("weight")?.ok_or_else(|| {
-                ctx.err(
-                    e,
-                    SceneErrorKind::InvalidValue("blendbsdf needs a \"weight\"".into()),
-                )
-            })?;
+            let weight = match (p.float("weight")?, scalar(TextureParam::Weight)) {
+                (Some(w), _) | (None, Some(w)) => w,
+                (None, None) => {
+                    return Err(ctx.err(
+                        e,
+                        SceneErrorKind::InvalidValue("blendbsdf needs a \"weight\"".into()),
+                    ))
+                }
+            };
             let [first, second] = nested::<2>(ctx, e, p, depth)?;
-            return checked(
-                ctx,
-                e,
-                BsdfDesc::Blend {
-                    weight,
-                    first: Box::new(first),
-                    second: Box::new(second),
-                },
-            );
+            let desc = BsdfDesc::Blend {
+                weight,
+                first: Box::new(first),
+                second: Box::new(second),
+            };
+            return checked(ctx, e, texture::attach(ctx, ty, desc, textures)?);
         }
         "mask" => {
-            let opacity = p.float("opacity")?.unwrap_or(0.5);
+            let opacity = p.float("opacity")?;
+            let opacity = opacity.or(scalar(TextureParam::Opacity)).unwrap_or(0.5);
             let [inner] = nested::<1>(ctx, e, p, depth)?;
-            return checked(
-                ctx,
-                e,
-                BsdfDesc::Mask {
-                    opacity,
-                    inner: Box::new(inner),
-                },
-            );
+            let desc = BsdfDesc::Mask {
+                opacity,
+                inner: Box::new(inner),
+            };
+            return checked(ctx, e, texture::attach(ctx, ty, desc, textures)?);
         }
         _ => {}
     }
@@ -158,6 +170,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
         }
         other => return Err(unknown_plugin(ctx, e, other)),
     };
+    let desc = texture::attach(ctx, ty, desc, textures)?;
     validate::bsdf(&desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(desc)

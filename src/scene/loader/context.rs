@@ -3,9 +3,12 @@
 
 use super::error::{SceneError, SceneErrorKind};
 use super::tree::Elem;
+use crate::scene::texture::Image;
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// The state of one load.
 pub(crate) struct Ctx<'a> {
@@ -15,6 +18,8 @@ pub(crate) struct Ctx<'a> {
     pub base_dir: PathBuf,
     /// Every element with an `id`.
     pub ids: HashMap<String, &'a Elem>,
+    /// Texture images read so far, by path and `raw` (a texture used twice is read once).
+    images: RefCell<HashMap<(PathBuf, bool), Arc<Image>>>,
 }
 
 /// Type alias for results inside the loader.
@@ -31,6 +36,7 @@ impl<'a> Ctx<'a> {
             file,
             base_dir,
             ids: HashMap::new(),
+            images: RefCell::default(),
         };
         ctx.collect(root)?;
         Ok(ctx)
@@ -56,6 +62,22 @@ impl<'a> Ctx<'a> {
             self.collect(c)?;
         }
         Ok(())
+    }
+
+    /// The image read from `path` with `raw` earlier in this load, if any.
+    pub fn cached_image(&self, path: &Path, raw: bool) -> Option<Arc<Image>> {
+        self.images
+            .borrow()
+            .get(&(path.to_path_buf(), raw))
+            .cloned()
+    }
+
+    /// Remembers an image read from `path` with `raw`; returns it.
+    pub fn cache_image(&self, path: &Path, raw: bool, image: Arc<Image>) -> Arc<Image> {
+        self.images
+            .borrow_mut()
+            .insert((path.to_path_buf(), raw), Arc::clone(&image));
+        image
     }
 
     /// An error located at element `e`.

@@ -7,8 +7,9 @@
 //! (`lookat`, `matrix`, `translate`, `rotate`, `scale`), and the plugins
 //! `path`/`direct`, `perspective`, `independent`/`stratified`/`ldsampler`, `hdrfilm` with
 //! `box`/`gaussian`/`tent` and `crop_*`, `rectangle`/`cube`/`disk`/`sphere`/`obj`/`ply`/`serialized`,
-//! `diffuse`/`conductor`/`roughconductor`/`dielectric`/`twosided`, and
-//! `area`/`point`/`constant`/`envmap`. Semantics and defaults follow Mitsuba 3.
+//! `diffuse`/`conductor`/`roughconductor`/`dielectric`/`twosided`,
+//! `area`/`point`/`constant`/`envmap`, and the textures `bitmap`/`checkerboard` on BSDF
+//! colours, blend weights and opacities. Semantics and defaults follow Mitsuba 3.
 //!
 //! Anything else — an unknown element, attribute, plugin or parameter, a value of the
 //! wrong type, a malformed number, an undefined `$name` or `ref`, a missing file — is a
@@ -40,6 +41,7 @@ mod props;
 mod sensor;
 mod shape;
 mod spectrum;
+mod texture;
 mod transform;
 mod tree;
 mod values;
@@ -104,6 +106,9 @@ pub fn parse_scene(
             // Declared for `ref`; built here too so that its errors surface even if unused.
             "bsdf" => {
                 bsdf::read_bsdf(&ctx, c)?;
+            }
+            "texture" => {
+                texture::read_texture(&ctx, c)?;
             }
             _ => return Err(top_level_error(&ctx, c)),
         }
@@ -190,6 +195,7 @@ pub(crate) fn unknown_plugin(ctx: &Ctx, e: &Elem, ty: &str) -> SceneError {
 pub(crate) fn no_objects(ctx: &Ctx, p: &Props) -> Res<()> {
     match p.objects.first() {
         None => Ok(()),
+        Some(o) if texture::texture_elem(ctx, o).is_some() => Err(texture::not_here(ctx, o)),
         Some(o) => Err(ctx.err(
             o,
             SceneErrorKind::Misplaced(format!("<{}> cannot be nested here", o.tag)),

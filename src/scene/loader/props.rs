@@ -41,16 +41,15 @@ pub(crate) const OBJECT_TAGS: &[&str] = &[
     "shape",
     "bsdf",
     "emitter",
+    "texture",
     "ref",
 ];
 
 /// Tags Mitsuba knows that this loader does not support.
-const UNSUPPORTED_TAGS: &[&str] = &["texture", "medium", "phase", "volume", "path", "alias"];
+const UNSUPPORTED_TAGS: &[&str] = &["medium", "phase", "volume", "path", "alias"];
 
-// Textures: `<texture>` is refused above, so a `<ref name="reflectance" id="…"/>` inside a
-// BSDF (a nested object here) can only name a BSDF and is refused where BSDFs read their
-// objects. Texture support plugs in here: a `Value::Texture` read from `<texture>` and
-// from `<ref name=…>` to one, and `Props::colour` returning it.
+// Textures are nested objects: a BSDF takes them out of `objects` by their `name`
+// (`loader/texture.rs`); anywhere else they are refused as objects are.
 
 /// The parameters and nested objects of a plugin element.
 pub(crate) struct Props<'c, 'a> {
@@ -92,6 +91,11 @@ impl<'c, 'a> Props<'c, 'a> {
             });
         }
         Ok(out)
+    }
+
+    /// Whether parameter `name` is given (without marking it used).
+    pub fn has(&self, name: &str) -> bool {
+        self.index.contains_key(name)
     }
 
     /// Looks up `name`, marking it used; returns its value and element.

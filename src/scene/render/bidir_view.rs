@@ -1,11 +1,12 @@
 //! The built-in scene as the bidirectional estimators see it: emission from every light
 //! (`light/emission.rs`) and the pinhole camera as an endpoint.
 
+use super::material::Material;
 use super::view::SceneView;
-use crate::integrator::{BidirectionalScene, Bsdf, CameraConnection, EmissionSample, SurfacePoint};
+use crate::integrator::{BidirectionalScene, CameraConnection, EmissionSample, SurfacePoint};
 use glam::{Vec2, Vec3};
 
-impl<B: Bsdf, const DELTA: bool, const ENV: bool> BidirectionalScene
+impl<B: Material, const DELTA: bool, const ENV: bool> BidirectionalScene
     for SceneView<'_, B, DELTA, ENV>
 {
     fn sample_emission(&self, u_pick: Vec2, u_pos: Vec2, u_dir: Vec2) -> Option<EmissionSample> {

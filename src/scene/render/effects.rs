@@ -20,6 +20,8 @@ pub struct Effects {
     pub delta_lights: bool,
     /// There is a light at infinity.
     pub environment: bool,
+    /// Some material has a textured parameter: materials are formed per hit.
+    pub textures: bool,
     /// Paths continue past the first bounce (`max_depth` is −1 or above 2).
     pub indirect: bool,
 }
@@ -62,6 +64,7 @@ impl Effects {
             (self.refraction, "refraction"),
             (self.delta_lights, "delta lights"),
             (self.environment, "environment"),
+            (self.textures, "textures"),
         ] {
             if on {
                 v.push(name);

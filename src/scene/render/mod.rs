@@ -26,6 +26,7 @@ mod bidir_tests;
 mod bidir_view;
 mod effects;
 mod error;
+mod material;
 mod mlt_loop;
 mod split;
 mod tiles;
@@ -43,7 +44,7 @@ use crate::sampling::sampler::{
     StratifiedSampler,
 };
 use crate::sampling::SamplingError;
-use crate::scene::bsdf::{AnyBsdf, Sided};
+use crate::scene::bsdf::{AnyBsdf, Sided, TexturedBsdf};
 use crate::scene::camera::Camera;
 use crate::scene::description::{
     IntegratorDesc, IntegratorKind, SamplerKind, SceneDescription, ShapeKind,
@@ -52,6 +53,7 @@ use crate::scene::film::{write_exr, write_png, Crop, Film, ImageError, PixelFilt
 use crate::scene::geometry::Geometry;
 use crate::scene::light::Lights;
 use glam::{Vec3, Vec4Swizzles};
+use material::Material;
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -120,6 +122,8 @@ pub struct Renderer {
     geometry: Geometry,
     lights: Lights,
     bsdfs: Vec<Sided<AnyBsdf>>,
+    /// The materials with their textures, when any shape has a textured parameter.
+    textured: Option<Vec<TexturedBsdf>>,
     camera: Camera,
     integrator: Integrator,
     filter: PixelFilter,
@@ -228,6 +232,13 @@ impl Renderer {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
+        let textured = desc.shapes.iter().any(|s| s.bsdf.is_textured()).then(|| {
+            bsdfs
+                .iter()
+                .zip(&desc.shapes)
+                .map(|(b, s)| TexturedBsdf::with_base(b.clone(), &s.bsdf))
+                .collect::<Vec<_>>()
+        });
         let strategy = opts.strategy.unwrap_or_default();
         let integrator_desc = match opts.integrator {
             Some(kind) => desc.integrator.with_kind(kind),
@@ -309,7 +320,11 @@ impl Renderer {
         }
         // The rendered window: the whole film, or its crop window (the camera maps it).
         let (width, height) = (camera.width(), camera.height());
-        let effects = Effects::of(&bsdfs, &lights, &integrator);
+        let mut effects = Effects::of(&bsdfs, &lights, &integrator);
+        if textured.is_some() {
+            effects.textures = true;
+            effects.diffuse_only = false;
+        }
         let file_spp = match integrator {
             Integrator::Mlt(m) => m.mutations_per_pixel,
             _ => desc.sensor.sampler.sample_count,
@@ -340,6 +355,7 @@ impl Renderer {
             geometry: geo,
             lights,
             bsdfs,
+            textured,
             camera,
             integrator,
             filter: PixelFilter::from_desc(&film.filter),
@@ -431,6 +447,14 @@ impl Renderer {
 
     fn dispatch(&self, p: &tiles::LoopParams<'_>) -> (Film, tiles::LoopStats) {
         let e = self.effects;
+        // Textures: materials formed per hit (with or without specialisation).
+        if let Some(textured) = &self.textured {
+            return if self.specialize {
+                self.run_specialised(textured.clone(), p)
+            } else {
+                self.run_loop(&self.view::<_, true, true>(textured.clone()), p)
+            };
+        }
         if !self.specialize {
             return self.run_loop(&self.view::<_, true, true>(self.bsdfs.clone()), p);
         }
@@ -451,7 +475,7 @@ impl Renderer {
         }
     }
 
-    fn run_specialised<B: crate::integrator::Bsdf + Sync>(
+    fn run_specialised<B: Material + Sync>(
         &self,
         bsdfs: Vec<B>,
         p: &tiles::LoopParams<'_>,
@@ -480,7 +504,7 @@ impl Renderer {
     }
 
     /// The render loop of the integrator.
-    fn run_loop<B: crate::integrator::Bsdf + Sync, const DELTA: bool, const ENV: bool>(
+    fn run_loop<B: Material + Sync, const DELTA: bool, const ENV: bool>(
         &self,
         view: &SceneView<'_, B, DELTA, ENV>,
         p: &tiles::LoopParams<'_>,

@@ -2,7 +2,8 @@
 //! [`crate::integrator::Scene`], specialised at compile time on the material type and on
 //! whether the scene has delta lights and an environment.
 
-use crate::integrator::{Bsdf, LightSample, Scene, SurfacePoint};
+use super::material::Material;
+use crate::integrator::{LightSample, Scene, SurfacePoint};
 use crate::scene::camera::Camera;
 use crate::scene::geometry::{offset_origin, Geometry, Ray};
 use crate::scene::light::Lights;
@@ -23,8 +24,11 @@ pub(crate) struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
     pub(crate) filter: &'a crate::scene::film::PixelFilter,
 }
 
-impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DELTA, ENV> {
-    type Bsdf = B;
+impl<B: Material, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DELTA, ENV> {
+    type Bsdf<'b>
+        = B::At<'b>
+    where
+        Self: 'b;
 
     #[inline]
     fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfacePoint> {
@@ -44,8 +48,8 @@ impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DEL
     }
 
     #[inline]
-    fn bsdf(&self, sp: &SurfacePoint) -> &B {
-        &self.bsdfs[sp.shape as usize]
+    fn bsdf(&self, sp: &SurfacePoint) -> B::At<'_> {
+        self.bsdfs[sp.shape as usize].at(self.geometry, sp)
     }
 
     #[inline]
