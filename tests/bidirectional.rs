@@ -1,6 +1,6 @@
 //! Bidirectional path tracing and Metropolis light transport against references: Mitsuba 3's
-//! images of the Cornell box, `veach-mis.xml`, the caustic box, and (BDPT) the glass and
-//! plastic boxes (32×32 block means), the
+//! images of the Cornell box, `veach-mis.xml`, the caustic box, and (BDPT) the glass,
+//! plastic and textures scenes (32×32 block means), the
 //! path tracer's image of each path length for every BDPT strategy alone, and white
 //! furnaces with diffuse, mirror and glass spheres.
 //!
@@ -132,6 +132,21 @@ fn bdpt_plastic_matches_mitsuba() {
         &d,
         &opts(IntegratorKind::Bdpt, 8),
         "cornell-box-plastic.exr",
+        0.01,
+    );
+}
+
+/// Textured materials (`textures.xml`): light subpaths and connections look the textures up
+/// at their own vertices (the scene forms each vertex's material), so the texture is where
+/// the path tracer and Mitsuba put it.
+#[test]
+fn bdpt_textures_match_mitsuba() {
+    let d = load("textures.xml");
+    against_mitsuba(
+        "bdpt textures",
+        &d,
+        &opts(IntegratorKind::Bdpt, 8),
+        "textures.exr",
         0.01,
     );
 }

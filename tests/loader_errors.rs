@@ -420,6 +420,16 @@ fn texture_errors() {
     std::fs::write(&cut, &jpg[..jpg.len() / 3]).unwrap();
     let e = err(&bitmap(&file(cut.to_str().unwrap())));
     check(&e, 3, "<texture type=\"bitmap\"", "JPEG");
+    // A PNG whose header claims 10⁵ × 10⁵ pixels: refused before any pixel is allocated.
+    let huge = dir.join("huge.png");
+    std::fs::write(&huge, png_header(100_000, 100_000)).unwrap();
+    let e = err(&bitmap(&file(huge.to_str().unwrap())));
+    check(
+        &e,
+        3,
+        "<texture type=\"bitmap\"",
+        "more than the 67108864 a texture may have",
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 
     let grid = file("textures/grid.png");
@@ -453,4 +463,34 @@ fn texture_errors() {
         let e = err(&body);
         check(&e, line, element, words);
     }
+}
+
+/// The signature, a valid IHDR chunk (8-bit RGB) of a PNG of `w × h` pixels, an empty
+/// IDAT and IEND.
+fn png_header(w: u32, h: u32) -> Vec<u8> {
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut c = !0u32;
+        for &b in bytes {
+            c ^= u32::from(b);
+            for _ in 0..8 {
+                c = if c & 1 == 1 {
+                    0xedb8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+            }
+        }
+        !c
+    }
+    let mut ihdr = b"IHDR".to_vec();
+    ihdr.extend(w.to_be_bytes());
+    ihdr.extend(h.to_be_bytes());
+    ihdr.extend([8, 2, 0, 0, 0]);
+    let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+    for chunk in [ihdr, b"IDAT".to_vec(), b"IEND".to_vec()] {
+        out.extend((chunk.len() as u32 - 4).to_be_bytes());
+        out.extend(&chunk);
+        out.extend(crc32(&chunk).to_be_bytes());
+    }
+    out
 }

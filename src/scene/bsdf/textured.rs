@@ -199,7 +199,11 @@ mod tests {
         };
         // A checkerboard's single value is the other square's channel mean (Mitsuba 3.9.1).
         let w = (0.8 + 0.1 + 0.1) / 3.0;
-        assert!(b.weight.is_finite() && (b.weight - w).abs() < 1e-6, "{}", b.weight);
+        assert!(
+            b.weight.is_finite() && (b.weight - w).abs() < 1e-6,
+            "{}",
+            b.weight
+        );
         assert_eq!(
             b.first.bsdf.as_diffuse().unwrap().reflectance,
             Vec3::splat(0.2)

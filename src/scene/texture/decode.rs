@@ -123,6 +123,79 @@ fn jpeg_values(bytes: &[u8]) -> Result<(u32, u32, usize, Vec<f32>), String> {
 mod tests {
     use super::*;
 
+    /// Writes a `w × h` PNG of `color` type and `depth` with the raw sample bytes `data`.
+    fn png_file(
+        name: &str,
+        w: u32,
+        h: u32,
+        color: png::ColorType,
+        depth: png::BitDepth,
+        data: &[u8],
+    ) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("mcrt-decode-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        let mut enc = png::Encoder::new(std::fs::File::create(&path).unwrap(), w, h);
+        enc.set_color(color);
+        enc.set_depth(depth);
+        enc.write_header().unwrap().write_image_data(data).unwrap();
+        path
+    }
+
+    /// 16-bit grey, 8-bit grey + alpha and RGBA, decoded as Mitsuba 3.9.1 reads them: grey
+    /// replicated, alpha ignored, 16-bit values (big-endian) through the sRGB curve, `raw`
+    /// skipping it.
+    #[test]
+    fn png_layouts() {
+        use png::{BitDepth, ColorType};
+        let close = |a: Vec3, b: Vec3| a.is_finite() && (a - b).abs().max_element() < 1e-6;
+        let g16 = png_file(
+            "g16.png",
+            2,
+            1,
+            ColorType::Grayscale,
+            BitDepth::Sixteen,
+            &[0x80, 0x00, 0xff, 0xff],
+        );
+        let im = read_image(&g16, false).unwrap();
+        assert!(close(
+            im.pixels()[0],
+            Vec3::splat(srgb_to_linear(32768.0 / 65535.0))
+        ));
+        assert!(close(im.pixels()[1], Vec3::ONE));
+        let im = read_image(&g16, true).unwrap();
+        assert!(close(im.pixels()[0], Vec3::splat(32768.0 / 65535.0)));
+        let ga = png_file(
+            "ga.png",
+            1,
+            1,
+            ColorType::GrayscaleAlpha,
+            BitDepth::Eight,
+            &[128, 7],
+        );
+        let im = read_image(&ga, false).unwrap();
+        assert!(close(
+            im.pixels()[0],
+            Vec3::splat(srgb_to_linear(128.0 / 255.0))
+        ));
+        let rgba = png_file(
+            "rgba.png",
+            2,
+            1,
+            ColorType::Rgba,
+            BitDepth::Eight,
+            &[128, 128, 128, 0, 255, 0, 0, 128],
+        );
+        let im = read_image(&rgba, false).unwrap();
+        assert!(
+            close(im.pixels()[0], Vec3::splat(0.215_860_5)),
+            "{}",
+            im.pixels()[0]
+        );
+        assert!(close(im.pixels()[1], Vec3::X));
+        std::fs::remove_dir_all(g16.parent().unwrap()).unwrap();
+    }
+
     /// Mitsuba 3.9.1 decodes 8-bit 128 to 0.21586 (exact) and 16-bit 32768 to 0.213989
     /// (its 16-bit curve is an approximation, 5·10⁻⁵ below the exact 0.214041).
     #[test]
