@@ -179,7 +179,7 @@ fn point_light_over_a_diffuse_plane() {
 
 /// A directional light at angle θ to a diffuse plane gives irradiance `E cos θ` (the
 /// radiance `ρ/π · E cos θ` everywhere, with no falloff); a spot light straight above gives
-/// `ρ/π · I f(0) / d²` under it, its full intensity inside the beam.
+/// `ρ/π · I f(0) / d²` under it, its full intensity inside the beam. Path and direct.
 #[test]
 fn directional_and_spot_lights_over_a_diffuse_plane() {
     let rho = Vec3::new(0.3, 0.5, 0.7);
@@ -206,12 +206,22 @@ fn directional_and_spot_lights_over_a_diffuse_plane() {
             3.0 / 4.0,
         ),
     ];
-    for (light, irradiance) in lights {
+    let integrators = [
+        IntegratorDesc::Path {
+            max_depth: 2,
+            rr_depth: 5,
+        },
+        IntegratorDesc::Direct {
+            emitter_samples: 1,
+            bsdf_samples: 1,
+        },
+    ];
+    for ((light, irradiance), integrator) in lights
+        .iter()
+        .flat_map(|l| integrators.iter().map(move |i| (l.clone(), *i)))
+    {
         let desc = SceneDescription {
-            integrator: IntegratorDesc::Path {
-                max_depth: 2,
-                rr_depth: 5,
-            },
+            integrator,
             sensor: camera(Vec3::new(0.0, 0.0, 5.0), 0.45, 16),
             shapes: vec![floor.clone()],
             emitters: vec![light.clone()],
@@ -222,7 +232,7 @@ fn directional_and_spot_lights_over_a_diffuse_plane() {
         for c in 0..3 {
             assert!(
                 m[c].is_finite() && (m[c] / want[c] - 1.0).abs() < 1e-3,
-                "{light:?}: {m} vs {want}"
+                "{integrator:?}, {light:?}: {m} vs {want}"
             );
         }
     }

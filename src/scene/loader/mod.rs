@@ -5,11 +5,12 @@
 //! substitution (defines passed to [`load_scene`] beat defaults), `ref`/`id`, the value
 //! tags `integer`, `float`, `boolean`, `string`, `rgb`, `point`, `vector`, `transform`
 //! (`lookat`, `matrix`, `translate`, `rotate`, `scale`), and the plugins
-//! `path`/`direct`, `perspective`, `independent`/`stratified`/`ldsampler`, `hdrfilm` with
+//! `path`/`direct`, `perspective`/`thinlens`, `independent`/`stratified`/`ldsampler`, `hdrfilm` with
 //! `box`/`gaussian`/`tent` and `crop_*`, `rectangle`/`cube`/`disk`/`sphere`/`obj`/`ply`/`serialized`,
-//! `diffuse`/`conductor`/`roughconductor`/`dielectric`/`twosided`,
-//! `area`/`point`/`constant`/`envmap`, and the textures `bitmap`/`checkerboard` on BSDF
-//! colours, blend weights and opacities. Semantics and defaults follow Mitsuba 3.
+//! `diffuse`/`conductor`/`roughconductor`/`dielectric`/`twosided` and the other BSDFs of
+//! `docs/scene-format.md`, `area`/`point`/`spot`/`directional`/`constant`/`envmap`, and the
+//! textures `bitmap`/`checkerboard` on BSDF colours, blend weights and opacities. Semantics
+//! and defaults follow Mitsuba 3.
 //!
 //! Anything else — an unknown element, attribute, plugin or parameter, a value of the
 //! wrong type, a malformed number, an undefined `$name` or `ref`, a missing file — is a
