@@ -5,7 +5,7 @@ use mcrt::glam::{Mat4, Vec3};
 use mcrt::scene::cornell_box::{cornell_box, cornell_box_with};
 use mcrt::scene::description::{
     BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
-    SceneDescription, ShapeKind,
+    SamplerKind, SceneDescription, ShapeKind,
 };
 use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError};
 use std::path::Path;
@@ -312,4 +312,22 @@ fn obj_shapes_resolve_against_the_scene_folder_and_read() {
     let missing = mcrt::scene::obj::read_obj(&dir.join("nope.obj")).unwrap_err();
     assert!(missing.to_string().contains("nope.obj"), "{missing}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Mitsuba's `multijitter` maps to the correlated multi-jittered sampler; `jitter = false`
+/// (centred values), which no sampler here renders, is an error that names the line.
+#[test]
+fn multijitter_maps_to_the_cmj_sampler() {
+    let scene = |sampler: &str| {
+        format!(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\">\n{sampler}\n</sensor></scene>"
+        )
+    };
+    let xml = scene(r#"<sampler type="multijitter"><integer name="sample_count" value="5"/></sampler>"#);
+    let d = parse(&xml, &[]).unwrap();
+    assert_eq!(d.sensor.sampler.kind, SamplerKind::MultiJitter);
+    assert_eq!(d.sensor.sampler.sample_count, 5);
+    let xml = scene(r#"<sampler type="multijitter"><boolean name="jitter" value="false"/></sampler>"#);
+    let e = parse(&xml, &[]).unwrap_err().to_string();
+    assert!(e.contains("inline.xml") && e.contains("line 2") && e.contains("jitter"), "{e}");
 }

@@ -78,12 +78,12 @@ impl DirectIntegrator {
         let draw_pick = scene.samples_light_choice();
         let draw_component = bsdf.samples_component();
         for _ in 0..n_delta {
+            let u = rng.next_2d();
             let u_pick = if draw_pick {
                 rng.next_2d()
             } else {
                 Vec2::splat(0.5)
             };
-            let u = rng.next_2d();
             if !smooth {
                 continue;
             }

@@ -118,7 +118,7 @@ impl Lights {
             picker,
             only_rect,
             only_rect_frame,
-            reads_pick: !single || lights.iter().any(on_mesh),
+            reads_pick: lights.iter().any(on_mesh),
             single,
             rects,
             lights,

@@ -42,7 +42,7 @@ pub use geo::{AccelKind, ShapeSampling};
 
 use crate::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
 use crate::sampling::sampler::{
-    AnySampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, SobolSampler,
+    AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, Sobol4dSampler, SobolSampler,
     StratifiedSampler,
 };
 use crate::sampling::SamplingError;
@@ -184,6 +184,8 @@ fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, Sa
         SamplerKind::LowDiscrepancy => SobolSampler::new(spp, seed)?.into(),
         SamplerKind::Halton => HaltonSampler::new(spp, seed)?.into(),
         SamplerKind::R2 => R2Sampler::new(spp, seed)?.into(),
+        SamplerKind::LowDiscrepancy4d => Sobol4dSampler::new(spp, seed)?.into(),
+        SamplerKind::MultiJitter => CmjSampler::new(spp, seed, true)?.into(),
     })
 }
 
