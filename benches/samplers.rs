@@ -8,12 +8,12 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use mcrt::glam::Vec2;
-#[cfg(feature = "sobol")]
-use mcrt::sampling::sampler::{Sobol4dSampler, SobolSampler};
 use mcrt::sampling::sampler::{
     AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler,
     StratifiedSampler,
 };
+#[cfg(feature = "sobol")]
+use mcrt::sampling::sampler::{Sobol4dSampler, SobolSampler};
 use std::hint::black_box;
 
 mod common;

@@ -4,8 +4,8 @@
 use mcrt::glam::{Mat4, Vec3};
 use mcrt::scene::cornell_box::{cornell_box, cornell_box_with};
 use mcrt::scene::description::{
-    BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
-    SamplerKind, SceneDescription, ShapeKind,
+    BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind, SamplerKind,
+    SceneDescription, ShapeKind,
 };
 use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError};
 use std::path::Path;
@@ -323,11 +323,16 @@ fn multijitter_maps_to_the_cmj_sampler() {
             "<scene version=\"3.0.0\"><sensor type=\"perspective\">\n{sampler}\n</sensor></scene>"
         )
     };
-    let xml = scene(r#"<sampler type="multijitter"><integer name="sample_count" value="5"/></sampler>"#);
+    let xml =
+        scene(r#"<sampler type="multijitter"><integer name="sample_count" value="5"/></sampler>"#);
     let d = parse(&xml, &[]).unwrap();
     assert_eq!(d.sensor.sampler.kind, SamplerKind::MultiJitter);
     assert_eq!(d.sensor.sampler.sample_count, 5);
-    let xml = scene(r#"<sampler type="multijitter"><boolean name="jitter" value="false"/></sampler>"#);
+    let xml =
+        scene(r#"<sampler type="multijitter"><boolean name="jitter" value="false"/></sampler>"#);
     let e = parse(&xml, &[]).unwrap_err().to_string();
-    assert!(e.contains("inline.xml") && e.contains("line 2") && e.contains("jitter"), "{e}");
+    assert!(
+        e.contains("inline.xml") && e.contains("line 2") && e.contains("jitter"),
+        "{e}"
+    );
 }

@@ -46,13 +46,14 @@ fn image_mean(kind: SamplerKind, integrator: IntegratorKind, seed: u64) -> (DVec
 fn every_sampler_renders_the_same_expected_image() {
     let (reference, ref_var) = image_mean(SamplerKind::Independent, IntegratorKind::Path, 1);
     assert!(reference.min_element() > 0.01, "{reference}");
-    let runs = KINDS
-        .iter()
-        .map(|&k| (k, IntegratorKind::Path))
-        .chain(
-            [SamplerKind::Halton, SamplerKind::R2, SamplerKind::MultiJitter]
-                .map(|k| (k, IntegratorKind::Bdpt)),
-        );
+    let runs = KINDS.iter().map(|&k| (k, IntegratorKind::Path)).chain(
+        [
+            SamplerKind::Halton,
+            SamplerKind::R2,
+            SamplerKind::MultiJitter,
+        ]
+        .map(|k| (k, IntegratorKind::Bdpt)),
+    );
     for (kind, integrator) in runs {
         let (mean, var) = image_mean(kind, integrator, 2);
         let z = (mean - reference) / (var + ref_var).map(f64::sqrt);

@@ -2,11 +2,11 @@
 //! stratification (strata, elementary intervals) and integration error.
 
 use mcrt::glam::Vec2;
-#[cfg(feature = "sobol")]
-use mcrt::sampling::sampler::{Sobol4dSampler, SobolSampler};
 use mcrt::sampling::sampler::{
     CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler,
 };
+#[cfg(feature = "sobol")]
+use mcrt::sampling::sampler::{Sobol4dSampler, SobolSampler};
 use proptest::prelude::*;
 
 /// A draw pattern close to a path tracer's: 2D, 2D, 1D, 2D, 1D, ...
@@ -342,8 +342,20 @@ fn cmj_rounds_are_multi_jittered() {
             assert_cells(&mut s, 0, spp, (1, spp), &format!("{name}, rows"));
             assert_intervals(&mut s, 0, spp, spp, &name);
             // A later round of indices is multi-jittered on its own.
-            assert_cells(&mut s, 2 * spp, spp, (m, n), &format!("{name}, third round"));
-            assert_cells(&mut s, 2 * spp, spp, (spp, 1), &format!("{name}, third round"));
+            assert_cells(
+                &mut s,
+                2 * spp,
+                spp,
+                (m, n),
+                &format!("{name}, third round"),
+            );
+            assert_cells(
+                &mut s,
+                2 * spp,
+                spp,
+                (spp, 1),
+                &format!("{name}, third round"),
+            );
         }
     }
 }

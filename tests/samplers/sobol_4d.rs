@@ -52,7 +52,11 @@ fn pairs_of_dimensions_form_4d_nets() {
         let pts = points(&mut s, pixel, 256, 6);
         for j in [0, 2, 4] {
             for shape in shapes(5) {
-                assert!(equal_boxes(&pts, j, shape), "pixel {pixel:?} dims {j}, {}: {shape:?}", j + 1);
+                assert!(
+                    equal_boxes(&pts, j, shape),
+                    "pixel {pixel:?} dims {j}, {}: {shape:?}",
+                    j + 1
+                );
             }
         }
     }
@@ -64,7 +68,10 @@ fn pairs_of_dimensions_form_4d_nets() {
 fn the_4d_check_rejects_2d_padding() {
     let mut s = SobolSampler::new(256, 3).unwrap();
     let pts = points(&mut s, [17, 4], 256, 2);
-    let equal = shapes(5).into_iter().filter(|&sh| equal_boxes(&pts, 0, sh)).count();
+    let equal = shapes(5)
+        .into_iter()
+        .filter(|&sh| equal_boxes(&pts, 0, sh))
+        .count();
     println!("2D padding: {equal} of 56 shapes equal");
     // Only shapes within one dimension (c = d = 0 or a = b = 0) are guaranteed: 12 of 56.
     assert!(equal <= 14, "{equal} of 56 shapes equal");
@@ -85,8 +92,7 @@ fn each_dimension_is_a_net() {
                 let mut cells = vec![0u32; (nx * ny) as usize];
                 for p in &pts[..1 << k] {
                     let u = p[d];
-                    cells[((u.y * ny as f32) as u32 * nx + (u.x * nx as f32) as u32) as usize] +=
-                        1;
+                    cells[((u.y * ny as f32) as u32 * nx + (u.x * nx as f32) as u32) as usize] += 1;
                 }
                 assert!(
                     cells.iter().all(|&c| c == 1 << t),
@@ -119,6 +125,9 @@ fn pairs_are_independent_of_each_other() {
     }
     let across = f64::from(across) / f64::from(grids);
     let within = f64::from(within) / f64::from(2 * grids);
-    assert!(across.is_finite() && (9.0..13.0).contains(&across), "{across} cells across");
+    assert!(
+        across.is_finite() && (9.0..13.0).contains(&across),
+        "{across} cells across"
+    );
     assert_eq!(within, 16.0);
 }

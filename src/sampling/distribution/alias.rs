@@ -263,7 +263,10 @@ mod tests {
             let u = (k as f32 + 0.5) / n as f32;
             let (j, pmf, rest) = t.sample_reusing(u);
             assert_eq!((j, pmf), t.sample_with_pmf(u), "u = {u}");
-            assert!(rest.is_finite() && (0.0..1.0).contains(&rest), "u = {u}: {rest}");
+            assert!(
+                rest.is_finite() && (0.0..1.0).contains(&rest),
+                "u = {u}: {rest}"
+            );
             bins[j][(rest * 16.0) as usize] += 1;
         }
         for (j, b) in bins.iter().enumerate() {
@@ -272,10 +275,7 @@ mod tests {
             for &c in b {
                 // Each of the (at most n = 6) pieces of j's share can put one value more or
                 // less in a bin.
-                assert!(
-                    (f64::from(c) - expected).abs() <= 7.0,
-                    "index {j}: {b:?}"
-                );
+                assert!((f64::from(c) - expected).abs() <= 7.0, "index {j}: {b:?}");
             }
         }
         for u in [0.0, ONE_MINUS_EPSILON, f32::NAN] {

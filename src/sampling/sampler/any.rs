@@ -2,11 +2,9 @@
 
 use glam::Vec2;
 
+use super::{CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler};
 #[cfg(feature = "sobol")]
 use super::{Sobol4dSampler, SobolSampler};
-use super::{
-    CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler,
-};
 use crate::sampling::SamplingError;
 
 /// One of the crate's samplers, chosen at run time (for example from a scene file's

@@ -10,10 +10,11 @@ use crate::sampling::SamplingError;
 const TAG_1D: u64 = 0x1d;
 const TAG_2D: u64 = 0x2d;
 
-/// Salts deriving the three permutation keys of a 2D pattern from its key.
-const SALT_ORDER: u64 = 0x51_633e_2d;
-const SALT_COLUMNS: u64 = 0xa5_11e9_b3;
-const SALT_ROWS: u64 = 0x63_d835_95;
+/// Salts deriving the three permutation keys of a 2D pattern from its key (words of the
+/// SHA-512 initial value: any distinct constants do, since the key is hashed again).
+const SALT_ORDER: u64 = 0x3c6e_f372_fe94_f82b;
+const SALT_COLUMNS: u64 = 0xa54f_f53a_5f1d_36f1;
+const SALT_ROWS: u64 = 0x510e_527f_ade6_82d1;
 
 /// Correlated multi-jittered sample values (Kensler 2013, "Correlated Multi-Jittered
 /// Sampling", Pixar Technical Memo 13-01), padded across dimensions; Mitsuba 3's

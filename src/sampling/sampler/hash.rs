@@ -85,7 +85,11 @@ pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
     let shift = ((shift_bits * u64::from(n)) >> 32) as u32;
     // In u64: for n above 2³¹ the sum can pass u32::MAX.
     let y = u64::from(x) + u64::from(shift);
-    (if y >= u64::from(n) { y - u64::from(n) } else { y }) as u32
+    (if y >= u64::from(n) {
+        y - u64::from(n)
+    } else {
+        y
+    }) as u32
 }
 
 /// Rounds of [`round`] per walk of [`permute`].

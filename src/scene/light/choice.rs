@@ -201,7 +201,10 @@ mod tests {
             for k in 0..n {
                 let (i, q, rest) = c.sample(p, (k as f32 + 0.5) / n as f32);
                 assert_eq!(q, pmf[i], "{p}: light {i}");
-                assert!(rest.is_finite() && (0.0..1.0).contains(&rest), "{p}: {rest}");
+                assert!(
+                    rest.is_finite() && (0.0..1.0).contains(&rest),
+                    "{p}: {rest}"
+                );
                 count[i] += 1;
             }
             for i in 0..5 {

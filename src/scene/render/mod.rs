@@ -42,8 +42,8 @@ pub use geo::{AccelKind, ShapeSampling};
 
 use crate::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
 use crate::sampling::sampler::{
-    AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, Sobol4dSampler, SobolSampler,
-    StratifiedSampler,
+    AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, Sobol4dSampler,
+    SobolSampler, StratifiedSampler,
 };
 use crate::sampling::SamplingError;
 use crate::scene::bsdf::{AnyBsdf, Sided};

@@ -30,12 +30,12 @@ const DIMENSION_SALT: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_
 /// `sobol_burley`'s direction numbers of Sobol dimensions 2 and 3, bits reversed: entry `k`
 /// is `sobol_burley::parts::sobol_rev((1 << k).reverse_bits(), 2 | 3)` (a unit test checks).
 const DIRECTIONS_2: [u32; 16] = [
-    0x0001, 0x0003, 0x0006, 0x0009, 0x0017, 0x003a, 0x0071, 0x00a3, 0x0116, 0x0339, 0x0677,
-    0x09aa, 0x1601, 0x3903, 0x7706, 0xaa09,
+    0x0001, 0x0003, 0x0006, 0x0009, 0x0017, 0x003a, 0x0071, 0x00a3, 0x0116, 0x0339, 0x0677, 0x09aa,
+    0x1601, 0x3903, 0x7706, 0xaa09,
 ];
 const DIRECTIONS_3: [u32; 16] = [
-    0x0001, 0x0003, 0x0004, 0x000a, 0x001f, 0x002e, 0x0045, 0x00c9, 0x011b, 0x02a4, 0x079a,
-    0x0b67, 0x101e, 0x302d, 0x4041, 0xa0c3,
+    0x0001, 0x0003, 0x0004, 0x000a, 0x001f, 0x002e, 0x0045, 0x00c9, 0x011b, 0x02a4, 0x079a, 0x0b67,
+    0x101e, 0x302d, 0x4041, 0xa0c3,
 ];
 
 /// `UPPER[j][v]`: the reversed points of dimensions 2 (low 16 bits) and 3 (high 16 bits) for
@@ -205,8 +205,16 @@ mod tests {
     fn direction_tables_are_sobol_burleys() {
         for k in 0..16 {
             let unit = (1u32 << k).reverse_bits();
-            assert_eq!(DIRECTIONS_2[k], sobol_burley::parts::sobol_rev(unit, 2), "bit {k}");
-            assert_eq!(DIRECTIONS_3[k], sobol_burley::parts::sobol_rev(unit, 3), "bit {k}");
+            assert_eq!(
+                DIRECTIONS_2[k],
+                sobol_burley::parts::sobol_rev(unit, 2),
+                "bit {k}"
+            );
+            assert_eq!(
+                DIRECTIONS_3[k],
+                sobol_burley::parts::sobol_rev(unit, 3),
+                "bit {k}"
+            );
         }
     }
 
