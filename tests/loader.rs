@@ -4,7 +4,7 @@
 use mcrt::glam::{Mat4, Vec3};
 use mcrt::scene::cornell_box::{cornell_box, cornell_box_with};
 use mcrt::scene::description::{
-    BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
+    BsdfDesc, ConductorFresnel, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind, SamplerKind,
     SceneDescription, ShapeKind,
 };
 use mcrt::scene::loader::{load_scene, look_at, parse_scene, SceneError, SceneErrorKind};
@@ -460,4 +460,27 @@ fn mesh_scene_with_include_spectra_tent_and_crop() {
     let f = x.sensor.film;
     assert_eq!(f.filter, FilterDesc::Tent { radius: 1.0 });
     assert_eq!((f.window().width, f.window().height), (6, 576));
+}
+
+/// Mitsuba's `multijitter` maps to the correlated multi-jittered sampler; `jitter = false`
+/// (centred values), which no sampler here renders, is an error that names the line.
+#[test]
+fn multijitter_maps_to_the_cmj_sampler() {
+    let scene = |sampler: &str| {
+        format!(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\">\n{sampler}\n</sensor></scene>"
+        )
+    };
+    let xml =
+        scene(r#"<sampler type="multijitter"><integer name="sample_count" value="5"/></sampler>"#);
+    let d = parse(&xml, &[]).unwrap();
+    assert_eq!(d.sensor.sampler.kind, SamplerKind::MultiJitter);
+    assert_eq!(d.sensor.sampler.sample_count, 5);
+    let xml =
+        scene(r#"<sampler type="multijitter"><boolean name="jitter" value="false"/></sampler>"#);
+    let e = parse(&xml, &[]).unwrap_err().to_string();
+    assert!(
+        e.contains("inline.xml") && e.contains("line 2") && e.contains("jitter"),
+        "{e}"
+    );
 }

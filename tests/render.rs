@@ -17,6 +17,7 @@ fn same_image_whatever_the_thread_count() {
         SamplerKind::Independent,
         SamplerKind::Stratified,
         SamplerKind::LowDiscrepancy,
+        SamplerKind::MultiJitter,
     ] {
         let images: Vec<_> = [1, 2, 3]
             .iter()

@@ -322,6 +322,13 @@ pub enum SamplerKind {
     Stratified,
     /// Mitsuba's `ldsampler`; ours is Owen-scrambled Sobol.
     LowDiscrepancy,
+    /// Owen-scrambled Sobol padded in 4D sets
+    /// ([`Sobol4dSampler`](crate::sampling::sampler::Sobol4dSampler)); no Mitsuba 3 plugin,
+    /// so no scene-file name: chosen through the API or `--sampler sobol4d`.
+    LowDiscrepancy4d,
+    /// Mitsuba's `multijitter` (jittered): correlated multi-jittered patterns
+    /// ([`CmjSampler`](crate::sampling::sampler::CmjSampler)).
+    MultiJitter,
     /// Scrambled Halton ([`HaltonSampler`](crate::sampling::sampler::HaltonSampler)); no
     /// Mitsuba 3 plugin, so no scene-file name: chosen through the API or `--sampler halton`.
     Halton,

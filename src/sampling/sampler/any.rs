@@ -2,12 +2,10 @@
 
 use glam::Vec2;
 
+use super::{stream_dimension, SampleSource};
+use super::{CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler};
 #[cfg(feature = "sobol")]
-use super::SobolSampler;
-use super::{
-    stream_dimension, HaltonSampler, IndependentSampler, R2Sampler, SampleSource, Sampler,
-    StratifiedSampler,
-};
+use super::{Sobol4dSampler, SobolSampler};
 use crate::sampling::SamplingError;
 
 /// One of the crate's samplers, chosen at run time (for example from a scene file's
@@ -33,21 +31,29 @@ pub enum AnySampler {
     /// `SobolSampler` (feature `sobol`).
     #[cfg(feature = "sobol")]
     Sobol(SobolSampler),
+    /// `Sobol4dSampler` (feature `sobol`).
+    #[cfg(feature = "sobol")]
+    Sobol4d(Sobol4dSampler),
     /// [`HaltonSampler`].
     Halton(HaltonSampler),
     /// [`R2Sampler`].
     R2(R2Sampler),
+    /// [`CmjSampler`].
+    Cmj(CmjSampler),
 }
 
 impl AnySampler {
     /// The names [`AnySampler::by_name`] accepts.
-    pub const NAMES: [&'static str; 6] = [
+    pub const NAMES: [&'static str; 9] = [
         "independent",
         "stratified",
         "ldsampler",
         "sobol",
+        "sobol4d",
         "halton",
         "r2",
+        "multijitter",
+        "cmj",
     ];
 
     /// The sampler a name selects, for `spp` samples per pixel and a `seed`, with Mitsuba 3's
@@ -56,10 +62,13 @@ impl AnySampler {
     /// - `independent`: [`IndependentSampler`], `spp` as given;
     /// - `stratified`: jittered [`StratifiedSampler`], `spp` rounded up to a perfect square;
     /// - `ldsampler`: `SobolSampler`, `spp` rounded up to a power of 4 (as Mitsuba's
-    ///   `ldsampler`: 5 → 16, 17 → 64);
+    ///   `ldsampler`: 1 → 4, 5 → 16, 17 → 64);
     /// - `sobol`: `SobolSampler`, `spp` as given;
+    /// - `sobol4d`: `Sobol4dSampler`, `spp` as given (ours only);
     /// - `halton`: [`HaltonSampler`], `spp` as given (our name: Mitsuba 3 has no such plugin);
-    /// - `r2`: [`R2Sampler`], `spp` as given (likewise ours only).
+    /// - `r2`: [`R2Sampler`], `spp` as given (likewise ours only);
+    /// - `multijitter` or `cmj`: jittered [`CmjSampler`], `spp` rounded up to
+    ///   `⌊√spp⌋ · ⌈spp / ⌊√spp⌋⌉` (as Mitsuba's `multijitter`: 5 → 6, 17 → 20).
     ///
     /// `None` for any other name (and for `ldsampler`/`sobol` when the `sobol` feature is off);
     /// `Some(Err(_))` when the sample count is invalid.
@@ -81,17 +90,21 @@ impl AnySampler {
             ),
             #[cfg(feature = "sobol")]
             "sobol" => Some(SobolSampler::new(spp, seed).map(Self::from)),
+            #[cfg(feature = "sobol")]
+            "sobol4d" => Some(Sobol4dSampler::new(spp, seed).map(Self::from)),
             "halton" => Some(HaltonSampler::new(spp, seed).map(Self::from)),
             "r2" => Some(R2Sampler::new(spp, seed).map(Self::from)),
+            "multijitter" | "cmj" => Some(CmjSampler::new(spp, seed, true).map(Self::from)),
             _ => None,
         }
     }
 }
 
-/// The smallest power of 4 at least `n` (1 for 0), if it fits in `u32`.
+/// The smallest power of 4 at least `n`, and at least 4 (Mitsuba 3.9.1's `ldsampler` turns
+/// 1 into 4 as well), if it fits in `u32`.
 #[cfg(feature = "sobol")]
 fn next_power_of_four(n: u32) -> Option<u32> {
-    let mut p = 1u32;
+    let mut p = 4u32;
     while p < n {
         p = p.checked_mul(4)?;
     }
@@ -106,8 +119,11 @@ macro_rules! dispatch {
             AnySampler::Stratified($s) => $call,
             #[cfg(feature = "sobol")]
             AnySampler::Sobol($s) => $call,
+            #[cfg(feature = "sobol")]
+            AnySampler::Sobol4d($s) => $call,
             AnySampler::Halton($s) => $call,
             AnySampler::R2($s) => $call,
+            AnySampler::Cmj($s) => $call,
         }
     };
 }
@@ -164,6 +180,13 @@ impl From<SobolSampler> for AnySampler {
     }
 }
 
+#[cfg(feature = "sobol")]
+impl From<Sobol4dSampler> for AnySampler {
+    fn from(s: Sobol4dSampler) -> Self {
+        Self::Sobol4d(s)
+    }
+}
+
 impl From<HaltonSampler> for AnySampler {
     fn from(s: HaltonSampler) -> Self {
         Self::Halton(s)
@@ -173,6 +196,12 @@ impl From<HaltonSampler> for AnySampler {
 impl From<R2Sampler> for AnySampler {
     fn from(s: R2Sampler) -> Self {
         Self::R2(s)
+    }
+}
+
+impl From<CmjSampler> for AnySampler {
+    fn from(s: CmjSampler) -> Self {
+        Self::Cmj(s)
     }
 }
 
@@ -201,7 +230,8 @@ mod tests {
             ("ldsampler", 5, 16),
             ("ldsampler", 16, 16),
             ("ldsampler", 17, 64),
-            ("ldsampler", 1, 1),
+            ("ldsampler", 1, 4),
+            ("ldsampler", 3, 4),
             ("sobol", 5, 5),
         ] {
             let s = AnySampler::by_name(name, spp, 0).unwrap().unwrap();
@@ -218,7 +248,12 @@ mod tests {
         let s = AnySampler::by_name("r2", 5, 0).unwrap().unwrap();
         assert!(matches!(s, AnySampler::R2(_)));
         assert_eq!(s.samples_per_pixel(), 5);
-        assert!(AnySampler::by_name("multijitter", 5, 0).is_none());
+        for name in ["multijitter", "CMJ"] {
+            let s = AnySampler::by_name(name, 5, 0).unwrap().unwrap();
+            assert!(matches!(s, AnySampler::Cmj(_)));
+            assert_eq!(s.samples_per_pixel(), 6, "{name}");
+        }
+        assert!(AnySampler::by_name("pmj02", 5, 0).is_none());
         assert!(AnySampler::by_name("independent", 0, 0).unwrap().is_err());
     }
 
@@ -232,10 +267,17 @@ mod tests {
         {
             let c = SobolSampler::new(8, 1).unwrap();
             assert_eq!(values(c.clone()), values(AnySampler::from(c)));
+            let c = Sobol4dSampler::new(8, 1).unwrap();
+            assert_eq!(values(c.clone()), values(AnySampler::from(c)));
+            let s = AnySampler::by_name("sobol4d", 5, 0).unwrap().unwrap();
+            assert!(matches!(s, AnySampler::Sobol4d(_)));
+            assert_eq!(s.samples_per_pixel(), 5);
         }
         let d = HaltonSampler::new(8, 1).unwrap();
         assert_eq!(values(d.clone()), values(AnySampler::from(d)));
         let e = R2Sampler::new(8, 1).unwrap();
         assert_eq!(values(e.clone()), values(AnySampler::from(e)));
+        let f = CmjSampler::new(8, 1, true).unwrap();
+        assert_eq!(values(f.clone()), values(AnySampler::from(f)));
     }
 }

@@ -13,8 +13,10 @@
 //! | [`IndependentSampler`] | PCG32 seeded by a hash of (seed, pixel, sample index) | independent uniform |
 //! | [`StratifiedSampler`] | jittered strata, shuffled independently per dimension | one per stratum: `n × n` strata in 2D, `spp` in 1D |
 //! | `SobolSampler` (feature `sobol`) | Owen-scrambled Sobol, one scrambled (0,2)-sequence per dimension | every elementary interval of area `2^-k` holds one of the first `2^k` samples |
+//! | `Sobol4dSampler` (feature `sobol`) | Owen-scrambled Sobol padded in 4D sets: dimensions `2k` and `2k + 1` are one 4D point | as `SobolSampler` in each even dimension, a (1,k,2)-net in each odd one, and a (3,k,4)-net in each pair jointly |
 //! | [`HaltonSampler`] | Halton bases 2 and 3 with random digit permutations per dimension | each cell of a `2^a × 3^b` grid holds one of the first `2^a 3^b` samples |
 //! | [`R2Sampler`] | the R2 Kronecker lattice with a random Cranley–Patterson rotation per dimension | no exact strata; any prefix evenly spread (low discrepancy) |
+//! | [`CmjSampler`] | Kensler's correlated multi-jittered patterns, shuffled per dimension | one per cell of an `m × n` grid and one per `1/N` column and row in 2D, `N = m n`; one per `1/N` interval in 1D |
 //!
 //! Stratifying each dimension on its own and shuffling the strata independently per dimension
 //! is the "padding" of Kollig & Keller (2002, "Efficient multidimensional sampling", Computer
@@ -32,11 +34,15 @@
 //! | `independent` | `Independent` | [`IndependentSampler`] | as given |
 //! | `stratified` | `Stratified` | [`StratifiedSampler`] (jittered unless `jitter` is false) | rounded up to a perfect square, as Mitsuba does |
 //! | `ldsampler` | `LowDiscrepancy` | `SobolSampler` | rounded up to a power of 4 by [`AnySampler::by_name`], as Mitsuba does; `SobolSampler::new` takes any count |
+//! | `multijitter` | `MultiJitter` | [`CmjSampler`] (jittered) | rounded up to `⌊√N⌋ · ⌈N / ⌊√N⌋⌉`, as Mitsuba does |
 //!
 //! Mitsuba 3 (checked with 3.9.1) rounds the `sample_count` of `stratified` up to the next
 //! perfect square (5 → 9, 10 → 16, 17 → 25) and that of `ldsampler` up to the next power of 4,
-//! a count that is both a square and a power of two (5 → 16, 17 → 64), with a warning.
-//! [`StratifiedSampler::new`] rounds as Mitsuba's `stratified` does, and
+//! a count that is both a square and a power of two, at least 4 (1 → 4, 5 → 16, 17 → 64), and
+//! that of `multijitter` up to `⌊√N⌋ · ⌈N / ⌊√N⌋⌉` (5 → 6, 10 → 12, 17 → 20), each with a
+//! warning.
+//! [`StratifiedSampler::new`] and [`CmjSampler::new`] round as Mitsuba's `stratified` and
+//! `multijitter` do, and
 //! [`Sampler::samples_per_pixel`] reports the rounded count, which is the one a renderer must
 //! loop over. Mitsuba's `ldsampler` is Kollig & Keller's padded (0,2)-sequence; ours is a padded
 //! Owen-scrambled Sobol sequence of the same family, which works for any count (the first `2^k`
@@ -61,6 +67,7 @@
 use super::SamplingError;
 
 mod any;
+mod cmj;
 mod halton;
 pub(crate) mod hash;
 mod independent;
@@ -71,11 +78,12 @@ mod source;
 mod stratified;
 
 pub use any::AnySampler;
+pub use cmj::CmjSampler;
 pub use halton::HaltonSampler;
 pub use independent::IndependentSampler;
 pub use r2::R2Sampler;
 #[cfg(feature = "sobol")]
-pub use sobol::SobolSampler;
+pub use sobol::{Sobol4dSampler, SobolSampler};
 pub use source::{stream_dimension, SampleSource, STREAM_DIMENSIONS};
 pub use stratified::StratifiedSampler;
 

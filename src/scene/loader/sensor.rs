@@ -80,6 +80,7 @@ fn read_sampler(ctx: &Ctx, e: &Elem) -> Res<SamplerDesc> {
         "independent" => SamplerKind::Independent,
         "stratified" => SamplerKind::Stratified,
         "ldsampler" => SamplerKind::LowDiscrepancy,
+        "multijitter" => SamplerKind::MultiJitter,
         other => return Err(unknown_plugin(ctx, e, other)),
     };
     let mut p = Props::new(ctx, e)?;
@@ -94,7 +95,8 @@ fn read_sampler(ctx: &Ctx, e: &Elem) -> Res<SamplerDesc> {
     if let Some(seed) = p.int_in("seed", 0, i64::MAX)? {
         s.seed = seed as u64;
     }
-    if kind == SamplerKind::Stratified && p.bool("jitter")? == Some(false) {
+    let jittered = matches!(kind, SamplerKind::Stratified | SamplerKind::MultiJitter);
+    if jittered && p.bool("jitter")? == Some(false) {
         return Err(ctx.err(e, SceneErrorKind::Unsupported("jitter = false".into())));
     }
     p.finish()?;

@@ -39,8 +39,8 @@ pub use crate::scene::geometry::{AccelKind, ShapeSampling};
 
 use crate::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
 use crate::sampling::sampler::{
-    AnySampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, SobolSampler,
-    StratifiedSampler,
+    AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, Sobol4dSampler,
+    SobolSampler, StratifiedSampler,
 };
 use crate::sampling::SamplingError;
 use crate::scene::bsdf::{AnyBsdf, Sided};
@@ -182,6 +182,8 @@ fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, Sa
         SamplerKind::LowDiscrepancy => SobolSampler::new(spp, seed)?.into(),
         SamplerKind::Halton => HaltonSampler::new(spp, seed)?.into(),
         SamplerKind::R2 => R2Sampler::new(spp, seed)?.into(),
+        SamplerKind::LowDiscrepancy4d => Sobol4dSampler::new(spp, seed)?.into(),
+        SamplerKind::MultiJitter => CmjSampler::new(spp, seed, true)?.into(),
     })
 }
 
