@@ -484,3 +484,34 @@ fn multijitter_maps_to_the_cmj_sampler() {
         "{e}"
     );
 }
+
+/// Mitsuba's `orthogonal` (strength 2) loads and renders with the correlated multi-jittered
+/// sampler at Mitsuba's count (the square of a prime: 64 → 121); another strength is an
+/// error that names the line.
+#[test]
+fn orthogonal_maps_to_the_cmj_sampler_with_a_prime_square_count() {
+    let scene = |sampler: &str| {
+        format!(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\">\n{sampler}\n</sensor></scene>"
+        )
+    };
+    let xml = scene(
+        r#"<sampler type="orthogonal"><integer name="sample_count" value="64"/>
+           <integer name="strength" value="2"/><boolean name="jitter" value="true"/></sampler>"#,
+    );
+    let d = parse(&xml, &[]).unwrap();
+    assert_eq!(d.sensor.sampler.kind, SamplerKind::Orthogonal);
+    let s = mcrt::sampling::sampler::AnySampler::by_name("orthogonal", 64, 0)
+        .unwrap()
+        .unwrap();
+    assert_eq!(mcrt::sampling::sampler::Sampler::samples_per_pixel(&s), 121);
+    let xml = scene(
+        r#"<sampler type="orthogonal">
+           <integer name="strength" value="3"/></sampler>"#,
+    );
+    let e = parse(&xml, &[]).unwrap_err().to_string();
+    assert!(
+        e.contains("inline.xml") && e.contains("line 3") && e.contains("strength 3"),
+        "{e}"
+    );
+}

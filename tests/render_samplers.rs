@@ -10,13 +10,14 @@ use mcrt::scene::description::{IntegratorKind, SamplerKind};
 use mcrt::scene::render::{RenderOptions, Renderer};
 use std::sync::atomic::AtomicBool;
 
-const KINDS: [SamplerKind; 6] = [
+const KINDS: [SamplerKind; 7] = [
     SamplerKind::Independent,
     SamplerKind::Stratified,
     SamplerKind::LowDiscrepancy,
     SamplerKind::Halton,
     SamplerKind::R2,
     SamplerKind::MultiJitter,
+    SamplerKind::LowDiscrepancy4d,
 ];
 
 /// The image mean and its variance, per channel.
@@ -57,7 +58,7 @@ fn every_sampler_renders_the_same_expected_image() {
     for (kind, integrator) in runs {
         let (mean, var) = image_mean(kind, integrator, 2);
         let z = (mean - reference) / (var + ref_var).map(f64::sqrt);
-        // 9 renders × 3 channels; |z| < 4 is a family-wise false alarm rate below 0.2%.
+        // 10 renders × 3 channels; |z| < 4 is a family-wise false alarm rate below 0.2%.
         assert!(
             z.is_finite() && z.abs().max_element() < 4.0,
             "{kind:?} {integrator:?}: mean {mean} vs {reference}, z {z}"

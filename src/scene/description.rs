@@ -329,6 +329,10 @@ pub enum SamplerKind {
     /// Mitsuba's `multijitter` (jittered): correlated multi-jittered patterns
     /// ([`CmjSampler`](crate::sampling::sampler::CmjSampler)).
     MultiJitter,
+    /// Mitsuba's `orthogonal` (strength 2, jittered): rendered with the same correlated
+    /// multi-jittered patterns, the sample count rounded up to the square of a prime as
+    /// Mitsuba's is (64 → 121).
+    Orthogonal,
     /// Scrambled Halton ([`HaltonSampler`](crate::sampling::sampler::HaltonSampler)); no
     /// Mitsuba 3 plugin, so no scene-file name: chosen through the API or `--sampler halton`.
     Halton,

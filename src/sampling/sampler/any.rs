@@ -44,7 +44,7 @@ pub enum AnySampler {
 
 impl AnySampler {
     /// The names [`AnySampler::by_name`] accepts.
-    pub const NAMES: [&'static str; 9] = [
+    pub const NAMES: [&'static str; 10] = [
         "independent",
         "stratified",
         "ldsampler",
@@ -54,6 +54,7 @@ impl AnySampler {
         "r2",
         "multijitter",
         "cmj",
+        "orthogonal",
     ];
 
     /// The sampler a name selects, for `spp` samples per pixel and a `seed`, with Mitsuba 3's
@@ -68,7 +69,11 @@ impl AnySampler {
     /// - `halton`: [`HaltonSampler`], `spp` as given (our name: Mitsuba 3 has no such plugin);
     /// - `r2`: [`R2Sampler`], `spp` as given (likewise ours only);
     /// - `multijitter` or `cmj`: jittered [`CmjSampler`], `spp` rounded up to
-    ///   `⌊√spp⌋ · ⌈spp / ⌊√spp⌋⌉` (as Mitsuba's `multijitter`: 5 → 6, 17 → 20).
+    ///   `⌊√spp⌋ · ⌈spp / ⌊√spp⌋⌉` (as Mitsuba's `multijitter`: 5 → 6, 17 → 20);
+    /// - `orthogonal`: jittered [`CmjSampler`] with `spp` rounded up to the square of a prime
+    ///   (as Mitsuba's `orthogonal` of strength 2: 1 → 4, 5 → 9, 64 → 121, 256 → 289). Mitsuba's
+    ///   sampler is an orthogonal array (Jarosz et al. 2019); ours of the same kind in each
+    ///   2D dimension (one point per cell of a `p × p` grid and per `1/p²` column and row).
     ///
     /// `None` for any other name (and for `ldsampler`/`sobol` when the `sobol` feature is off);
     /// `Some(Err(_))` when the sample count is invalid.
@@ -95,8 +100,32 @@ impl AnySampler {
             "halton" => Some(HaltonSampler::new(spp, seed).map(Self::from)),
             "r2" => Some(R2Sampler::new(spp, seed).map(Self::from)),
             "multijitter" | "cmj" => Some(CmjSampler::new(spp, seed, true).map(Self::from)),
+            "orthogonal" => Some(
+                next_prime_square(spp)
+                    .ok_or(SamplingError::InvalidParameter {
+                        name: "spp",
+                        value: f64::from(spp),
+                        expected: "at most 65521²",
+                    })
+                    .and_then(|n| CmjSampler::new(n, seed, true))
+                    .map(Self::from),
+            ),
             _ => None,
         }
+    }
+}
+
+/// The smallest square of a prime at least `n` (so at least 4, as Mitsuba 3.9.1's
+/// `orthogonal` rounds its `sample_count`), if it fits in `u32`.
+pub(crate) fn next_prime_square(n: u32) -> Option<u32> {
+    let is_prime = |p: u32| p >= 2 && (2..).take_while(|d| d * d <= p).all(|d| p % d != 0);
+    let mut p = 2u32;
+    loop {
+        let square = p.checked_mul(p)?;
+        if square >= n && is_prime(p) {
+            return Some(square);
+        }
+        p += 1;
     }
 }
 
@@ -253,6 +282,28 @@ mod tests {
             assert!(matches!(s, AnySampler::Cmj(_)));
             assert_eq!(s.samples_per_pixel(), 6, "{name}");
         }
+        // Mitsuba 3.9.1's `orthogonal` counts (read back from `sample_count()`).
+        for (spp, expected) in [
+            (1, 4),
+            (2, 4),
+            (5, 9),
+            (10, 25),
+            (16, 25),
+            (17, 25),
+            (64, 121),
+            (100, 121),
+            (256, 289),
+            (1000, 1369),
+        ] {
+            let s = AnySampler::by_name("orthogonal", spp, 0).unwrap().unwrap();
+            assert!(matches!(s, AnySampler::Cmj(_)));
+            assert_eq!(s.samples_per_pixel(), expected, "orthogonal {spp}");
+        }
+        assert_eq!(next_prime_square(65521 * 65521), Some(65521 * 65521));
+        assert_eq!(next_prime_square(65521 * 65521 + 1), None);
+        assert!(AnySampler::by_name("orthogonal", u32::MAX, 0)
+            .unwrap()
+            .is_err());
         assert!(AnySampler::by_name("pmj02", 5, 0).is_none());
         assert!(AnySampler::by_name("independent", 0, 0).unwrap().is_err());
     }

@@ -184,6 +184,10 @@ fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, Sa
         SamplerKind::R2 => R2Sampler::new(spp, seed)?.into(),
         SamplerKind::LowDiscrepancy4d => Sobol4dSampler::new(spp, seed)?.into(),
         SamplerKind::MultiJitter => CmjSampler::new(spp, seed, true)?.into(),
+        SamplerKind::Orthogonal => match AnySampler::by_name("orthogonal", spp, seed) {
+            Some(s) => s?,
+            None => unreachable!("`orthogonal` is one of AnySampler::NAMES"),
+        },
     })
 }
 
