@@ -143,10 +143,10 @@ const OPTIONS: &[Opt] = &[
             a.opts.sampler = Some(match v {
                 "independent" => SamplerKind::Independent,
                 "stratified" => SamplerKind::Stratified,
-                "sobol" | "ldsampler" => SamplerKind::LowDiscrepancy,
+                "sobol" => SamplerKind::Sobol,
+                "sobol4d" | "ldsampler" => SamplerKind::LowDiscrepancy,
                 "halton" => SamplerKind::Halton,
                 "r2" => SamplerKind::R2,
-                "sobol4d" => SamplerKind::LowDiscrepancy4d,
                 "cmj" | "multijitter" => SamplerKind::MultiJitter,
                 _ => {
                     return Err(format!(

@@ -11,7 +11,7 @@ rerun only renders what is missing; --tag names our renderer's build in the labe
 it when the code changes, or pass --fresh).
 
     python3 scripts/sampler_error.py tests/data/veach-mis.xml --spp 64 256 --seeds 8 \\
-        --samplers sobol zsobol pmj02bn cmj --mitsuba-samplers ldsampler multijitter \\
+        --samplers sobol sobol4d cmj --mitsuba-samplers ldsampler multijitter \\
         --markdown out/samplers.md
 """
 

@@ -18,7 +18,7 @@ fn same_image_whatever_the_thread_count() {
         SamplerKind::Stratified,
         SamplerKind::LowDiscrepancy,
         SamplerKind::MultiJitter,
-        SamplerKind::LowDiscrepancy4d,
+        SamplerKind::Sobol,
     ] {
         let images: Vec<_> = [1, 2, 3]
             .iter()

@@ -17,7 +17,7 @@ const KINDS: [SamplerKind; 7] = [
     SamplerKind::Halton,
     SamplerKind::R2,
     SamplerKind::MultiJitter,
-    SamplerKind::LowDiscrepancy4d,
+    SamplerKind::Sobol,
 ];
 
 /// The image mean and its variance, per channel.

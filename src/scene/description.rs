@@ -320,12 +320,15 @@ pub enum SamplerKind {
     Independent,
     /// Mitsuba's `stratified` (jittered).
     Stratified,
-    /// Mitsuba's `ldsampler`; ours is Owen-scrambled Sobol.
+    /// Mitsuba's `ldsampler`; ours is Owen-scrambled Sobol padded in 4D sets
+    /// ([`Sobol4dSampler`](crate::sampling::sampler::Sobol4dSampler), `--sampler sobol4d`),
+    /// the lower error per sample of our two Sobol samplers in `docs/sampler-error.md`.
     LowDiscrepancy,
-    /// Owen-scrambled Sobol padded in 4D sets
-    /// ([`Sobol4dSampler`](crate::sampling::sampler::Sobol4dSampler)); no Mitsuba 3 plugin,
-    /// so no scene-file name: chosen through the API or `--sampler sobol4d`.
-    LowDiscrepancy4d,
+    /// Owen-scrambled Sobol padded per 2D dimension
+    /// ([`SobolSampler`](crate::sampling::sampler::SobolSampler)); no scene-file name (the
+    /// file's `ldsampler` is [`SamplerKind::LowDiscrepancy`]): chosen through the API or
+    /// `--sampler sobol`.
+    Sobol,
     /// Mitsuba's `multijitter` (jittered): correlated multi-jittered patterns
     /// ([`CmjSampler`](crate::sampling::sampler::CmjSampler)).
     MultiJitter,

@@ -62,7 +62,7 @@ impl AnySampler {
     ///
     /// - `independent`: [`IndependentSampler`], `spp` as given;
     /// - `stratified`: jittered [`StratifiedSampler`], `spp` rounded up to a perfect square;
-    /// - `ldsampler`: `SobolSampler`, `spp` rounded up to a power of 4 (as Mitsuba's
+    /// - `ldsampler`: `Sobol4dSampler`, `spp` rounded up to a power of 4 (as Mitsuba's
     ///   `ldsampler`: 1 → 4, 5 → 16, 17 → 64);
     /// - `sobol`: `SobolSampler`, `spp` as given;
     /// - `sobol4d`: `Sobol4dSampler`, `spp` as given (ours only);
@@ -90,7 +90,7 @@ impl AnySampler {
                         value: f64::from(spp),
                         expected: "at most 4^15",
                     })
-                    .and_then(|n| SobolSampler::new(n, seed))
+                    .and_then(|n| Sobol4dSampler::new(n, seed))
                     .map(Self::from),
             ),
             #[cfg(feature = "sobol")]
@@ -264,7 +264,11 @@ mod tests {
             ("sobol", 5, 5),
         ] {
             let s = AnySampler::by_name(name, spp, 0).unwrap().unwrap();
-            assert!(matches!(s, AnySampler::Sobol(_)));
+            if name == "sobol" {
+                assert!(matches!(s, AnySampler::Sobol(_)));
+            } else {
+                assert!(matches!(s, AnySampler::Sobol4d(_)));
+            }
             assert_eq!(s.samples_per_pixel(), expected, "{name} {spp}");
         }
         #[cfg(feature = "sobol")]

@@ -179,10 +179,10 @@ fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, Sa
     Ok(match kind {
         SamplerKind::Independent => IndependentSampler::new(spp, seed)?.into(),
         SamplerKind::Stratified => StratifiedSampler::new(spp, seed, true)?.into(),
-        SamplerKind::LowDiscrepancy => SobolSampler::new(spp, seed)?.into(),
+        SamplerKind::LowDiscrepancy => Sobol4dSampler::new(spp, seed)?.into(),
+        SamplerKind::Sobol => SobolSampler::new(spp, seed)?.into(),
         SamplerKind::Halton => HaltonSampler::new(spp, seed)?.into(),
         SamplerKind::R2 => R2Sampler::new(spp, seed)?.into(),
-        SamplerKind::LowDiscrepancy4d => Sobol4dSampler::new(spp, seed)?.into(),
         SamplerKind::MultiJitter => CmjSampler::new(spp, seed, true)?.into(),
         SamplerKind::Orthogonal => match AnySampler::by_name("orthogonal", spp, seed) {
             Some(s) => s?,
