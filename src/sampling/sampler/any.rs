@@ -118,7 +118,12 @@ impl AnySampler {
 /// The smallest square of a prime at least `n` (so at least 4, as Mitsuba 3.9.1's
 /// `orthogonal` rounds its `sample_count`), if it fits in `u32`.
 pub(crate) fn next_prime_square(n: u32) -> Option<u32> {
-    let is_prime = |p: u32| p >= 2 && (2..).take_while(|d| d * d <= p).all(|d| p % d != 0);
+    let is_prime = |p: u32| {
+        p >= 2
+            && (2..)
+                .take_while(|d| d * d <= p)
+                .all(|d| !p.is_multiple_of(d))
+    };
     let mut p = 2u32;
     loop {
         let square = p.checked_mul(p)?;
