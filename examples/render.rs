@@ -5,7 +5,7 @@
 //!     [-o out.exr|out.png] [--threads N] [--seed S] [--variance]
 //!     [--strategy bsdf|light|balance|power]
 //!     [--sampler independent|stratified|sobol|sobol4d|halton|r2|cmj]
-//!     [--accel bvh|grid|kdtree] [--light-sampling solid-angle|area]
+//!     [--accel bvh|grid|kdtree] [--light-sampling auto|solid-angle|area]
 //!     [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]
 //!     [--samples START..END] [--crop x0,y0,x1,y1]
 //! ```
@@ -176,15 +176,17 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "light-sampling",
         short: None,
-        value: Some("solid-angle|area"),
-        help: "how area lights on triangles and rectangles are sampled [default: solid-angle]",
+        value: Some("auto|solid-angle|area"),
+        help: "how area lights on triangles and rectangles are sampled: auto is by solid angle \
+               from near, by area from far [default: auto]",
         apply: |a, v| {
             a.opts.light_sampling = match v {
+                "auto" => ShapeSampling::Auto,
                 "solid-angle" => ShapeSampling::SolidAngle,
                 "area" => ShapeSampling::Area,
                 _ => {
                     return Err(format!(
-                        "--light-sampling {v}: expected solid-angle or area"
+                        "--light-sampling {v}: expected auto, solid-angle or area"
                     ))
                 }
             };

@@ -317,6 +317,10 @@ def parse_args(argv=None) -> argparse.Namespace:
                         "variant and sampler; e.g. 'mitsuba llvm_ad_rgb independent')")
     p.add_argument("--renderer", type=Path, default=REPO / DEFAULT_BINARY,
                    help="our render binary")
+    p.add_argument("--also-renderer", action="append", default=[], metavar="LABEL=PATH",
+                   help="another build of our render example (e.g. one of an earlier commit), "
+                        "run with the same configurations and shown as 'mcrt@LABEL': before "
+                        "and after in one run (repeatable)")
     p.add_argument("--no-build", action="store_true", help="do not run cargo build first")
     p.add_argument("--threads", type=int, default=0,
                    help="threads for both renderers (default: all cores)")
@@ -341,6 +345,12 @@ def parse_args(argv=None) -> argparse.Namespace:
         if not sep or not k or not v:
             p.error(f"--ref {r}: expected SCENE=EXR")
         a.refs[k] = v
+    a.others = []
+    for r in a.also_renderer:
+        k, sep, v = r.partition("=")
+        if not sep or not k or not Path(v).exists():
+            p.error(f"--also-renderer {r}: expected LABEL=PATH of an existing binary")
+        a.others.append((k, Path(v)))
     a.defines = {}
     for d in a.define:
         k, sep, v = d.partition("=")
@@ -372,12 +382,13 @@ def main(argv=None) -> int:
                       for v in variants for s in a.mitsuba_samplers]
         if not a.skip_ours:
             seen = set()
-            for x in a.ours_args:
-                for s in a.samplers:
-                    c = OursContender(a.renderer, s, x, a.defines, a.threads, tmp)
-                    if c.key() not in seen:  # one that names its own --sampler comes once
-                        seen.add(c.key())
-                        contenders.append(c)
+            for label, binary in [("", a.renderer)] + a.others:
+                for x in a.ours_args:
+                    for s in a.samplers:
+                        c = OursContender(binary, s, x, a.defines, a.threads, tmp, label)
+                        if c.key() not in seen:  # one naming its own --sampler comes once
+                            seen.add(c.key())
+                            contenders.append(c)
         # Check every scene and reference before the first render.
         scenes = [reference_for(scene, a.defines, a.refs) for scene in a.scenes]
         for scene_path, ref_path in scenes:

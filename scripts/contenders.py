@@ -229,8 +229,8 @@ class OursContender:
     is used; the sampler the renderer reports on its first line is checked in setup()."""
 
     def __init__(self, binary: Path, sampler: str, extra: str, defines: dict[str, str],
-                 threads: int, tmp: str):
-        self.binary, self.threads, self.tmp = binary, threads, tmp
+                 threads: int, tmp: str, label: str = ""):
+        self.binary, self.threads, self.tmp, self.label = binary, threads, tmp, label
         own, rest = split_sampler(shlex.split(extra))
         self.sampler = own or sampler
         self.sampler_args = [] if self.sampler == "independent" else [
@@ -238,7 +238,7 @@ class OursContender:
         self.extra = rest
         for k, v in defines.items():
             self.extra += ["-D", f"{k}={v}"]
-        self.name = f"mcrt {shlex.join(rest)}".strip()
+        self.name = f"mcrt{'@' + label if label else ''} {shlex.join(rest)}".strip()
         self.scene_path = None
         self.note = ""
 
@@ -271,7 +271,7 @@ class OursContender:
         return Sample(read_exr(self._out()), own if own is not None else wall, wall, cpu)
 
     def _out(self) -> Path:
-        tag = re.sub(r"[^A-Za-z0-9]+", "_", " ".join(self.extra))[:80]
+        tag = re.sub(r"[^A-Za-z0-9]+", "_", " ".join([self.label] + self.extra))[:80]
         return Path(self.tmp) / f"{self.scene_path.stem}-{self.sampler}{tag}.exr"
 
     def _run(self, spp: int, seed: int) -> tuple[str, float, float]:

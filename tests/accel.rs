@@ -16,8 +16,9 @@
 //! Throughput and build time are measured in `benches/accel.rs` (`cargo bench --features bench --bench accel`).
 
 use mcrt::glam::{Mat4, Vec3};
+use mcrt::integrator::SurfacePoint;
 use mcrt::scene::description::{ShapeDesc, ShapeKind};
-use mcrt::scene::geometry::{AccelKind, Geometry, Hit, Ray};
+use mcrt::scene::geometry::{AccelKind, Geometry, Ray};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -46,7 +47,7 @@ struct Stats {
 
 /// A triangle hit within 10⁻⁴ (in barycentric weight) of the triangle's border: where a
 /// BVH quad's slack may reach.
-fn on_border(shapes: &[ShapeDesc], h: &Hit) -> bool {
+fn on_border(shapes: &[ShapeDesc], h: &SurfacePoint) -> bool {
     let triangles = !matches!(
         shapes[h.shape as usize].kind,
         ShapeKind::Sphere { .. } | ShapeKind::Disk
@@ -58,21 +59,30 @@ fn on_border(shapes: &[ShapeDesc], h: &Hit) -> bool {
 /// `a` (the BVH's answer) may hit in a quad's slack band where brute force (`b`) misses or
 /// hits something farther; either may hit the surface the ray starts on where the other
 /// does not.
-fn slack_hit(shapes: &[ShapeDesc], a: &Option<Hit>, b: &Option<Hit>) -> bool {
-    fn first<'h>(x: &'h Option<Hit>, y: &Option<Hit>) -> Option<&'h Hit> {
+fn slack_hit(shapes: &[ShapeDesc], a: &Option<SurfacePoint>, b: &Option<SurfacePoint>) -> bool {
+    fn first<'h>(
+        x: &'h Option<SurfacePoint>,
+        y: &Option<SurfacePoint>,
+    ) -> Option<&'h SurfacePoint> {
         match (x, y) {
             (Some(x), None) => Some(x),
             (Some(x), Some(y)) if x.t < y.t => Some(x),
             _ => None,
         }
     }
-    let self_hit = |x: Option<&Hit>| x.is_some_and(|h| h.t < 1e-5);
+    let self_hit = |x: Option<&SurfacePoint>| x.is_some_and(|h| h.t < 1e-5);
     first(a, b).is_some_and(|h| on_border(shapes, h))
         || self_hit(first(a, b))
         || self_hit(first(b, a))
 }
 
-fn same_hit(a: &Option<Hit>, b: &Option<Hit>, what: &str, ray: &Ray, stats: &mut Stats) {
+fn same_hit(
+    a: &Option<SurfacePoint>,
+    b: &Option<SurfacePoint>,
+    what: &str,
+    ray: &Ray,
+    stats: &mut Stats,
+) {
     match (a, b) {
         (None, None) => {}
         (Some(a), Some(b)) => {
@@ -514,7 +524,7 @@ fn hit_data_on_cornell_box() {
     let h = g.intersect(&onto_box, f32::INFINITY).unwrap();
     assert_eq!(h.shape, 6);
     assert!((h.ng - Vec3::Y).length() < 1e-5 && (h.p.y + 0.4).abs() < 1e-5);
-    assert_eq!(h.ns, h.ng);
+    assert_eq!(h.frame.n, h.ng);
 }
 
 #[test]
@@ -542,13 +552,13 @@ fn obj_meshes_load_relative_to_the_base_dir() {
     assert!(h.t.is_finite() && (h.t - 2.0).abs() < 1e-6);
     assert!((h.ng - Vec3::Z).length() < 1e-6);
     assert!(
-        (h.ns - Vec3::new(0.6, 0.0, 0.8)).length() < 1e-5,
+        (h.frame.n - Vec3::new(0.6, 0.0, 0.8)).length() < 1e-5,
         "ns {}",
-        h.ns
+        h.frame.n
     );
     let g = Geometry::new(&[obj(true)], Some(&dir), AccelKind::Grid).unwrap();
     let h = g.intersect(&ray, f32::INFINITY).unwrap();
-    assert_eq!(h.ns, h.ng);
+    assert_eq!(h.frame.n, h.ng);
     // A missing file is an error that names it.
     let mut missing = obj(false);
     missing.kind = ShapeKind::Obj {

@@ -101,6 +101,15 @@ fn rectangle_light_by_solid_angle_and_by_area() {
         &cornell_light(ShapeSampling::Area),
         floor,
     );
+    // The default chooses per point: the floor is far (by area), a point just below the
+    // light near (by solid angle).
+    let auto = cornell_light(ShapeSampling::Auto);
+    check("light-rectangle-auto-far", &auto, floor);
+    check(
+        "light-rectangle-auto-near",
+        &auto,
+        Vec3::new(0.1, 0.9, 0.05),
+    );
 }
 
 #[test]
@@ -128,6 +137,10 @@ fn cube_light_by_triangle_choice_and_spherical_triangles() {
         let g = geometry(ShapeKind::Cube, m, sampling);
         check(&format!("light-cube-{tag}"), &g, Vec3::new(0.8, -0.5, 0.9));
     }
+    // `Auto` from a point where 4 of the 12 triangles are near (by solid angle) and the
+    // other 8 far (by area): one shape, both strategies, one density.
+    let g = geometry(ShapeKind::Cube, m, ShapeSampling::Auto);
+    check("light-cube-auto-mixed", &g, Vec3::new(1.0, 0.6, 1.0));
 }
 
 #[test]

@@ -4,7 +4,8 @@
 use crate::sampling::Frame;
 use glam::{Vec2, Vec3};
 
-/// A point where a ray met a surface.
+/// A point where a ray met a surface: what the built-in renderer's ray queries return
+/// (`mcrt::scene::geometry::Geometry::intersect`) and what the estimators take.
 ///
 /// The estimators read `p`, `ng` and `frame`; `t`, `shape`, `prim` and `uv` are the scene's
 /// own (its [`Scene::bsdf`] or [`Scene::emitted`] may look them up). [`SurfacePoint::new`]

@@ -12,12 +12,14 @@
 //!   passes unit directions for camera and BSDF rays; [`spawn_ray_to`] returns a non-unit one.
 //! - A hit needs `0 < t < t_max`. No epsilon is applied: rays leaving a surface must start at
 //!   [`offset_origin`] (or use [`spawn_ray`] / [`spawn_ray_to`]).
-//! - [`Hit::ng`] is the unit normal of the shape's *front* side, never flipped towards the
+//! - A hit is a [`SurfacePoint`], the type the estimators take: the point, the normals and the
+//!   shading frame, `t`, and the shape, primitive and surface coordinates.
+//! - [`SurfacePoint::ng`] is the unit normal of the shape's *front* side, never flipped towards the
 //!   ray: rectangles and disks `+z` of object space (transformed as a normal), cubes and
 //!   spheres outwards, meshes by their winding (counter-clockwise seen from the front);
-//!   `flip_normals` negates it. [`Hit::ns`] interpolates the mesh's vertex normals where it
-//!   has them, else equals `ng`; it is negated by `flip_normals` too.
-//! - [`Hit::uv`]: barycentric weights (b₁, b₂) of vertices 1 and 2 for triangles; for spheres
+//!   `flip_normals` negates it. The shading normal `frame.n` interpolates the mesh's vertex
+//!   normals where it has them, else equals `ng`; it is negated by `flip_normals` too.
+//! - [`SurfacePoint::uv`]: barycentric weights (b₁, b₂) of vertices 1 and 2 for triangles; for spheres
 //!   (φ/2π, θ/π) in object space; for disks (r, φ/2π).
 //!
 //! # Shape sampling
@@ -59,6 +61,7 @@ pub use offset::{offset_origin, spawn_ray, spawn_ray_to};
 pub(crate) use sample::RectangleSampler;
 pub use sample::ShapeSampling;
 
+use crate::integrator::{Frame, SurfacePoint};
 use crate::scene::accel::Aabb;
 use crate::scene::description::ShapeDesc;
 use build::{Prim, PrimId, ShapeData};
@@ -84,25 +87,6 @@ impl Ray {
     }
 }
 
-/// The nearest intersection of a ray with the scene.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Hit {
-    /// Ray parameter of the hit (in units of the ray's direction length).
-    pub t: f32,
-    /// The hit point, on the surface (computed from the primitive, not from `t`).
-    pub p: Vec3,
-    /// Unit geometric normal of the shape's front side (not flipped towards the ray).
-    pub ng: Vec3,
-    /// Unit shading normal: interpolated vertex normals where the mesh has them, else `ng`.
-    pub ns: Vec3,
-    /// Surface coordinates (see the module docs).
-    pub uv: Vec2,
-    /// Index of the shape in the list given to [`Geometry::new`].
-    pub shape: u32,
-    /// Index of the primitive within the shape (triangle index; 0 for spheres and disks).
-    pub prim: u32,
-}
-
 /// A point sampled on a shape, seen from a reference point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShapeSample {
@@ -121,7 +105,7 @@ pub struct Geometry {
     prims: Vec<Prim>,
     ids: Vec<PrimId>,
     query: RayQuery,
-    /// Per stored primitive: a triangle's unit front normal ([`Hit::ng`]), else zero.
+    /// Per stored primitive: a triangle's unit front normal ([`SurfacePoint::ng`]), else zero.
     face_ng: Vec<Vec3>,
     shapes: Vec<ShapeData>,
     bounds: Aabb,
@@ -188,7 +172,7 @@ impl Geometry {
 
     /// The nearest hit with `0 < t < t_max`.
     #[inline(never)]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<SurfacePoint> {
         let (t, rec) = self.query.closest(self.stored(), ray, t_max)?;
         Some(self.make_hit(ray, t, rec))
     }
@@ -209,58 +193,59 @@ impl Geometry {
 
     /// Fills in the surface data of a hit found by the search.
     #[inline(always)]
-    fn make_hit(&self, ray: &Ray, t: f32, rec: HitRecord) -> Hit {
+    fn make_hit(&self, ray: &Ray, t: f32, rec: HitRecord) -> SurfacePoint {
         let id = self.ids[rec.slot as usize];
-        let mut hit = Hit {
-            t,
-            p: ray.at(t),
-            ng: Vec3::Z,
-            ns: Vec3::Z,
-            uv: Vec2::new(rec.b1, rec.b2),
-            shape: id.shape,
-            prim: id.prim,
-        };
-        match &self.shapes[id.shape as usize] {
+        let mut p = ray.at(t);
+        let mut uv = Vec2::new(rec.b1, rec.b2);
+        let (ng, ns) = match &self.shapes[id.shape as usize] {
             ShapeData::Mesh(m) => {
                 let b0 = 1.0 - rec.b1 - rec.b2;
                 if let Prim::Tri(tri) = &self.prims[rec.slot as usize] {
-                    hit.p = tri.point(Vec3A::new(b0, rec.b1, rec.b2));
+                    p = tri.point(Vec3A::new(b0, rec.b1, rec.b2));
                 }
-                let sign = if m.flip { -1.0 } else { 1.0 };
-                hit.ng = self.face_ng[rec.slot as usize];
-                hit.ns = if m.normals.is_empty() {
-                    hit.ng
+                let ng = self.face_ng[rec.slot as usize];
+                let ns = if m.normals.is_empty() {
+                    ng
                 } else {
+                    let sign = if m.flip { -1.0 } else { 1.0 };
                     let idx = m.indices[id.prim as usize];
                     let [na, nb, nc] = idx.map(|v| m.normals[v as usize]);
-                    sign * (na * b0 + nb * rec.b1 + nc * rec.b2).normalize_or(hit.ng * sign)
+                    sign * (na * b0 + nb * rec.b1 + nc * rec.b2).normalize_or(ng * sign)
                 };
+                (ng, ns)
             }
             &ShapeData::Sphere {
                 center,
                 radius,
                 flip,
             } => {
-                let n = (hit.p - center).normalize_or(Vec3::Z);
-                hit.p = center + radius * n;
-                hit.ng = if flip { -n } else { n };
-                hit.ns = hit.ng;
+                let n = (p - center).normalize_or(Vec3::Z);
+                p = center + radius * n;
                 let phi = n.y.atan2(n.x);
                 let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-                hit.uv = Vec2::new(phi / (2.0 * PI), n.z.clamp(-1.0, 1.0).acos() / PI);
+                uv = Vec2::new(phi / (2.0 * PI), n.z.clamp(-1.0, 1.0).acos() / PI);
+                let ng = if flip { -n } else { n };
+                (ng, ng)
             }
             ShapeData::Disk(d) => {
-                let local = d.to_object.transform_point3(hit.p);
+                let local = d.to_object.transform_point3(p);
                 let local = Vec3::new(local.x, local.y, 0.0);
-                hit.p = d.to_world.transform_point3(local);
-                hit.ng = d.normal;
-                hit.ns = d.normal;
+                p = d.to_world.transform_point3(local);
                 let phi = local.y.atan2(local.x);
                 let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-                hit.uv = Vec2::new(local.truncate().length(), phi / (2.0 * PI));
+                uv = Vec2::new(local.truncate().length(), phi / (2.0 * PI));
+                (d.normal, d.normal)
             }
+        };
+        SurfacePoint {
+            p,
+            ng,
+            frame: Frame::from_normal(ns),
+            t,
+            shape: id.shape,
+            prim: id.prim,
+            uv,
         }
-        hit
     }
 }
 

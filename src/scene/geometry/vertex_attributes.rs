@@ -1,13 +1,14 @@
 //! Per-vertex attributes of mesh hits beyond the shading normal: texture coordinates.
 
 use super::build::ShapeData;
-use super::{Geometry, Hit};
+use super::Geometry;
+use crate::integrator::SurfacePoint;
 use glam::Vec2;
 
 impl Geometry {
     /// The texture coordinates at `hit`, as Mitsuba 3 defines them: on a mesh with
     /// per-vertex texture coordinates (`obj`, `ply`, `serialized` files that have them)
-    /// their interpolation by the hit's barycentrics, else [`Hit::uv`] (barycentrics of
+    /// their interpolation by the hit's barycentrics, else [`SurfacePoint::uv`] (barycentrics of
     /// vertices 1 and 2 on other triangles, the sphere's and disk's own parameters).
     ///
     /// ```
@@ -20,7 +21,7 @@ impl Geometry {
     /// let hit = geo.intersect(&ray, f32::INFINITY).unwrap();
     /// assert_eq!(geo.tex_coords(&hit), hit.uv);
     /// ```
-    pub fn tex_coords(&self, hit: &Hit) -> Vec2 {
+    pub fn tex_coords(&self, hit: &SurfacePoint) -> Vec2 {
         match self.shapes.get(hit.shape as usize) {
             Some(ShapeData::Mesh(m)) if !m.uvs.is_empty() => {
                 let Some(t) = m.indices.get(hit.prim as usize) else {

@@ -96,6 +96,7 @@ impl Lights {
             (false, _, _) => SamplePlan::Nothing,
             (true, true, ShapeSampling::Area) => SamplePlan::LoneRectangleByArea,
             (true, true, ShapeSampling::SolidAngle) => SamplePlan::LoneRectangleBySolidAngle,
+            (true, true, ShapeSampling::Auto) => SamplePlan::LoneRectangleByDistance,
             (true, false, _) => SamplePlan::Choose { single },
         };
         let on_mesh =

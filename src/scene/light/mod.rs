@@ -81,6 +81,10 @@ enum SamplePlan {
     /// The only light is a rectangle sampled by solid angle: no choice; points clearly behind
     /// it are rejected before the warp.
     LoneRectangleBySolidAngle,
+    /// The only light is a rectangle sampled by area from far and by solid angle from near
+    /// ([`ShapeSampling::Auto`], the default): the far case inline as
+    /// `LoneRectangleByArea`, the near one as `LoneRectangleBySolidAngle`.
+    LoneRectangleByDistance,
     /// Choose a light (probability 1 for a lone light), then sample it.
     Choose {
         /// Exactly one light.
@@ -180,6 +184,14 @@ impl Lights {
                 let s = r.sample(ShapeSampling::Area, from.p, u)?;
                 toward_area_light(s, radiance, from.p, 1.0)
             }
+            SamplePlan::LoneRectangleByDistance => {
+                let (r, radiance) = self.lone_rectangle()?;
+                if r.by_solid_angle(ShapeSampling::Auto, from.p) {
+                    return self.sample_general(geo, from, u_pick, u);
+                }
+                let s = r.sample(ShapeSampling::Area, from.p, u)?;
+                toward_area_light(s, radiance, from.p, 1.0)
+            }
             _ => self.sample_general(geo, from, u_pick, u),
         }
     }
@@ -207,7 +219,8 @@ impl Lights {
         debug_assert!(self.plan == SamplePlan::Nothing || self.sampling_matches(geo));
         let single = match self.plan {
             SamplePlan::Nothing => return None,
-            SamplePlan::LoneRectangleBySolidAngle => {
+            // Reached for `LoneRectangleByDistance` only from near (see `sample`).
+            SamplePlan::LoneRectangleBySolidAngle | SamplePlan::LoneRectangleByDistance => {
                 let (r, radiance) = self.lone_rectangle()?;
                 if r.surely_behind(from.p) {
                     return None;
@@ -283,6 +296,7 @@ impl Lights {
             SamplePlan::LoneRectangleBySolidAngle => {
                 geo.shape_sampling() == ShapeSampling::SolidAngle
             }
+            SamplePlan::LoneRectangleByDistance => geo.shape_sampling() == ShapeSampling::Auto,
             _ => true,
         }
     }

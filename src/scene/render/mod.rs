@@ -70,7 +70,8 @@ pub struct RenderOptions {
     /// Acceleration structure.
     pub accel: AccelKind,
     /// How area lights on triangles and rectangles are sampled by the path tracer and the
-    /// direct integrator (solid angle by default); `bdpt` and `mlt` always sample them by
+    /// direct integrator (by default [`ShapeSampling::Auto`]: by solid angle from near, by
+    /// area from far); `bdpt` and `mlt` always sample them by
     /// area (their other strategies cover the region near a light where solid-angle sampling
     /// helps, at a fraction of its cost).
     pub light_sampling: ShapeSampling,
@@ -104,7 +105,7 @@ impl Default for RenderOptions {
             strategy: None,
             accel: AccelKind::Bvh,
             sampler: None,
-            light_sampling: ShapeSampling::SolidAngle,
+            light_sampling: ShapeSampling::Auto,
             specialize: true,
             integrator: None,
             bdpt_only: None,

@@ -2,9 +2,9 @@
 //! [`crate::integrator::Scene`], specialised at compile time on the material type and on
 //! whether the scene has delta lights and an environment.
 
-use crate::integrator::{Bsdf, Frame, LightSample, Scene, SurfacePoint};
+use crate::integrator::{Bsdf, LightSample, Scene, SurfacePoint};
 use crate::scene::camera::Camera;
-use crate::scene::geometry::{offset_origin, Geometry, Hit, Ray};
+use crate::scene::geometry::{offset_origin, Geometry, Ray};
 use crate::scene::light::Lights;
 use glam::{Vec2, Vec3};
 
@@ -23,35 +23,18 @@ pub(crate) struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
     pub(crate) filter: &'a crate::scene::film::PixelFilter,
 }
 
-#[inline]
-fn surface(h: Hit) -> SurfacePoint {
-    SurfacePoint {
-        p: h.p,
-        ng: h.ng,
-        frame: Frame::from_normal(h.ns),
-        t: h.t,
-        shape: h.shape,
-        prim: h.prim,
-        uv: h.uv,
-    }
-}
-
 impl<B: Bsdf, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DELTA, ENV> {
     type Bsdf = B;
 
     #[inline]
     fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfacePoint> {
-        self.geometry
-            .intersect(&Ray { origin, dir }, t_max)
-            .map(surface)
+        self.geometry.intersect(&Ray { origin, dir }, t_max)
     }
 
     #[inline(always)]
     fn trace(&self, from: &SurfacePoint, dir: Vec3) -> Option<SurfacePoint> {
         let origin = offset_origin(from.p, from.ng, dir);
-        self.geometry
-            .intersect(&Ray { origin, dir }, f32::INFINITY)
-            .map(surface)
+        self.geometry.intersect(&Ray { origin, dir }, f32::INFINITY)
     }
 
     #[inline(always)]

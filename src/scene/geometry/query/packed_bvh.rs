@@ -271,9 +271,10 @@ impl PackedBvh {
 
 #[cfg(test)]
 mod tests {
-    use super::super::super::{AccelKind, Geometry, Hit, Ray};
+    use super::super::super::{AccelKind, Geometry, Ray};
     use super::super::RayQuery;
     use super::PackedBvh;
+    use crate::integrator::SurfacePoint;
 
     fn packed(g: &Geometry) -> &PackedBvh {
         match &g.query {
@@ -316,7 +317,7 @@ mod tests {
         let (mut same, mut n) = (0, 0);
         for _ in 0..20_000 {
             let ray = random_ray(&mut rng, 0.95);
-            let w = |h: &Hit| {
+            let w = |h: &SurfacePoint| {
                 let w = [1.0 - h.uv.x - h.uv.y, h.uv.x, h.uv.y];
                 w.into_iter().fold(f32::INFINITY, f32::min)
             };
@@ -340,7 +341,7 @@ mod tests {
             assert_eq!((a.shape, a.prim), (b.shape, b.prim), "{ray:?}");
             assert!(a.p.distance(b.p) < 1e-5, "{a:?} vs {b:?}");
             assert!((a.uv - b.uv).abs().max_element() < 1e-4, "{a:?} vs {b:?}");
-            assert_eq!((a.ng, a.ns), (b.ng, b.ns));
+            assert_eq!((a.ng, a.frame.n), (b.ng, b.frame.n));
             same += 1;
         }
         assert!(same > n * 9 / 10, "{same} of {n}");

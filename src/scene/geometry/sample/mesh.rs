@@ -9,11 +9,23 @@ use crate::scene::geometry::build::MeshData;
 use crate::scene::geometry::ShapeSample;
 use glam::{Vec2, Vec3};
 
-/// The spherical warp, if solid-angle sampling is asked for and the warp can be built.
-fn solid_angle<W, E>(how: ShapeSampling, build: impl FnOnce() -> Result<W, E>) -> Option<W> {
-    match how {
-        ShapeSampling::SolidAngle => build().ok(),
-        ShapeSampling::Area => None,
+/// The spherical warp, if solid-angle sampling is asked for at `reference` and the warp
+/// can be built.
+fn solid_angle<W, E>(
+    how: ShapeSampling,
+    reference: Vec3,
+    [a, b, c]: [Vec3; 3],
+    build: impl FnOnce() -> Result<W, E>,
+) -> Option<W> {
+    let centroid = (a + b + c) / 3.0;
+    let longest2 = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    if how.by_solid_angle(reference.distance_squared(centroid), longest2) {
+        build().ok()
+    } else {
+        None
     }
 }
 
@@ -52,7 +64,7 @@ pub(super) fn sample(
     let (k, pmf) = m.pick.as_ref()?.sample_with_pmf(u_pick);
     let tri = triangle(m, k);
     let n = front_normal(m, tri);
-    let (p, pdf) = match solid_angle(how, || {
+    let (p, pdf) = match solid_angle(how, reference, tri, || {
         SphericalTriangle::new(reference, tri[0], tri[1], tri[2])
     }) {
         Some(st) => st.sample_point(u)?,
@@ -95,7 +107,7 @@ pub(super) fn pdf(
     }
     let pmf = m.pick.as_ref()?.pmf(k);
     let tri = triangle(m, k);
-    let pdf = match solid_angle(how, || {
+    let pdf = match solid_angle(how, reference, tri, || {
         SphericalTriangle::new(reference, tri[0], tri[1], tri[2])
     }) {
         Some(st) => st.pdf((p - reference).normalize_or_zero()),

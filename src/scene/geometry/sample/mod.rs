@@ -24,19 +24,49 @@ pub(crate) use mesh::front_normal;
 pub(crate) use rectangle::RectangleSampler;
 
 use super::build::ShapeData;
-use super::{Geometry, Hit, ShapeSample};
+use super::{Geometry, ShapeSample};
+use crate::integrator::SurfacePoint;
 
 /// How [`Geometry::sample_shape`] samples triangles and rectangles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ShapeSampling {
-    /// By solid angle where the spherical warps allow (the default; lowest variance).
+    /// Per reference point: by solid angle where the shape is near, uniformly by area where
+    /// it is far (the default). "Near" is a distance to the shape's centre below 1.5
+    /// times its diagonal (a triangle's longest edge): there the area
+    /// density varies over the shape by more than a factor of about 1.2 and the spherical
+    /// warp repays its cost; farther away, area sampling gives almost the same variance at
+    /// a fraction of the cost. Sampling and density make the same choice at the same point.
     #[default]
+    Auto,
+    /// By solid angle where the spherical warps allow (lowest variance, several times the
+    /// cost of area sampling per sample).
     SolidAngle,
     /// Uniformly by area, converted to solid angle (as Mitsuba 3 samples rectangles and
     /// meshes): several times cheaper per sample, more variance close to large lights.
     /// Spheres keep cone sampling, which is cheap.
     Area,
 }
+
+/// The distance, in diagonals of a rectangle (longest edges of a triangle), below which
+/// [`ShapeSampling::Auto`] samples the shape by solid angle. At 1.5 diagonals straight
+/// above a square the area density varies by a factor of 1.1 over it
+/// (`(1 + 1/(2·1.5²·2))^{3/2}`; derivation in `docs/geometry.md`, "Light sampling by
+/// distance").
+pub(crate) const NEAR_FACTOR: f32 = 1.5;
+
+impl ShapeSampling {
+    /// Whether a shape of squared size `size2` (diagonal², or longest edge²) whose centre is
+    /// at squared distance `dist2` from the reference point is sampled by solid angle.
+    #[inline]
+    pub(crate) fn by_solid_angle(self, dist2: f32, size2: f32) -> bool {
+        match self {
+            Self::SolidAngle => true,
+            Self::Area => false,
+            Self::Auto => dist2 < NEAR_FACTOR * NEAR_FACTOR * size2,
+        }
+    }
+}
+
 use crate::sampling::warp::{UniformDiskConcentric, UniformSphere, Warp};
 use crate::scene::accel::Aabb;
 use glam::{Vec2, Vec3};
@@ -180,7 +210,7 @@ impl Geometry {
     /// The density per unit solid angle at `reference` with which
     /// [`Geometry::sample_shape`] produces the point of `hit` (a hit on shape `shape`, as
     /// returned by [`Geometry::intersect`]); 0 if it never does.
-    pub fn shape_pdf(&self, shape: u32, reference: Vec3, hit: &Hit) -> f32 {
+    pub fn shape_pdf(&self, shape: u32, reference: Vec3, hit: &SurfacePoint) -> f32 {
         if hit.shape != shape {
             return 0.0;
         }

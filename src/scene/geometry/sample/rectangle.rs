@@ -27,6 +27,10 @@ pub(crate) struct RectangleSampler {
     inv_area: f32,
     /// A bound on the magnitude of the rectangle's coordinates: `|corner|∞ + |ex| + |ey|`.
     reach: f32,
+    /// The centre, `corner + (ex + ey)/2`.
+    center: Vec3,
+    /// The squared diagonal `|ex|² + |ey|²` (of a rectangle; a parallelogram's is close).
+    diagonal2: f32,
     /// `None` when the warp rejects the rectangle (no area, non-finite input).
     frame: Option<Box<RectangleFrame>>,
 }
@@ -42,6 +46,8 @@ impl RectangleSampler {
             area,
             inv_area: 1.0 / area,
             reach: corner.abs().max_element() + ex.length() + ey.length(),
+            center: corner + 0.5 * (ex + ey),
+            diagonal2: ex.length_squared() + ey.length_squared(),
             frame: RectangleFrame::new(corner, ex, ey).ok().map(Box::new),
         }
     }
@@ -63,6 +69,13 @@ impl RectangleSampler {
         h < -BEHIND_MARGIN * (1.0 + from.abs().max_element() + self.reach)
     }
 
+    /// Whether `how` samples this rectangle by solid angle from `reference` (see
+    /// [`ShapeSampling::Auto`]).
+    #[inline]
+    pub(crate) fn by_solid_angle(&self, how: ShapeSampling, reference: Vec3) -> bool {
+        how.by_solid_angle(reference.distance_squared(self.center), self.diagonal2)
+    }
+
     /// The point `corner + u.x·ex + u.y·ey`: uniform by area.
     #[inline]
     pub(crate) fn point(&self, u: Vec2) -> Vec3 {
@@ -70,7 +83,8 @@ impl RectangleSampler {
     }
 
     /// A point for lighting `reference`, its density per unit solid angle there: by solid
-    /// angle through the spherical-rectangle warp when asked for and the warp can be built
+    /// angle through the spherical-rectangle warp when `how` asks for it at `reference`
+    /// ([`RectangleSampler::by_solid_angle`]) and the warp can be built
     /// from `reference`, else uniform by area, `p_ω = d² / (A·|cos θ'|)`. `None` where the
     /// density is not finite and positive (the point edge-on or at `reference`).
     #[inline]
@@ -80,8 +94,8 @@ impl RectangleSampler {
         reference: Vec3,
         u: Vec2,
     ) -> Option<ShapeSample> {
-        let seen = match (how, &self.frame) {
-            (ShapeSampling::SolidAngle, Some(f)) => f.seen_from(reference).ok(),
+        let seen = match &self.frame {
+            Some(f) if self.by_solid_angle(how, reference) => f.seen_from(reference).ok(),
             _ => None,
         };
         let (p, pdf) = match seen {
@@ -100,8 +114,8 @@ impl RectangleSampler {
     /// The density per unit solid angle at `reference` with which
     /// [`RectangleSampler::sample`] returns the point `p` of the rectangle.
     pub(crate) fn pdf(&self, how: ShapeSampling, reference: Vec3, p: Vec3) -> Option<f32> {
-        let seen = match (how, &self.frame) {
-            (ShapeSampling::SolidAngle, Some(f)) => f.seen_from(reference).ok(),
+        let seen = match &self.frame {
+            Some(f) if self.by_solid_angle(how, reference) => f.seen_from(reference).ok(),
             _ => None,
         };
         match seen {
@@ -143,6 +157,36 @@ mod tests {
             r.sample(ShapeSampling::Area, edge_on, u).is_none(),
             "in the plane"
         );
+    }
+
+    /// `Auto` is solid-angle sampling within 1.5 diagonals of the centre and area sampling
+    /// beyond, in the sample and in the density alike.
+    #[test]
+    fn auto_is_solid_angle_near_and_area_far() {
+        let r = unit_square();
+        let u = Vec2::new(0.3, 0.7);
+        // The diagonal is √2, so "near" ends 1.5·√2 ≈ 2.12 from the centre (0.5, 0, 0.5).
+        for (from, near) in [
+            (Vec3::new(0.5, -0.3, 0.5), true),
+            (Vec3::new(0.5, -2.0, 0.5), true),
+            (Vec3::new(0.5, -2.2, 0.5), false),
+            (Vec3::new(4.0, -9.0, 1.0), false),
+        ] {
+            assert_eq!(r.by_solid_angle(ShapeSampling::Auto, from), near, "{from}");
+            let same = if near {
+                ShapeSampling::SolidAngle
+            } else {
+                ShapeSampling::Area
+            };
+            let auto = r.sample(ShapeSampling::Auto, from, u).unwrap();
+            assert_eq!(Some(auto), r.sample(same, from, u), "{from}");
+            let pdf = r.pdf(ShapeSampling::Auto, from, auto.p).unwrap();
+            assert!(
+                pdf.is_finite() && (pdf - auto.pdf).abs() <= 1e-4 * auto.pdf,
+                "{from}: {pdf} against {}",
+                auto.pdf
+            );
+        }
     }
 
     #[test]
