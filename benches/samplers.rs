@@ -8,11 +8,12 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use mcrt::glam::Vec2;
-#[cfg(feature = "sobol")]
-use mcrt::sampling::sampler::SobolSampler;
 use mcrt::sampling::sampler::{
-    AnySampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, StratifiedSampler,
+    AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler,
+    StratifiedSampler,
 };
+#[cfg(feature = "sobol")]
+use mcrt::sampling::sampler::{Sobol4dSampler, SobolSampler};
 use std::hint::black_box;
 
 mod common;
@@ -75,6 +76,9 @@ fn samplers(c: &mut Criterion) {
     );
     #[cfg(feature = "sobol")]
     bench_one(c, "sobol", SobolSampler::new(128, 1).unwrap());
+    #[cfg(feature = "sobol")]
+    bench_one(c, "sobol4d", Sobol4dSampler::new(128, 1).unwrap());
+    bench_one(c, "cmj", CmjSampler::new(128, 1, true).unwrap());
     bench_one(c, "halton", HaltonSampler::new(144, 1).unwrap());
     bench_one(c, "r2", R2Sampler::new(128, 1).unwrap());
     #[cfg(feature = "sobol")]

@@ -4,7 +4,7 @@
 //! cargo run --release --example render -- [scene.xml] [--spp N] [-D name=value]...
 //!     [-o out.exr|out.png] [--threads N] [--seed S] [--variance]
 //!     [--strategy bsdf|light|balance|power]
-//!     [--sampler independent|stratified|sobol|halton|r2]
+//!     [--sampler independent|stratified|sobol|sobol4d|halton|r2|cmj]
 //!     [--accel bvh|grid|kdtree] [--light-sampling auto|solid-angle|area]
 //!     [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]
 //!     [--samples START..END] [--crop x0,y0,x1,y1]
@@ -137,18 +137,21 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "sampler",
         short: None,
-        value: Some("independent|stratified|sobol|halton|r2"),
+        value: Some("independent|stratified|sobol|sobol4d|halton|r2|cmj"),
         help: "sample generator [default: the scene's sampler type]",
         apply: |a, v| {
             a.opts.sampler = Some(match v {
                 "independent" => SamplerKind::Independent,
                 "stratified" => SamplerKind::Stratified,
-                "sobol" | "ldsampler" => SamplerKind::LowDiscrepancy,
+                "sobol" => SamplerKind::Sobol,
+                "sobol4d" | "ldsampler" => SamplerKind::LowDiscrepancy,
                 "halton" => SamplerKind::Halton,
                 "r2" => SamplerKind::R2,
+                "cmj" | "multijitter" => SamplerKind::MultiJitter,
                 _ => {
                     return Err(format!(
-                        "--sampler {v}: expected independent, stratified, sobol, halton or r2"
+                        "--sampler {v}: expected independent, stratified, sobol, sobol4d, \
+                         halton, r2 or cmj"
                     ))
                 }
             });
@@ -400,6 +403,8 @@ fn run(args: Args) -> Result<bool, String> {
             mcrt::sampling::sampler::AnySampler::Stratified(_) => "stratified",
             mcrt::sampling::sampler::AnySampler::Halton(_) => "halton",
             mcrt::sampling::sampler::AnySampler::R2(_) => "r2",
+            mcrt::sampling::sampler::AnySampler::Cmj(_) => "cmj",
+            mcrt::sampling::sampler::AnySampler::Sobol4d(_) => "sobol4d",
             _ => "sobol",
         },
         renderer.integrator().strategy().name(),

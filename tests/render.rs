@@ -17,6 +17,8 @@ fn same_image_whatever_the_thread_count() {
         SamplerKind::Independent,
         SamplerKind::Stratified,
         SamplerKind::LowDiscrepancy,
+        SamplerKind::MultiJitter,
+        SamplerKind::Sobol,
     ] {
         let images: Vec<_> = [1, 2, 3]
             .iter()

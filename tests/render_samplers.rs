@@ -10,12 +10,14 @@ use mcrt::scene::description::{IntegratorKind, SamplerKind};
 use mcrt::scene::render::{RenderOptions, Renderer};
 use std::sync::atomic::AtomicBool;
 
-const KINDS: [SamplerKind; 5] = [
+const KINDS: [SamplerKind; 7] = [
     SamplerKind::Independent,
     SamplerKind::Stratified,
     SamplerKind::LowDiscrepancy,
     SamplerKind::Halton,
     SamplerKind::R2,
+    SamplerKind::MultiJitter,
+    SamplerKind::Sobol,
 ];
 
 /// The image mean and its variance, per channel.
@@ -45,14 +47,18 @@ fn image_mean(kind: SamplerKind, integrator: IntegratorKind, seed: u64) -> (DVec
 fn every_sampler_renders_the_same_expected_image() {
     let (reference, ref_var) = image_mean(SamplerKind::Independent, IntegratorKind::Path, 1);
     assert!(reference.min_element() > 0.01, "{reference}");
-    let runs = KINDS
-        .iter()
-        .map(|&k| (k, IntegratorKind::Path))
-        .chain([SamplerKind::Halton, SamplerKind::R2].map(|k| (k, IntegratorKind::Bdpt)));
+    let runs = KINDS.iter().map(|&k| (k, IntegratorKind::Path)).chain(
+        [
+            SamplerKind::Halton,
+            SamplerKind::R2,
+            SamplerKind::MultiJitter,
+        ]
+        .map(|k| (k, IntegratorKind::Bdpt)),
+    );
     for (kind, integrator) in runs {
         let (mean, var) = image_mean(kind, integrator, 2);
         let z = (mean - reference) / (var + ref_var).map(f64::sqrt);
-        // 7 renders × 3 channels; |z| < 4 is a family-wise false alarm rate below 0.2%.
+        // 10 renders × 3 channels; |z| < 4 is a family-wise false alarm rate below 0.2%.
         assert!(
             z.is_finite() && z.abs().max_element() < 4.0,
             "{kind:?} {integrator:?}: mean {mean} vs {reference}, z {z}"

@@ -2,11 +2,12 @@
 //! stratification (strata, elementary intervals) and integration error.
 
 use mcrt::glam::Vec2;
-#[cfg(feature = "sobol")]
-use mcrt::sampling::sampler::SobolSampler;
 use mcrt::sampling::sampler::{
-    HaltonSampler, IndependentSampler, R2Sampler, SampleSource, Sampler, StratifiedSampler,
+    CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, SampleSource, Sampler,
+    StratifiedSampler,
 };
+#[cfg(feature = "sobol")]
+use mcrt::sampling::sampler::{Sobol4dSampler, SobolSampler};
 use proptest::prelude::*;
 
 /// A draw pattern close to a path tracer's: 2D, 2D, 1D, 2D, 1D, ...
@@ -52,8 +53,15 @@ macro_rules! for_each_sampler {
         );
         #[cfg(feature = "sobol")]
         $check(SobolSampler::new($spp, $seed).unwrap(), "sobol");
+        #[cfg(feature = "sobol")]
+        $check(Sobol4dSampler::new($spp, $seed).unwrap(), "sobol4d");
         $check(HaltonSampler::new($spp, $seed).unwrap(), "halton");
         $check(R2Sampler::new($spp, $seed).unwrap(), "r2");
+        $check(CmjSampler::new($spp, $seed, true).unwrap(), "cmj");
+        $check(
+            CmjSampler::new($spp, $seed, false).unwrap(),
+            "cmj, no jitter",
+        );
     }};
 }
 
@@ -322,6 +330,49 @@ fn stratified_non_square_counts_round_up_and_stay_stratified() {
     }
 }
 
+/// Correlated multi-jittering: for `N = m × n` samples (square or not), each full round puts
+/// one point in every cell of the `m × n` grid, one in every `1/N` column and one in every
+/// `1/N` row of each 2D dimension, and one in every `1/N` interval of each 1D dimension.
+#[test]
+fn cmj_rounds_are_multi_jittered() {
+    for spp in [1u32, 2, 4, 6, 12, 16, 20, 64, 100] {
+        for jitter in [true, false] {
+            let mut s = CmjSampler::new(spp, 13, jitter).unwrap();
+            let (m, n) = s.grid();
+            assert_eq!(m * n, spp, "{spp} is already m × n");
+            let name = format!("cmj {m} x {n} jitter={jitter}");
+            assert_cells(&mut s, 0, spp, (m, n), &name);
+            assert_cells(&mut s, 0, spp, (spp, 1), &format!("{name}, columns"));
+            assert_cells(&mut s, 0, spp, (1, spp), &format!("{name}, rows"));
+            assert_intervals(&mut s, 0, spp, spp, &name);
+            // A later round of indices is multi-jittered on its own.
+            assert_cells(
+                &mut s,
+                2 * spp,
+                spp,
+                (m, n),
+                &format!("{name}, third round"),
+            );
+            assert_cells(
+                &mut s,
+                2 * spp,
+                spp,
+                (spp, 1),
+                &format!("{name}, third round"),
+            );
+        }
+    }
+}
+
+/// The multi-jitter checks have power: a stratified sampler's 16 points fill the 4 × 4
+/// cells but not the 16 fine columns (its jitter is free within each cell).
+#[test]
+fn multi_jitter_check_rejects_plain_jittering() {
+    let mut s = StratifiedSampler::new(16, 13, true).unwrap();
+    assert!(cell_violations(&mut s, 0, 16, (4, 4)).is_empty());
+    assert_eq!(cell_violations(&mut s, 0, 16, (16, 1)).len(), 24);
+}
+
 /// For `2^k` points: every elementary interval of shape `2^-a × 2^-(k-a)` holds one point.
 #[cfg(feature = "sobol")]
 #[test]
@@ -388,6 +439,12 @@ fn smooth_integrand_error_is_lower_than_independent() {
         stratified < independent / 4.0,
         "stratified {stratified:e} vs independent {independent:e}"
     );
+    let cmj = rms_error(CmjSampler::new(256, 1, true).unwrap());
+    println!("rms error at 256 spp: cmj {cmj:e}");
+    assert!(
+        cmj.is_finite() && cmj < independent / 4.0,
+        "cmj {cmj:e} vs independent {independent:e}"
+    );
     #[cfg(feature = "sobol")]
     {
         let sobol = rms_error(SobolSampler::new(256, 1).unwrap());
@@ -433,3 +490,6 @@ proptest! {
 mod dimensions;
 #[path = "samplers/low_discrepancy.rs"]
 mod low_discrepancy;
+#[cfg(feature = "sobol")]
+#[path = "samplers/sobol_4d.rs"]
+mod sobol_4d;

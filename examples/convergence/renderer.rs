@@ -40,7 +40,7 @@ fn sampler_kind(name: &str) -> Result<SamplerKind, String> {
     match name {
         "independent" => Ok(SamplerKind::Independent),
         "stratified" => Ok(SamplerKind::Stratified),
-        "sobol" => Ok(SamplerKind::LowDiscrepancy),
+        "sobol" => Ok(SamplerKind::Sobol),
         other => Err(format!("unknown sampler {other}")),
     }
 }

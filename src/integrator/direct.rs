@@ -78,12 +78,12 @@ impl DirectIntegrator {
         let draw_pick = scene.samples_light_choice();
         let draw_component = bsdf.samples_component();
         for _ in 0..n_delta {
+            let u = samples.next_2d();
             let u_pick = if draw_pick {
                 samples.next_2d()
             } else {
                 Vec2::splat(0.5)
             };
-            let u = samples.next_2d();
             if !smooth {
                 continue;
             }

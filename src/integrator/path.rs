@@ -123,13 +123,16 @@ impl PathTracer {
             let bsdf = &scene.bsdf(&sp);
             let wo = sp.frame.to_local(wo_world);
             let flags = bsdf.flags();
-            // Only the values the scene and the BSDF read are drawn.
+            // Only the values the scene and the BSDF read are drawn. The light sample comes
+            // first: at the camera vertex it is dimension 1, which `Sobol4dSampler` stratifies
+            // jointly with the position in the pixel (dimension 0); the scene chooses the light
+            // with it too, so `u_pick` is drawn only for choices such as a mesh triangle.
+            let u_light = samples.next_2d();
             let u_pick = if scene.samples_light_choice() {
                 samples.next_2d()
             } else {
                 Vec2::splat(0.5)
             };
-            let u_light = samples.next_2d();
             if flags.smooth && (self.strategy.samples_lights() || scene.has_delta_lights()) {
                 if let Some(ls) = scene.sample_light(&sp, u_pick, u_light) {
                     out.radiance += throughput * self.nee(scene, bsdf, &sp, wo, &ls, &mut out.rays);

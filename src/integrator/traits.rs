@@ -242,12 +242,16 @@ pub trait Scene {
         false
     }
 
-    /// Next-event estimation: choose a light (`u_pick.x`), a part of it such as a triangle
-    /// (`u_pick.y`) and a direction toward it (`u`).
+    /// Next-event estimation: choose a light, a part of it such as a triangle and a direction
+    /// toward it. `u` drives the direction; `u_pick` whatever choices the scene does not make
+    /// with `u`. The renderer's scene chooses the light with `u.x` and reuses it, rescaled,
+    /// for the light's point (so each light's points keep the stratification of `u`; a
+    /// separate, decorrelated value for the choice loses it), and reads `u_pick.y` for a
+    /// triangle of a mesh light only.
     fn sample_light(&self, from: &SurfacePoint, u_pick: Vec2, u: Vec2) -> Option<LightSample>;
 
-    /// Whether [`Scene::sample_light`] reads `u_pick` (there is a choice of light, or of a
-    /// part of one). When `false` [`PathTracer`](super::PathTracer) and
+    /// Whether [`Scene::sample_light`] reads `u_pick` (a choice it does not make with `u`,
+    /// such as a mesh light's triangle). When `false` [`PathTracer`](super::PathTracer) and
     /// [`DirectIntegrator`](super::DirectIntegrator) do not draw `u_pick` from their sample
     /// source and pass `(0.5, 0.5)`. The default, `true`, is always
     /// correct.

@@ -325,8 +325,22 @@ pub enum SamplerKind {
     Independent,
     /// Mitsuba's `stratified` (jittered).
     Stratified,
-    /// Mitsuba's `ldsampler`; ours is Owen-scrambled Sobol.
+    /// Mitsuba's `ldsampler`; ours is Owen-scrambled Sobol padded in 4D sets
+    /// ([`Sobol4dSampler`](crate::sampling::sampler::Sobol4dSampler), `--sampler sobol4d`),
+    /// the lower error per sample of our two Sobol samplers in `docs/sampler-error.md`.
     LowDiscrepancy,
+    /// Owen-scrambled Sobol padded per 2D dimension
+    /// ([`SobolSampler`](crate::sampling::sampler::SobolSampler)); no scene-file name (the
+    /// file's `ldsampler` is [`SamplerKind::LowDiscrepancy`]): chosen through the API or
+    /// `--sampler sobol`.
+    Sobol,
+    /// Mitsuba's `multijitter` (jittered): correlated multi-jittered patterns
+    /// ([`CmjSampler`](crate::sampling::sampler::CmjSampler)).
+    MultiJitter,
+    /// Mitsuba's `orthogonal` (strength 2, jittered): rendered with the same correlated
+    /// multi-jittered patterns, the sample count rounded up to the square of a prime as
+    /// Mitsuba's is (64 → 121).
+    Orthogonal,
     /// Scrambled Halton ([`HaltonSampler`](crate::sampling::sampler::HaltonSampler)); no
     /// Mitsuba 3 plugin, so no scene-file name: chosen through the API or `--sampler halton`.
     Halton,

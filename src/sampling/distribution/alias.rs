@@ -4,6 +4,7 @@ use glam::Vec2;
 
 use super::piecewise_1d::{clamp_unit, drop_underflowing, validate_table};
 use crate::sampling::SamplingError;
+use crate::sampling::ONE_MINUS_EPSILON;
 
 /// One column of the table: keep the column's own index with probability `keep`, else
 /// return `alias`.
@@ -84,6 +85,29 @@ impl AliasTable {
         (i, self.pmf(i))
     }
 
+    /// [`sample_with_pmf`](Self::sample_with_pmf) and the sample value *reused*: the part of
+    /// `u` that the choice did not consume, rescaled to `[0, 1)` (uniform there given the
+    /// index), so that one sample value both chooses an entry and drives what follows
+    /// (as pbrt-v4's `AliasTable::Sample` and Mitsuba 3's emitter choice do). A stratified
+    /// `u` gives each entry stratified reused values, piece by piece: an entry's share of
+    /// `[0, 1)` is its own column's kept part plus the aliased parts of other columns, and
+    /// each piece maps onto the whole of `[0, 1)`. About `log2(n) + 1` of `u`'s 24 bits go to
+    /// the choice.
+    #[must_use]
+    pub fn sample_reusing(&self, u: f32) -> (usize, f32, f32) {
+        let n = self.columns.len();
+        let x = f64::from(clamp_unit(u)) * n as f64;
+        let i = (x as usize).min(n - 1);
+        let (coin, c) = (x - i as f64, self.columns[i]);
+        let keep = c.keep.min(1.0);
+        let (j, rest) = if coin < keep {
+            (i, coin / keep)
+        } else {
+            (c.alias, (coin - keep) / (1.0 - keep))
+        };
+        (j, self.pmf(j), unit_down(rest))
+    }
+
     /// Draws an index from two sample values: `u.x` picks the column, `u.y` is the coin.
     /// Realises the probabilities to `f32` resolution whatever the table's length.
     #[must_use]
@@ -128,6 +152,17 @@ impl AliasTable {
     }
 }
 
+/// `x` rounded down to an `f32` in `[0, 1)` (so never 1.0; NaN becomes 0).
+fn unit_down(x: f64) -> f32 {
+    let f = x as f32;
+    let f = if f64::from(f) > x { f.next_down() } else { f };
+    if f >= 0.0 {
+        f.min(ONE_MINUS_EPSILON)
+    } else {
+        0.0
+    }
+}
+
 /// Vose's construction: pair each under-full column with an over-full donor.
 fn build_columns(pmf: &[f64]) -> Vec<Column> {
     let n = pmf.len();
@@ -168,7 +203,6 @@ fn build_columns(pmf: &[f64]) -> Vec<Column> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::ONE_MINUS_EPSILON;
 
     #[test]
     fn rejects_bad_weights() {
@@ -214,6 +248,40 @@ mod tests {
         for u in [0.0, ONE_MINUS_EPSILON, f32::NAN.max(0.0)] {
             assert!(matches!(t.sample(u), 1 | 4));
             assert!(matches!(t.sample_split(Vec2::new(u, u)), 1 | 4));
+        }
+    }
+
+    /// `sample_reusing` chooses as `sample` does, and the reused values of a fine stratified
+    /// `u` are spread evenly over `[0, 1)` for every index: counted in 16 bins, each bin of
+    /// index `j` holds `count_j / 16` values give or take the pieces' edges (one per piece).
+    #[test]
+    fn reused_values_are_uniform_per_index() {
+        let w = [0.5, 0.0, 3.0, 1.0, 7.5, 0.25];
+        let t = AliasTable::new(&w).unwrap();
+        let n = 1 << 16;
+        let mut bins = vec![[0u32; 16]; w.len()];
+        for k in 0..n {
+            let u = (k as f32 + 0.5) / n as f32;
+            let (j, pmf, rest) = t.sample_reusing(u);
+            assert_eq!((j, pmf), t.sample_with_pmf(u), "u = {u}");
+            assert!(
+                rest.is_finite() && (0.0..1.0).contains(&rest),
+                "u = {u}: {rest}"
+            );
+            bins[j][(rest * 16.0) as usize] += 1;
+        }
+        for (j, b) in bins.iter().enumerate() {
+            let count: u32 = b.iter().sum();
+            let expected = f64::from(count) / 16.0;
+            for &c in b {
+                // Each of the (at most n = 6) pieces of j's share can put one value more or
+                // less in a bin.
+                assert!((f64::from(c) - expected).abs() <= 7.0, "index {j}: {b:?}");
+            }
+        }
+        for u in [0.0, ONE_MINUS_EPSILON, f32::NAN] {
+            let (j, _, rest) = t.sample_reusing(u);
+            assert!(j != 1 && (0.0..1.0).contains(&rest), "u = {u}: {j} {rest}");
         }
     }
 }

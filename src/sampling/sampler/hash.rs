@@ -83,12 +83,13 @@ pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
     // bijection's quality: P(result = s) = Σₜ P(x = t) · P(shift = s − t) = 1/n.
     let shift_bits = (key.rotate_left(17) ^ folded).wrapping_mul(SHIFT_MULTIPLIER) >> 32;
     let shift = ((shift_bits * u64::from(n)) >> 32) as u32;
-    let y = x + shift;
-    if y >= n {
-        y - n
+    // In u64: for n above 2³¹ the sum can pass u32::MAX.
+    let y = u64::from(x) + u64::from(shift);
+    (if y >= u64::from(n) {
+        y - u64::from(n)
     } else {
         y
-    }
+    }) as u32
 }
 
 /// Rounds of [`round`] per walk of [`permute`].
@@ -167,6 +168,22 @@ mod tests {
                     assert!(p < n, "n {n} key {key}: {p}");
                     assert!(!seen[p as usize], "n {n} key {key}: {p} twice");
                     seen[p as usize] = true;
+                }
+            }
+        }
+    }
+
+    /// Sizes above 2³¹ (a stratified or multi-jittered round of up to 2³² − 1 samples): the
+    /// shifted value stays below `n` without overflowing, and distinct inputs stay distinct.
+    #[test]
+    fn permute_handles_sizes_near_u32_max() {
+        for n in [(1u32 << 31) + 1, 4_294_836_225, u32::MAX] {
+            for key in [0u64, 7, u64::MAX, 0x1234_5678_9abc_def0] {
+                let inputs = [0, 1, n / 2, n - 2, n - 1];
+                let outputs = inputs.map(|i| permute(i, n, key));
+                for (k, &p) in outputs.iter().enumerate() {
+                    assert!(p < n, "n {n} key {key}: {p}");
+                    assert!(!outputs[..k].contains(&p), "n {n} key {key}: {p} twice");
                 }
             }
         }

@@ -13,8 +13,10 @@
 //! | [`IndependentSampler`] | PCG32 seeded by a hash of (seed, pixel, sample index) | independent uniform |
 //! | [`StratifiedSampler`] | jittered strata, shuffled independently per dimension | one per stratum: `n × n` strata in 2D, `spp` in 1D |
 //! | `SobolSampler` (feature `sobol`) | Owen-scrambled Sobol, one scrambled (0,2)-sequence per dimension | every elementary interval of area `2^-k` holds one of the first `2^k` samples |
+//! | `Sobol4dSampler` (feature `sobol`) | Owen-scrambled Sobol padded in 4D sets: dimensions `2k` and `2k + 1` are one 4D point | as `SobolSampler` in each even dimension, a (2,k,2)-net in each odd one (four points per elementary interval of area `2^(2-k)`), and a (3,k,4)-net in each pair jointly |
 //! | [`HaltonSampler`] | Halton bases 2 and 3 with random digit permutations per dimension | each cell of a `2^a × 3^b` grid holds one of the first `2^a 3^b` samples |
 //! | [`R2Sampler`] | the R2 Kronecker lattice with a random Cranley–Patterson rotation per dimension | no exact strata; any prefix evenly spread (low discrepancy) |
+//! | [`CmjSampler`] | Kensler's correlated multi-jittered patterns, shuffled per dimension | one per cell of an `m × n` grid and one per `1/N` column and row in 2D, `N = m n`; one per `1/N` interval in 1D |
 //!
 //! Stratifying each dimension on its own and shuffling the strata independently per dimension
 //! is the "padding" of Kollig & Keller (2002, "Efficient multidimensional sampling", Computer
@@ -31,17 +33,28 @@
 //! |---|---|---|---|
 //! | `independent` | `Independent` | [`IndependentSampler`] | as given |
 //! | `stratified` | `Stratified` | [`StratifiedSampler`] (jittered unless `jitter` is false) | rounded up to a perfect square, as Mitsuba does |
-//! | `ldsampler` | `LowDiscrepancy` | `SobolSampler` | rounded up to a power of 4 by [`AnySampler::by_name`], as Mitsuba does; `SobolSampler::new` takes any count |
+//! | `ldsampler` | `LowDiscrepancy` | `Sobol4dSampler` | rounded up to a power of 4 by [`AnySampler::by_name`], as Mitsuba does; `Sobol4dSampler::new` takes any count |
+//! | `multijitter` | `MultiJitter` | [`CmjSampler`] (jittered) | rounded up to `⌊√N⌋ · ⌈N / ⌊√N⌋⌉`, as Mitsuba does |
+//! | `orthogonal` | `Orthogonal` | [`CmjSampler`] (jittered; `strength` 2 only) | rounded up to the square of a prime, as Mitsuba does (64 → 121) |
+//!
+//! `SobolSampler` (`SamplerKind::Sobol`, `--sampler sobol`) has no scene-file name. Why
+//! `ldsampler` maps to the 4D-padded Sobol sampler and `multijitter`/`orthogonal` to the
+//! correlated multi-jittered one: the relMSE per scene and sample count in
+//! `docs/sampler-error.md` (the 4D padding lowers the error on glossy scenes at the same cost;
+//! the multi-jittered patterns are of Mitsuba's kind).
 //!
 //! Mitsuba 3 (checked with 3.9.1) rounds the `sample_count` of `stratified` up to the next
 //! perfect square (5 → 9, 10 → 16, 17 → 25) and that of `ldsampler` up to the next power of 4,
-//! a count that is both a square and a power of two (5 → 16, 17 → 64), with a warning.
-//! [`StratifiedSampler::new`] rounds as Mitsuba's `stratified` does, and
+//! a count that is both a square and a power of two, at least 4 (1 → 4, 5 → 16, 17 → 64), and
+//! that of `multijitter` up to `⌊√N⌋ · ⌈N / ⌊√N⌋⌉` (5 → 6, 10 → 12, 17 → 20), each with a
+//! warning.
+//! [`StratifiedSampler::new`] and [`CmjSampler::new`] round as Mitsuba's `stratified` and
+//! `multijitter` do, and
 //! [`Sampler::samples_per_pixel`] reports the rounded count, which is the one a renderer must
 //! loop over. Mitsuba's `ldsampler` is Kollig & Keller's padded (0,2)-sequence; ours is a padded
 //! Owen-scrambled Sobol sequence of the same family, which works for any count (the first `2^k`
-//! samples of a pixel are a (0,k,2)-net in every 2D dimension; other counts are a prefix of the
-//! next net). [`AnySampler::by_name`] applies Mitsuba's rounding for the name `ldsampler` so a
+//! samples of a pixel are a (0,k,2)-net in every even 2D dimension; other counts are a prefix
+//! of the next net), padded in 4D sets rather than 2D ones. [`AnySampler::by_name`] applies Mitsuba's rounding for the name `ldsampler` so a
 //! scene file renders with the count Mitsuba would use, and none for the name `sobol`. The
 //! sample values themselves differ from Mitsuba's: the samplers are of the same kind, not
 //! bit-identical.
@@ -61,6 +74,7 @@
 use super::SamplingError;
 
 mod any;
+mod cmj;
 mod halton;
 pub(crate) mod hash;
 mod independent;
@@ -71,11 +85,12 @@ mod source;
 mod stratified;
 
 pub use any::AnySampler;
+pub use cmj::CmjSampler;
 pub use halton::HaltonSampler;
 pub use independent::IndependentSampler;
 pub use r2::R2Sampler;
 #[cfg(feature = "sobol")]
-pub use sobol::SobolSampler;
+pub use sobol::{Sobol4dSampler, SobolSampler};
 pub use source::{stream_dimension, SampleSource, STREAM_DIMENSIONS};
 pub use stratified::StratifiedSampler;
 

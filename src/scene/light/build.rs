@@ -139,7 +139,7 @@ impl Lights {
             shape_radiance,
             picker,
             plan,
-            reads_pick: !single || lights.iter().any(on_mesh),
+            reads_pick: lights.iter().any(on_mesh),
             rectangles,
             lights,
             shape_light,

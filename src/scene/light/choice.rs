@@ -14,6 +14,7 @@
 //! power choice (an environment has no position).
 
 use crate::sampling::distribution::AliasTable;
+use crate::sampling::sampler::ONE_MINUS_EPSILON;
 use glam::Vec3;
 
 /// Lights up to which the choice is made per shading point (its cost is linear in them).
@@ -110,27 +111,33 @@ impl LightChoice {
         Some((w, floor))
     }
 
-    /// A light chosen at shading point `p` with `u ∈ [0, 1)`, and its probability.
+    /// A light chosen at shading point `p` with `u ∈ [0, 1)`, its probability, and `u`
+    /// reused: rescaled from the light's share of `[0, 1)` to all of it (uniform there
+    /// given the light), for the light's own sampling. With a stratified `u` the points each
+    /// light receives are then stratified too, as they would not be from a second,
+    /// decorrelated sample value (Mitsuba 3 chooses its emitters this way).
     #[inline]
-    pub(crate) fn sample(&self, p: Vec3, u: f32) -> (usize, f32) {
+    pub(crate) fn sample(&self, p: Vec3, u: f32) -> (usize, f32, f32) {
         let Some((w, floor)) = self.spatial_at(p) else {
-            return self.power().sample_with_pmf(u);
+            return self.power().sample_reusing(u);
         };
-        let mut last = (0, 0.0);
+        let mut last = (0, 0.0, 0.0);
         let mut cdf = 0.0;
         for (i, (&wi, &fi)) in w.iter().zip(floor).enumerate() {
             let pi = wi + fi;
             if pi > 0.0 {
+                last = (i, pi, cdf);
                 cdf += pi;
-                last = (i, pi);
                 if u < cdf {
                     break;
                 }
             }
         }
         // Rounding can leave the sum of probabilities just under `u`: the last light with a
-        // nonzero probability takes that sliver.
-        last
+        // nonzero probability takes that sliver (its reused value is clamped below 1).
+        let (i, pi, below) = last;
+        let rest = ((f64::from(u) - f64::from(below)) / f64::from(pi)) as f32;
+        (i, pi, rest.clamp(0.0, ONE_MINUS_EPSILON))
     }
 
     /// The probability that [`LightChoice::sample`] at `p` returns light `i`.
@@ -192,8 +199,12 @@ mod tests {
             let n = 100_000;
             let mut count = [0usize; 5];
             for k in 0..n {
-                let (i, q) = c.sample(p, (k as f32 + 0.5) / n as f32);
+                let (i, q, rest) = c.sample(p, (k as f32 + 0.5) / n as f32);
                 assert_eq!(q, pmf[i], "{p}: light {i}");
+                assert!(
+                    rest.is_finite() && (0.0..1.0).contains(&rest),
+                    "{p}: {rest}"
+                );
                 count[i] += 1;
             }
             for i in 0..5 {
@@ -204,6 +215,34 @@ mod tests {
                     pmf[i]
                 );
             }
+        }
+    }
+
+    /// The reused values of an evenly spaced `u` are evenly spaced for every light: the
+    /// light's share of `[0, 1)` is one interval, mapped linearly onto `[0, 1)`, so the
+    /// widest gap between a light's sorted reused values (including the ends) is one step
+    /// `1 / (n · P(light))`, up to rounding.
+    #[test]
+    fn reused_values_keep_the_stratification() {
+        let c = veach_like();
+        let p = Vec3::new(-1.0, -2.0, 0.5);
+        let n = 4096;
+        let mut rests: Vec<Vec<f64>> = vec![Vec::new(); 5];
+        for k in 0..n {
+            let (i, _, rest) = c.sample(p, (k as f32 + 0.5) / n as f32);
+            rests[i].push(f64::from(rest));
+        }
+        for (i, r) in rests.iter().enumerate() {
+            let step = 1.0 / (f64::from(n) * f64::from(c.pmf(p, i)));
+            let mut edges = vec![0.0];
+            edges.extend(r);
+            edges.push(1.0);
+            let widest = edges.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+            assert!(
+                r.len() > 10 && widest.is_finite() && widest <= step * 1.001,
+                "light {i}: {} values, widest gap {widest} against a step of {step}",
+                r.len()
+            );
         }
     }
 
@@ -224,19 +263,19 @@ mod tests {
         )
         .unwrap();
         for k in 0..1000 {
-            let (i, q) = c.sample(Vec3::new(0.5, 0.3, 0.0), k as f32 / 1000.0);
+            let (i, q, _) = c.sample(Vec3::new(0.5, 0.3, 0.0), k as f32 / 1000.0);
             assert!(i != 1 && q.is_finite() && q > 0.0);
         }
         assert_eq!(c.pmf(Vec3::ZERO, 1), 0.0);
         // At a point light's position the weight is at its largest (power over the radius
         // floor); sampling and density still agree.
         let at = Vec3::new(2.0, 0.0, 0.0);
-        let (i, q) = c.sample(at, 0.9);
+        let (i, q, _) = c.sample(at, 0.9);
         assert!(q.is_finite() && q > 0.0);
         assert_eq!(q, c.pmf(at, i));
         // A NaN point (f32::max drops the NaN distance, leaving the radius floor) still
         // gives finite probabilities that sampling and density agree on.
-        let (i, q) = c.sample(Vec3::NAN, 0.5);
+        let (i, q, _) = c.sample(Vec3::NAN, 0.5);
         assert!(q.is_finite() && q > 0.0);
         assert_eq!(q, c.pmf(Vec3::NAN, i));
         assert_eq!(c.pmf(Vec3::ZERO, 7), 0.0);

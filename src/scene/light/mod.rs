@@ -75,7 +75,8 @@ pub struct Lights {
     rectangles: Vec<Option<RectangleSampler>>,
     /// How [`Lights::sample`] proceeds, chosen once.
     plan: SamplePlan,
-    /// [`Lights::sample`] reads `u_pick`: several lights, or a light on a triangle mesh.
+    /// [`Lights::sample`] reads `u_pick`: a light on a triangle mesh (the
+    /// choice among several lights reads `u.x`).
     reads_pick: bool,
 }
 
@@ -142,9 +143,9 @@ impl Lights {
         self.picker.as_ref().map_or(0.0, |t| t.pmf(p, i as usize))
     }
 
-    /// Whether [`Lights::sample`] reads its `u_pick` argument: there are several lights to
-    /// choose from, or the light is a triangle mesh (a triangle to choose). With a single
-    /// rectangle, sphere, disk, point or environment light it does not.
+    /// Whether [`Lights::sample`] reads its `u_pick` argument (`u_pick.y` chooses a triangle):
+    /// a light is a triangle mesh. The choice among several lights reads `u.x` and reuses
+    /// it (see [`Lights::sample`]), so it needs no value of its own.
     pub(crate) fn reads_pick(&self) -> bool {
         self.reads_pick
     }
@@ -176,7 +177,10 @@ impl Lights {
     }
 
     /// Chooses a light (by power, or by its estimated contribution at `from`: see the
-    /// module docs) and samples a direction toward it from `from`.
+    /// module docs) with `u.x`, and samples a direction toward it from `from` with `u`, its
+    /// `x` reused (rescaled from the chosen light's share of `[0, 1)`, as Mitsuba 3 does), so
+    /// that each light receives stratified points from a stratified `u`; `u_pick.y` chooses
+    /// a triangle of a mesh light, and `u_pick.x` is not read.
     #[inline(always)]
     pub fn sample(
         &self,
@@ -239,10 +243,13 @@ impl Lights {
             SamplePlan::Choose { single } => single,
         };
         let picker = self.picker.as_ref()?;
-        let (i, pick) = if single {
-            (0, 1.0)
+        // The light is chosen with `u.x`, which is then reused for the light's own point
+        // (see `LightChoice::sample`), so each light's points stay stratified.
+        let (i, pick, u) = if single {
+            (0, 1.0, u)
         } else {
-            picker.sample(from.p, u_pick.x)
+            let (i, pick, rest) = picker.sample(from.p, u.x);
+            (i, pick, Vec2::new(rest, u.y))
         };
         match self.lights[i] {
             Light::Area { shape, radiance } => {

@@ -5,7 +5,7 @@
 //! substitution (defines passed to [`load_scene`] beat defaults), `ref`/`id`, the value
 //! tags `integer`, `float`, `boolean`, `string`, `rgb`, `point`, `vector`, `transform`
 //! (`lookat`, `matrix`, `translate`, `rotate`, `scale`), and the plugins
-//! `path`/`direct`, `perspective`/`thinlens`, `independent`/`stratified`/`ldsampler`, `hdrfilm` with
+//! `path`/`direct`, `perspective`/`thinlens`, `independent`/`stratified`/`ldsampler`/`multijitter`/`orthogonal`, `hdrfilm` with
 //! `box`/`gaussian`/`tent` and `crop_*`, `rectangle`/`cube`/`disk`/`sphere`/`obj`/`ply`/`serialized`,
 //! `diffuse`/`conductor`/`roughconductor`/`dielectric`/`twosided` and the other BSDFs of
 //! `docs/scene-format.md`, `area`/`point`/`spot`/`directional`/`constant`/`envmap`, and the

@@ -159,6 +159,8 @@ fn read_sampler(ctx: &Ctx, e: &Elem) -> Res<SamplerDesc> {
         "independent" => SamplerKind::Independent,
         "stratified" => SamplerKind::Stratified,
         "ldsampler" => SamplerKind::LowDiscrepancy,
+        "multijitter" => SamplerKind::MultiJitter,
+        "orthogonal" => SamplerKind::Orthogonal,
         other => return Err(unknown_plugin(ctx, e, other)),
     };
     let mut p = Props::new(ctx, e)?;
@@ -173,8 +175,22 @@ fn read_sampler(ctx: &Ctx, e: &Elem) -> Res<SamplerDesc> {
     if let Some(seed) = p.int_in("seed", 0, i64::MAX)? {
         s.seed = seed as u64;
     }
-    if kind == SamplerKind::Stratified && p.bool("jitter")? == Some(false) {
+    let jittered = matches!(
+        kind,
+        SamplerKind::Stratified | SamplerKind::MultiJitter | SamplerKind::Orthogonal
+    );
+    if jittered && p.bool("jitter")? == Some(false) {
         return Err(ctx.err(e, SceneErrorKind::Unsupported("jitter = false".into())));
+    }
+    // An orthogonal array of strength t stratifies every t-dimensional projection; ours
+    // stratifies each 2D dimension, which matches strength 2 (Mitsuba's default) only.
+    if kind == SamplerKind::Orthogonal {
+        if let Some((t, at)) = p.int("strength")? {
+            if t != 2 {
+                let what = format!("orthogonal sampler of strength {t} (only 2 is rendered)");
+                return Err(ctx.err(at, SceneErrorKind::Unsupported(what)));
+            }
+        }
     }
     p.finish()?;
     Ok(s)

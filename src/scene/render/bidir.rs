@@ -39,6 +39,8 @@ fn render_tile<S: BidirectionalScene>(
         AnySampler::Sobol(s) => render_tile_with(scene, p, bdpt, s.clone(), tile, samples),
         AnySampler::Halton(s) => render_tile_with(scene, p, bdpt, s.clone(), tile, samples),
         AnySampler::R2(s) => render_tile_with(scene, p, bdpt, s.clone(), tile, samples),
+        AnySampler::Cmj(s) => render_tile_with(scene, p, bdpt, s.clone(), tile, samples),
+        AnySampler::Sobol4d(s) => render_tile_with(scene, p, bdpt, s.clone(), tile, samples),
     }
 }
 

@@ -40,8 +40,8 @@ pub use crate::scene::geometry::{AccelKind, ShapeSampling};
 
 use crate::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
 use crate::sampling::sampler::{
-    AnySampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, SobolSampler,
-    StratifiedSampler,
+    AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, Sobol4dSampler,
+    SobolSampler, StratifiedSampler,
 };
 use crate::sampling::SamplingError;
 use crate::scene::bsdf::{AnyBsdf, Sided, TexturedBsdf};
@@ -184,9 +184,15 @@ fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, Sa
     Ok(match kind {
         SamplerKind::Independent => IndependentSampler::new(spp, seed)?.into(),
         SamplerKind::Stratified => StratifiedSampler::new(spp, seed, true)?.into(),
-        SamplerKind::LowDiscrepancy => SobolSampler::new(spp, seed)?.into(),
+        SamplerKind::LowDiscrepancy => Sobol4dSampler::new(spp, seed)?.into(),
+        SamplerKind::Sobol => SobolSampler::new(spp, seed)?.into(),
         SamplerKind::Halton => HaltonSampler::new(spp, seed)?.into(),
         SamplerKind::R2 => R2Sampler::new(spp, seed)?.into(),
+        SamplerKind::MultiJitter => CmjSampler::new(spp, seed, true)?.into(),
+        SamplerKind::Orthogonal => match AnySampler::by_name("orthogonal", spp, seed) {
+            Some(s) => s?,
+            None => unreachable!("`orthogonal` is one of AnySampler::NAMES"),
+        },
     })
 }
 

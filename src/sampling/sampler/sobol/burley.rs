@@ -1,4 +1,4 @@
-//! Dimensions 0 and 1 of `sobol_burley`'s seeded Owen-scrambled Sobol sequence in scalar code.
+//! Dimensions 0 to 3 of `sobol_burley`'s seeded Owen-scrambled Sobol sequence in scalar code.
 //!
 //! `sobol_burley::sample_4d` computes four dimensions with 4-lane integer SIMD, whose 32-bit
 //! multiplies are emulated on baseline x86-64 (no SSE4.1), and `sobol_burley::sample` walks
@@ -8,7 +8,9 @@
 //! composes `sobol_burley::parts` (the hash and the hash-based Owen scramble) with those two
 //! matrices, and reverses the bits of both outputs with one 64-bit reversal. The values are
 //! bit-identical to `sobol_burley::sample(index, 0 | 1, seed)`; the tests below pin that for
-//! every index and several seeds.
+//! every index and several seeds. Dimensions 2 and 3 (for the 4D sampler) have no such closed
+//! form: their generator matrices are applied four index bits at a time from tables built at
+//! compile time from the crate's direction numbers, again bit-identical to the crate.
 //!
 //! The method is Burley's (2020, "Practical Hash-based Owen Scrambling", Journal of Computer
 //! Graphics Techniques 9(4)): shuffle the index with a nested-uniform scramble, evaluate the
@@ -22,8 +24,42 @@ const INDEX_SALT: u32 = 0x79c6_8e4a;
 /// Multiplier applied to the seed of the per-dimension scramble (as `sobol_burley` does).
 const SEED_MULTIPLIER: u32 = 0x9c8f_2d3b;
 
-/// Salts of the Owen scrambles of dimensions 0 and 1 (as `sobol_burley` does).
-const DIMENSION_SALT: [u32; 2] = [0x912f_69ba, 0x174f_18ab];
+/// Salts of the Owen scrambles of dimensions 0 to 3 (as `sobol_burley` does).
+const DIMENSION_SALT: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
+
+/// `sobol_burley`'s direction numbers of Sobol dimensions 2 and 3, bits reversed: entry `k`
+/// is `sobol_burley::parts::sobol_rev((1 << k).reverse_bits(), 2 | 3)` (a unit test checks).
+const DIRECTIONS_2: [u32; 16] = [
+    0x0001, 0x0003, 0x0006, 0x0009, 0x0017, 0x003a, 0x0071, 0x00a3, 0x0116, 0x0339, 0x0677, 0x09aa,
+    0x1601, 0x3903, 0x7706, 0xaa09,
+];
+const DIRECTIONS_3: [u32; 16] = [
+    0x0001, 0x0003, 0x0004, 0x000a, 0x001f, 0x002e, 0x0045, 0x00c9, 0x011b, 0x02a4, 0x079a, 0x0b67,
+    0x101e, 0x302d, 0x4041, 0xa0c3,
+];
+
+/// `UPPER[j][v]`: the reversed points of dimensions 2 (low 16 bits) and 3 (high 16 bits) for
+/// the index whose only set bits are the nibble `v` at bits `4j..4j + 4`.
+const UPPER: [[u32; 16]; 4] = {
+    let mut table = [[0; 16]; 4];
+    let mut j = 0;
+    while j < 4 {
+        let mut v = 0;
+        while v < 16 {
+            let mut b = 0;
+            while b < 4 {
+                if v >> b & 1 == 1 {
+                    let k = 4 * j + b;
+                    table[j][v] ^= DIRECTIONS_3[k] << 16 | DIRECTIONS_2[k];
+                }
+                b += 1;
+            }
+            v += 1;
+        }
+        j += 1;
+    }
+    table
+};
 
 /// The shuffled 16-bit sample index, in natural bit order, for `index_rev`, the sample index
 /// (below 2¹⁶) with its 32 bits reversed.
@@ -63,7 +99,7 @@ fn pascal_rev(n: u32) -> u32 {
     y
 }
 
-/// The Owen-scramble key of `dimension` (0 or 1) for `seed`.
+/// The Owen-scramble key of `dimension` (0 to 3) for `seed`.
 #[inline(always)]
 fn dimension_key(seed: u32, dimension: usize) -> u32 {
     hash(seed.wrapping_mul(SEED_MULTIPLIER) ^ DIMENSION_SALT[dimension])
@@ -83,6 +119,32 @@ pub(super) fn sample_2d(index_rev: u32, seed: u32) -> [f32; 2] {
         u32_to_f32_norm((both >> 32) as u32),
         u32_to_f32_norm(both as u32),
     ]
+}
+
+/// `[sobol_burley::sample(i, 2, seed), sobol_burley::sample(i, 3, seed)]` for the index `i`
+/// (below 2¹⁶) whose 32 bits reversed are `index_rev`: the other half of the 4D point whose
+/// first half [`sample_2d`] gives (same index shuffle, its own Owen scrambles).
+#[inline(always)]
+pub(super) fn sample_2d_upper(index_rev: u32, seed: u32) -> [f32; 2] {
+    let n = shuffled_index(index_rev, seed) as usize;
+    let both = UPPER[0][n & 15] ^ UPPER[1][n >> 4 & 15] ^ UPPER[2][n >> 8 & 15] ^ UPPER[3][n >> 12];
+    let x_rev = owen_scramble_rev(both & 0xffff, dimension_key(seed, 2));
+    let y_rev = owen_scramble_rev(both >> 16, dimension_key(seed, 3));
+    let both = (u64::from(y_rev) << 32 | u64::from(x_rev)).reverse_bits();
+    [
+        u32_to_f32_norm((both >> 32) as u32),
+        u32_to_f32_norm(both as u32),
+    ]
+}
+
+/// `sobol_burley::sample(i, 2, seed)` for the index `i` (below 2¹⁶) whose 32 bits reversed
+/// are `index_rev`.
+#[inline(always)]
+pub(super) fn sample_1d_upper(index_rev: u32, seed: u32) -> f32 {
+    let n = shuffled_index(index_rev, seed) as usize;
+    let both = UPPER[0][n & 15] ^ UPPER[1][n >> 4 & 15] ^ UPPER[2][n >> 8 & 15] ^ UPPER[3][n >> 12];
+    let x_rev = owen_scramble_rev(both & 0xffff, dimension_key(seed, 2));
+    u32_to_f32_norm(x_rev.reverse_bits())
 }
 
 /// `sobol_burley::sample(i, 0, seed)` for the index `i` (below 2¹⁶) whose 32 bits reversed
@@ -122,6 +184,37 @@ mod tests {
             let i = k.wrapping_mul(40_503) & 0xffff;
             let want = sobol_burley::sample_4d(i, 0, seed);
             assert_eq!(sample_2d(i.reverse_bits(), seed), [want[0], want[1]]);
+        }
+    }
+
+    #[test]
+    fn upper_dimensions_match_sobol_burley_for_every_index() {
+        for seed in SEEDS {
+            for i in 0..(1u32 << 16) {
+                let want = [
+                    sobol_burley::sample(i, 2, seed),
+                    sobol_burley::sample(i, 3, seed),
+                ];
+                assert_eq!(sample_2d_upper(i.reverse_bits(), seed), want, "index {i}");
+                assert_eq!(sample_1d_upper(i.reverse_bits(), seed), want[0]);
+            }
+        }
+    }
+
+    #[test]
+    fn direction_tables_are_sobol_burleys() {
+        for k in 0..16 {
+            let unit = (1u32 << k).reverse_bits();
+            assert_eq!(
+                DIRECTIONS_2[k],
+                sobol_burley::parts::sobol_rev(unit, 2),
+                "bit {k}"
+            );
+            assert_eq!(
+                DIRECTIONS_3[k],
+                sobol_burley::parts::sobol_rev(unit, 3),
+                "bit {k}"
+            );
         }
     }
 

@@ -4,6 +4,9 @@
 use glam::Vec2;
 
 mod burley;
+mod four_d;
+
+pub use four_d::Sobol4dSampler;
 
 use super::hash::{combine, mix64, pixel_key_of_mixed};
 use super::{check_spp, stream_dimension, SampleSource, Sampler};
