@@ -168,7 +168,8 @@ mod tests {
     }
 
     /// A diffuse vertex lit by one rectangle draws the light sample and the BSDF sample
-    /// only (2 + 2 values); a second light adds the light choice (2 more).
+    /// only (2 + 2 values); a second light adds nothing: the light choice reuses the light
+    /// sample's first value (`LightChoice::sample`).
     #[test]
     fn path_vertex_draws_only_what_is_read() {
         let mut desc = crate::scene::cornell_box::cornell_box();
@@ -177,6 +178,6 @@ mod tests {
             position: Vec3::new(0.0, 1.0, 0.0),
             intensity: Vec3::ONE,
         });
-        assert_eq!(draws(&desc), 6);
+        assert_eq!(draws(&desc), 4);
     }
 }
