@@ -38,7 +38,7 @@ const SALT_ROWS: u64 = 0x510e_527f_ade6_82d1;
 /// in `[0, 1 − 2⁻²⁴]`: never 1.0.
 ///
 /// ```
-/// use mcrt::sampling::sampler::{CmjSampler, Sampler};
+/// use mcrt::sampling::sampler::{CmjSampler, SampleSource, Sampler};
 ///
 /// let mut s = CmjSampler::new(16, 1, true).unwrap();
 /// let (mut cells, mut columns) = ([0; 16], [0; 16]);

@@ -34,7 +34,7 @@ use crate::sampling::SamplingError;
 /// `SobolSampler`. Values lie in `[0, 1)`.
 ///
 /// ```
-/// use mcrt::sampling::sampler::{Sampler, Sobol4dSampler};
+/// use mcrt::sampling::sampler::{SampleSource, Sampler, Sobol4dSampler};
 ///
 /// let mut s = Sobol4dSampler::new(16, 1).unwrap();
 /// let mut cells = [0; 16];
