@@ -298,12 +298,18 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             ext_ior,
             specular_reflectance,
             specular_transmittance,
-        } => {
-            ior("int_ior", *int_ior)?;
-            ior("ext_ior", *ext_ior)?;
-            colour("specular_reflectance", *specular_reflectance)?;
-            colour("specular_transmittance", *specular_transmittance)
         }
+        | BsdfDesc::ThinDielectric {
+            int_ior,
+            ext_ior,
+            specular_reflectance,
+            specular_transmittance,
+        } => dielectric(
+            *int_ior,
+            *ext_ior,
+            *specular_reflectance,
+            *specular_transmittance,
+        ),
         BsdfDesc::RoughDielectric {
             alpha,
             int_ior,
@@ -313,21 +319,12 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             ..
         } => {
             roughness(*alpha)?;
-            ior("int_ior", *int_ior)?;
-            ior("ext_ior", *ext_ior)?;
-            colour("specular_reflectance", *specular_reflectance)?;
-            colour("specular_transmittance", *specular_transmittance)
-        }
-        BsdfDesc::ThinDielectric {
-            int_ior,
-            ext_ior,
-            specular_reflectance,
-            specular_transmittance,
-        } => {
-            ior("int_ior", *int_ior)?;
-            ior("ext_ior", *ext_ior)?;
-            colour("specular_reflectance", *specular_reflectance)?;
-            colour("specular_transmittance", *specular_transmittance)
+            dielectric(
+                *int_ior,
+                *ext_ior,
+                *specular_reflectance,
+                *specular_transmittance,
+            )
         }
         BsdfDesc::Plastic {
             int_ior,
@@ -433,6 +430,14 @@ fn roughness(alpha: f32) -> Result<(), Invalid> {
             format!("must lie in [{MIN_ROUGHNESS}, {MAX_ROUGHNESS}]"),
         ))
     }
+}
+
+/// An interface between two indices (smooth, rough or thin) and its two colours.
+fn dielectric(int_ior: f32, ext_ior: f32, reflect: Vec3, transmit: Vec3) -> Result<(), Invalid> {
+    ior("int_ior", int_ior)?;
+    ior("ext_ior", ext_ior)?;
+    colour("specular_reflectance", reflect)?;
+    colour("specular_transmittance", transmit)
 }
 
 /// A coated material. Its diffuse albedo after internal scattering, `ρ / (1 − F_dr)` (or
