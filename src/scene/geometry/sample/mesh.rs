@@ -17,12 +17,14 @@ fn solid_angle<W, E>(
     [a, b, c]: [Vec3; 3],
     build: impl FnOnce() -> Result<W, E>,
 ) -> Option<W> {
-    let centroid = (a + b + c) / 3.0;
-    let longest2 = (b - a)
-        .length_squared()
-        .max((c - b).length_squared())
-        .max((a - c).length_squared());
-    if how.by_solid_angle(reference.distance_squared(centroid), longest2) {
+    let distances = || {
+        let longest2 = (b - a)
+            .length_squared()
+            .max((c - b).length_squared())
+            .max((a - c).length_squared());
+        (reference.distance_squared((a + b + c) / 3.0), longest2)
+    };
+    if how.by_solid_angle(distances) {
         build().ok()
     } else {
         None

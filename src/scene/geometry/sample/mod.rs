@@ -55,14 +55,18 @@ pub enum ShapeSampling {
 pub(crate) const NEAR_FACTOR: f32 = 1.5;
 
 impl ShapeSampling {
-    /// Whether a shape of squared size `size2` (diagonal², or longest edge²) whose centre is
-    /// at squared distance `dist2` from the reference point is sampled by solid angle.
+    /// Whether a shape is sampled by solid angle; for `Auto`, `distances` gives the squared
+    /// distance from the reference point to the shape's centre and its squared size
+    /// (diagonal², or longest edge²), computed only in that case.
     #[inline]
-    pub(crate) fn by_solid_angle(self, dist2: f32, size2: f32) -> bool {
+    pub(crate) fn by_solid_angle(self, distances: impl FnOnce() -> (f32, f32)) -> bool {
         match self {
             Self::SolidAngle => true,
             Self::Area => false,
-            Self::Auto => dist2 < NEAR_FACTOR * NEAR_FACTOR * size2,
+            Self::Auto => {
+                let (dist2, size2) = distances();
+                dist2 < NEAR_FACTOR * NEAR_FACTOR * size2
+            }
         }
     }
 }

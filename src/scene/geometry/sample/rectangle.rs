@@ -73,7 +73,7 @@ impl RectangleSampler {
     /// [`ShapeSampling::Auto`]).
     #[inline]
     pub(crate) fn by_solid_angle(&self, how: ShapeSampling, reference: Vec3) -> bool {
-        how.by_solid_angle(reference.distance_squared(self.center), self.diagonal2)
+        how.by_solid_angle(|| (reference.distance_squared(self.center), self.diagonal2))
     }
 
     /// The point `corner + u.x·ex + u.y·ey`: uniform by area.
