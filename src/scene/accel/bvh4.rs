@@ -53,7 +53,7 @@ impl Bvh4 {
             nodes: Vec::with_capacity(bvh.node_count() / 2 + 1),
             root: EMPTY,
             order: bvh.order().to_vec(),
-            leaves: Vec::new(),
+            leaves: Vec::with_capacity(bounds.len() / 2 + 1),
             depth: 0,
         };
         if !bounds.is_empty() {
@@ -102,18 +102,24 @@ impl Bvh4 {
             self.leaves.push(range);
             return LEAF | (self.leaves.len() - 1) as u32;
         }
-        let mut kids = bvh.children(b).to_vec();
-        while kids.len() < 4 {
-            let open = kids
+        // Up to four children, gathered without allocating (`kids[..len]`).
+        let [first, second] = bvh.children(b);
+        let (mut kids, mut len) = ([first, second, 0, 0], 2);
+        while len < 4 {
+            let open = kids[..len]
                 .iter()
                 .enumerate()
                 .filter(|(_, &k)| bvh.leaf(k).is_none())
                 .max_by(|a, b| bvh.area(*a.1).total_cmp(&bvh.area(*b.1)))
                 .map(|(i, _)| i);
             let Some(i) = open else { break };
-            let k = kids.swap_remove(i);
-            kids.extend(bvh.children(k));
+            // As `Vec::swap_remove(i)` then pushing both children.
+            let k = kids[i];
+            kids[i] = kids[len - 1];
+            [kids[len - 1], kids[len]] = bvh.children(k);
+            len += 1;
         }
+        let kids = &kids[..len];
         let me = self.nodes.len();
         self.nodes.push(Node4 {
             lo: [Vec4::splat(f32::INFINITY); 3],

@@ -30,6 +30,9 @@
 mod aabb;
 mod bvh;
 mod bvh4;
+mod bvh_build;
+#[cfg(test)]
+mod bvh_build_tests;
 mod grid;
 mod kdtree;
 mod traverse;

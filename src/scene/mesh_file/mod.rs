@@ -9,6 +9,7 @@
 
 pub mod obj;
 pub mod ply;
+mod ply_binary;
 pub mod serialized;
 
 use crate::scene::loader::{SceneError, SceneErrorKind};

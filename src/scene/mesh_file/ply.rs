@@ -8,7 +8,11 @@
 //! scalar type is accepted for any of them. Other properties (colours, …) and other
 //! elements are read past and ignored. Faces with more than three corners are
 //! fan-triangulated (Mitsuba 3.9 refuses them; the OBJ reader splits them the same way).
+//!
+//! Binary payloads are decoded by [`super::ply_binary`] (the same values, faster); ASCII
+//! ones by `ply-rs-bw`.
 
+use super::ply_binary::{scalar_size, ItemError, Payload};
 use super::{error, push_fan, read_file, TriangleMesh};
 use crate::scene::loader::{SceneError, SceneErrorKind};
 use glam::{Vec2, Vec3};
@@ -70,18 +74,40 @@ pub fn parse_ply(bytes: &[u8], path: Option<&Path>) -> Result<TriangleMesh, Scen
     }
     let mut mesh = TriangleMesh::default();
     let (mut has_vertex, mut has_face) = (false, false);
+    // Binary files: the bytes after the header, decoded here.
+    let big = header.encoding == Encoding::BinaryBigEndian;
+    let rest = &bytes[bytes.len() - reader.get_ref().len()..];
+    let mut binary = (!ascii).then(|| Payload::new(rest, big));
     for (name, def) in &header.elements {
         let place = |i: Option<usize>| match i {
             Some(i) => format!("element \"{name}\" {i} of {}", def.count),
             None => format!("element \"{name}\""),
         };
-        // Where a data error is: the line for ASCII files, the element for binary ones.
+        // Where an ASCII data error is: its line (binary ones are located by `item`).
         let locate = |e: ply_rs_bw::parser::ParseError| {
             let line = if ascii { e.line() } else { None };
             fail(line, Some(place(None)), e.to_string())
         };
-        match name.as_str() {
-            "vertex" if !has_vertex => {
+        let item = |(i, m): ItemError| fail(None, Some(place(Some(i))), m);
+        if (name == "vertex" && has_vertex) || (name == "face" && has_face) {
+            return Err(fail(
+                None,
+                Some(place(None)),
+                "a second such element".into(),
+            ));
+        }
+        match (name.as_str(), binary.as_mut()) {
+            ("vertex", Some(b)) => {
+                has_vertex = true;
+                b.vertices(def, layout.normals, layout.uvs, &mut mesh)
+                    .map_err(item)?;
+            }
+            ("face", Some(b)) => {
+                has_face = true;
+                b.faces(def, &mut mesh).map_err(item)?;
+            }
+            (_, Some(b)) => b.skip(def).map_err(item)?,
+            ("vertex", None) => {
                 has_vertex = true;
                 let rows = Parser::<VertexRow>::new()
                     .read_payload_for_element(&mut reader, def, &header)
@@ -94,7 +120,7 @@ pub fn parse_ply(bytes: &[u8], path: Option<&Path>) -> Result<TriangleMesh, Scen
                     mesh.uvs = rows.iter().map(|r| Vec2::from(r.uv)).collect();
                 }
             }
-            "face" if !has_face => {
+            ("face", None) => {
                 has_face = true;
                 let rows = Parser::<FaceRow>::new()
                     .read_payload_for_element(&mut reader, def, &header)
@@ -111,14 +137,7 @@ pub fn parse_ply(bytes: &[u8], path: Option<&Path>) -> Result<TriangleMesh, Scen
                     push_fan(&mut mesh.indices, &r.corners);
                 }
             }
-            "vertex" | "face" => {
-                return Err(fail(
-                    None,
-                    Some(place(None)),
-                    "a second such element".into(),
-                ))
-            }
-            _ => {
+            (_, None) => {
                 Parser::<Skip>::new()
                     .read_payload_for_element(&mut reader, def, &header)
                     .map_err(locate)?;
@@ -144,7 +163,7 @@ fn check_budget(header: &Header, len: usize) -> Result<(), String> {
                 .properties
                 .values()
                 .map(|p| match &p.data_type {
-                    PropertyType::Scalar(t) | PropertyType::List(t, _) => scalar_bytes(t),
+                    PropertyType::Scalar(t) | PropertyType::List(t, _) => scalar_size(t) as u128,
                 })
                 .sum(),
         };
@@ -157,15 +176,6 @@ fn check_budget(header: &Header, len: usize) -> Result<(), String> {
         }
     }
     Ok(())
-}
-
-fn scalar_bytes(t: &ScalarType) -> u128 {
-    match t {
-        ScalarType::Char | ScalarType::UChar => 1,
-        ScalarType::Short | ScalarType::UShort => 2,
-        ScalarType::Int | ScalarType::UInt | ScalarType::Float => 4,
-        ScalarType::Double => 8,
-    }
 }
 
 /// Which vertex attributes the header declares.

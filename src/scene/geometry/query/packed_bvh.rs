@@ -84,16 +84,20 @@ impl PackedBvh {
         };
         let mut order = bvh.order().to_vec();
         let mut ranges: Vec<_> = (0..bvh.leaf_count()).map(|k| (bvh.leaf(k), k)).collect();
-        ranges.sort_by_key(|(r, _)| r.start);
+        ranges.sort_unstable_by_key(|(r, _)| r.start); // the starts differ
         let mut slots = Vec::with_capacity(prims.len());
         let (mut quad_packets, mut quad_slots, mut tri_packets) =
             (Vec::new(), Vec::new(), Vec::new());
         let mut leaves = vec![None; ranges.len()];
+        // Each leaf's quads and triangles, cleared per leaf (allocated once).
+        let (mut quads, mut tris) = (Vec::with_capacity(4), Vec::with_capacity(4));
         for (r, k) in ranges {
             let leaf_units = &mut order[r.start as usize..r.end as usize];
             leaf_units.sort_by_key(|&u| kind(&units[u as usize])); // stable
             let first = slots.len() as u32;
-            let (mut quads, mut q_slots, mut tris) = (Vec::new(), QuadSlots::default(), Vec::new());
+            let mut q_slots = QuadSlots::default();
+            quads.clear();
+            tris.clear();
             for &u in leaf_units.iter() {
                 match units[u as usize] {
                     Unit::Pair {

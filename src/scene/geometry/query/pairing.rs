@@ -9,6 +9,7 @@
 
 use super::super::build::{Built, Prim, ShapeData};
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// Relative tolerance on the fourth vertex, in units of the shorter parallelogram edge.
 const TOLERANCE: f64 = 1e-6;
@@ -34,12 +35,15 @@ impl Quad {
     /// The parallelogram formed by triangles `t1` and `t2` (vertices in their stored order),
     /// if they form one (see the module docs).
     pub(crate) fn from_pair(t1: [Vec3; 3], t2: [Vec3; 3]) -> Option<Self> {
-        let shared = |p: Vec3| t2.contains(&p);
-        let off1: Vec<usize> = (0..3).filter(|&i| !shared(t1[i])).collect();
-        let off2: Vec<usize> = (0..3).filter(|&i| !t1.contains(&t2[i])).collect();
-        let (&[k], &[l]) = (off1.as_slice(), off2.as_slice()) else {
-            return None;
+        // The one vertex of each triangle that is not on the other.
+        let only = |t: [Vec3; 3], other: [Vec3; 3]| {
+            let mut off = (0..3).filter(|&i| !other.contains(&t[i]));
+            match (off.next(), off.next()) {
+                (Some(k), None) => Some(k),
+                _ => None,
+            }
         };
+        let (k, l) = (only(t1, t2)?, only(t2, t1)?);
         let (b, d) = (t1[k], t2[l]);
         let (a, c) = (t1[(k + 1) % 3], t1[(k + 2) % 3]);
         if a == c {
@@ -183,7 +187,8 @@ fn pair_range(
             edges.extend((0..3).map(|k| (edge(t[k], t[(k + 1) % 3]), i as u32, k as u8)));
         }
     }
-    edges.sort_unstable();
+    // The entries differ (each names its triangle and edge), so any sort gives this order.
+    edges.par_sort_unstable();
     let mut at = vec![0u32; 3 * range.len()];
     for (p, &(_, i, k)) in edges.iter().enumerate() {
         at[3 * (i as usize - start) + usize::from(k)] = p as u32;
@@ -201,17 +206,23 @@ fn pair_range(
             .take_while(move |x| x.0 == e)
             .map(|&(_, j, _)| j as usize)
     };
-    for i in range {
-        let Some(t) = tri(i) else { continue };
-        if taken[i] {
-            continue;
-        }
-        let found = (0..3).find_map(|k| {
-            sharing(i, k)
-                .filter(|&j| j != i && !taken[j])
-                .find_map(|j| Some((j, Quad::from_pair(t, tri(j)?)?)))
-        });
-        if let Some((j, quad)) = found {
+    // Every triangle's parallelograms with its neighbours, in the order the greedy pass
+    // tries them (found in parallel: `Quad::from_pair` depends on the two triangles only).
+    let found: Vec<(u32, u32, Quad)> = range
+        .into_par_iter()
+        .flat_map_iter(|i| {
+            let t = tri(i);
+            (0..3)
+                .filter(move |_| t.is_some())
+                .flat_map(move |k| sharing(i, k).filter(move |&j| j != i))
+                .filter_map(move |j| Some((i as u32, j as u32, Quad::from_pair(t?, tri(j)?)?)))
+        })
+        .collect();
+    // Greedy in input order: each triangle not yet taken takes its first neighbour not
+    // yet taken.
+    for &(i, j, quad) in &found {
+        let (i, j) = (i as usize, j as usize);
+        if !taken[i] && !taken[j] {
             taken[i] = true;
             taken[j] = true;
             partner[i] = Some((j as u32, quad));

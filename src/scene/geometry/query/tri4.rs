@@ -21,11 +21,18 @@ impl TriPacket {
     /// Packs 1 to 4 triangles (more are ignored; none gives an empty, never-hit packet).
     pub(crate) fn new(tris: &[[Vec3; 3]]) -> Self {
         debug_assert!(tris.len() <= 4);
-        let lane = |l: usize| tris.get(l.min(tris.len().saturating_sub(1))).copied();
+        let Some(last) = tris.len().checked_sub(1) else {
+            let mut v = [[Vec4::NAN; 4]; 3];
+            v.iter_mut().for_each(|vj| vj[3] = Vec4::ZERO);
+            return Self { v };
+        };
         let mut v = [[Vec4::ZERO; 4]; 3];
-        for (j, vj) in v.iter_mut().enumerate() {
-            for (a, va) in vj.iter_mut().take(3).enumerate() {
-                *va = Vec4::from_array([0, 1, 2, 3].map(|l| lane(l).map_or(f32::NAN, |t| t[j][a])));
+        for l in 0..4 {
+            let t = tris[l.min(last)];
+            for (vj, p) in v.iter_mut().zip(t) {
+                for a in 0..3 {
+                    vj[a][l] = p[a];
+                }
             }
         }
         Self { v }
