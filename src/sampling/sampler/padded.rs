@@ -1,0 +1,50 @@
+//! The per-pixel-sample keys of the padded samplers (stratified and correlated
+//! multi-jittered): one random pattern per (pixel, dimension, round of `spp` samples), one
+//! jitter per (pixel sample, dimension).
+
+use super::hash::{combine, pixel_key};
+
+/// Where a padded sampler is: the keys of the current pixel sample and its dimension.
+#[derive(Debug, Clone, Default)]
+pub(super) struct PaddedKeys {
+    /// The key of the current round of `spp` samples in this pixel.
+    round_key: u64,
+    /// The key of the current pixel sample.
+    sample_key: u64,
+    /// The sample index within its round.
+    pub(super) index_in_round: u32,
+    /// The next dimension.
+    pub(super) dimension: u64,
+}
+
+impl PaddedKeys {
+    /// Starts sample `sample_index` of `pixel` for a sampler of `spp` samples per round and
+    /// `seed`, at dimension 0.
+    #[inline]
+    pub(super) fn start(&mut self, seed: u64, spp: u32, pixel: [u32; 2], sample_index: u32) {
+        let pixel_key = pixel_key(seed, pixel);
+        self.sample_key = combine(pixel_key, u64::from(sample_index));
+        self.index_in_round = sample_index % spp;
+        let round = sample_index / spp;
+        // Round 0 (the usual case) skips one hash.
+        self.round_key = if round == 0 {
+            pixel_key
+        } else {
+            combine(pixel_key, u64::from(round))
+        };
+        self.dimension = 0;
+    }
+
+    /// The key of the current dimension's pattern in this pixel and round; `tag` keeps the
+    /// patterns of different kinds (1D, 2D) of one dimension apart.
+    #[inline]
+    pub(super) fn pattern_key(&self, tag: u64) -> u64 {
+        combine(self.round_key, (self.dimension << 8) | tag)
+    }
+
+    /// 64 random bits for the jitter of the current dimension and pixel sample.
+    #[inline]
+    pub(super) fn jitter_bits(&self) -> u64 {
+        combine(self.sample_key, self.dimension)
+    }
+}
