@@ -6,6 +6,7 @@ use super::sample::{front_normal, RectangleSampler};
 use crate::sampling::distribution::AliasTable;
 use crate::scene::description::{ShapeDesc, ShapeKind};
 use glam::{Affine3A, Mat3, Vec2, Vec3};
+use rayon::prelude::*;
 use std::path::Path;
 
 /// One primitive as the acceleration structure sees it.
@@ -96,12 +97,10 @@ fn push_prims(out: &mut Built, shape: u32, data: &ShapeData) {
     };
     match data {
         ShapeData::Mesh(m) => {
-            for (k, t) in m.indices.iter().enumerate() {
-                push(
-                    Prim::Tri(TriSoa::new(t.map(|v| m.positions[v as usize]))),
-                    k as u32,
-                );
-            }
+            let tri = |t: &[u32; 3]| Prim::Tri(TriSoa::new(t.map(|v| m.positions[v as usize])));
+            out.prims.par_extend(m.indices.par_iter().map(tri));
+            out.ids
+                .extend((0..m.indices.len() as u32).map(|prim| PrimId { shape, prim }));
         }
         &ShapeData::Sphere { center, radius, .. } => push(Prim::Sphere { center, radius }, 0),
         ShapeData::Disk(_) => push(Prim::Disk(shape), 0),
@@ -168,10 +167,13 @@ fn shape_data(
             normals,
             indices,
         } => {
-            let pos = positions.iter().map(|&p| m.transform_point3(p)).collect();
+            let pos = positions
+                .par_iter()
+                .map(|&p| m.transform_point3(p))
+                .collect();
             let nm = Mat3::from(m.matrix3).inverse().transpose();
             let nrm = normals
-                .iter()
+                .par_iter()
                 .map(|&n| (nm * n).normalize_or_zero())
                 .collect();
             ShapeData::Mesh(mesh(i, pos, nrm, indices.clone(), flip, false)?)
@@ -223,7 +225,7 @@ pub(crate) fn mesh(
         indices.iter_mut().for_each(|t| t.swap(1, 2));
     }
     let areas: Vec<f32> = indices
-        .iter()
+        .par_iter()
         .map(|t| {
             let [a, b, c] = t.map(|v| positions[v as usize]);
             0.5 * (b - a).cross(c - a).length()

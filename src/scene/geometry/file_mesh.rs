@@ -8,6 +8,7 @@ use crate::scene::description::ShapeKind;
 use crate::scene::mesh_file::obj::read_obj;
 use crate::scene::mesh_file::{ply::read_ply, serialized::read_serialized, TriangleMesh};
 use glam::{Affine3A, Mat3, Vec2, Vec3};
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// The world-space mesh of shape `i` if its kind is read from a file, else `None`.
@@ -67,7 +68,7 @@ fn world_mesh(
 ) -> Result<MeshData, GeometryError> {
     let pos: Vec<Vec3> = file
         .positions
-        .iter()
+        .par_iter()
         .map(|&p| m.transform_point3(p))
         .collect();
     let nrm = if face_normals {
@@ -77,7 +78,7 @@ fn world_mesh(
     } else {
         let nm = Mat3::from(m.matrix3).inverse().transpose();
         file.normals
-            .iter()
+            .par_iter()
             .map(|&n| (nm * n).normalize_or_zero())
             .collect()
     };

@@ -68,6 +68,7 @@ use crate::scene::description::ShapeDesc;
 use build::{Prim, PrimId, ShapeData};
 use glam::{Vec2, Vec3, Vec3A};
 use query::{HitRecord, RayQuery, Stored};
+use rayon::prelude::*;
 use std::f32::consts::PI;
 use std::path::Path;
 
@@ -130,11 +131,16 @@ impl Geometry {
     ) -> Result<Self, GeometryError> {
         let built = build::build(shapes, base_dir)?;
         let q = RayQuery::build(accel, &built);
-        let ids: Vec<PrimId> = q.slots.iter().map(|&i| built.ids[i as usize]).collect();
+        // Gathers over every primitive, in parallel (`collect` keeps the order).
+        let ids: Vec<PrimId> = q.slots.par_iter().map(|&i| built.ids[i as usize]).collect();
         Ok(Self {
-            prims: q.slots.iter().map(|&i| built.prims[i as usize]).collect(),
+            prims: q
+                .slots
+                .par_iter()
+                .map(|&i| built.prims[i as usize])
+                .collect(),
             face_ng: ids
-                .iter()
+                .par_iter()
                 .map(|id| face_normal(&built.shapes, id))
                 .collect(),
             ids,

@@ -9,7 +9,7 @@
 //! elements are read past and ignored. Faces with more than three corners are
 //! fan-triangulated (Mitsuba 3.9 refuses them; the OBJ reader splits them the same way).
 //!
-//! Binary payloads are decoded by [`super::ply_binary`] (the same values, faster); ASCII
+//! Binary payloads are decoded by `mesh_file/ply_binary.rs` (the same values, faster); ASCII
 //! ones by `ply-rs-bw`.
 
 use super::ply_binary::{scalar_size, ItemError, Payload};

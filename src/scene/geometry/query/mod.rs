@@ -22,6 +22,7 @@ use super::Ray;
 use crate::scene::accel::{Aabb, Accel, AccelKind, Bvh4};
 use packed_bvh::PackedBvh;
 use pairing::Unit;
+use rayon::prelude::*;
 use scalar::{hit_disk, hit_sphere, TriRay};
 
 /// Where a closest-hit query found its hit: stored primitive (slot) and barycentrics.
@@ -87,7 +88,7 @@ impl RayQuery {
         if kind == AccelKind::Bvh {
             let units = pairing::units(built);
             let boxes: Vec<Aabb> = units
-                .iter()
+                .par_iter()
                 .map(|u| unit_bounds(u, prims, &built.shapes))
                 .collect();
             let bvh = Bvh4::build(&boxes);

@@ -181,12 +181,17 @@ fn pair_range(
     // (edge, triangle, which of its edges), sorted; `at[3 (i − start) + k]` is where
     // triangle i's edge k landed.
     let start = range.start;
-    let mut edges = Vec::with_capacity(3 * range.len());
-    for i in range.clone() {
-        if let Some(t) = tri(i) {
-            edges.extend((0..3).map(|k| (edge(t[k], t[(k + 1) % 3]), i as u32, k as u8)));
-        }
-    }
+    let mut edges: Vec<_> = range
+        .clone()
+        .into_par_iter()
+        .flat_map_iter(|i| {
+            let t = tri(i);
+            (0..3).filter_map(move |k| {
+                let t = t?;
+                Some((edge(t[k], t[(k + 1) % 3]), i as u32, k as u8))
+            })
+        })
+        .collect();
     // The entries differ (each names its triangle and edge), so any sort gives this order.
     edges.par_sort_unstable();
     let mut at = vec![0u32; 3 * range.len()];
