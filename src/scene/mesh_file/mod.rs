@@ -10,6 +10,8 @@
 pub mod obj;
 pub mod ply;
 mod ply_binary;
+#[cfg(test)]
+mod ply_binary_tests;
 pub mod serialized;
 
 use crate::scene::loader::{SceneError, SceneErrorKind};
