@@ -240,7 +240,7 @@ fn split<'a>(input: &[Aabb], span: Span<'a>, depth: u32) -> Option<(Split, Span<
 /// bins per unit length. As `((c − lo) · scale) as usize` capped at `BINS − 1`, clamped in
 /// floating point first (the same bins: NaN and negatives give 0 either way).
 #[inline(always)]
-fn bins_of(c: Vec3A, lo: Vec3A, scale: Vec3A) -> [usize; 3] {
+pub(super) fn bins_of(c: Vec3A, lo: Vec3A, scale: Vec3A) -> [usize; 3] {
     let x = ((c - lo) * scale)
         .max(Vec3A::ZERO)
         .min(Vec3A::splat((BINS - 1) as f32));

@@ -279,3 +279,31 @@ fn degenerate_and_deep_inputs_match_the_reference() {
         }
     }
 }
+
+#[test]
+fn bins_match_the_saturating_conversion() {
+    // Random centres, bin edges (whole numbers and their neighbours), values past the last
+    // bin, below the first, infinite and NaN: the bin is `(x as usize).min(BINS - 1)`.
+    let mut rng = Pcg64::seed_from_u64(11);
+    let mut xs: Vec<f32> = (0..10_000)
+        .map(|_| 20.0 * uniform(&mut rng) - 2.0)
+        .collect();
+    for k in 0..=BINS as u32 + 1 {
+        let f = k as f32;
+        xs.extend([f, f.next_down(), f.next_up()]);
+    }
+    xs.extend([
+        -0.0,
+        -1e30,
+        1e30,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        1e-45,
+    ]);
+    for x in xs {
+        let want = (x as usize).min(BINS - 1);
+        let got = super::bvh_build::bins_of(Vec3A::splat(x), Vec3A::ZERO, Vec3A::ONE);
+        assert_eq!(got, [want; 3], "x = {x}");
+    }
+}
