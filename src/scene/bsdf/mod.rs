@@ -1,6 +1,6 @@
 //! Materials: Mitsuba 3's `diffuse`, `conductor`, `roughconductor` (both with the named
 //! materials of [`named_conductor`]), `dielectric`, `roughdielectric`, `thindielectric`,
-//! `plastic`, `roughplastic` and `twosided`, as [`Bsdf`] implementations in the local z-up
+//! `plastic`, `roughplastic`, `principled` (reflection only) and `twosided`, as [`Bsdf`] implementations in the local z-up
 //! frame.
 //!
 //! One-sided BSDFs are black from the back (`wo.z ≤ 0`), as in Mitsuba; [`Sided`] adds the
@@ -17,6 +17,9 @@ mod mask;
 mod named_conductors;
 mod ndf;
 mod plastic;
+mod principled;
+mod principled_lobes;
+mod principled_params;
 mod rough_conductor;
 mod rough_dielectric;
 mod rough_plastic;
@@ -32,6 +35,8 @@ pub use mask::Mask;
 pub use named_conductors::{conductor_names, named_conductor};
 pub use ndf::Ndf;
 pub use plastic::Plastic;
+pub use principled::Principled;
+pub use principled_params::{PrincipledParams, MAX_SPECULAR};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
@@ -62,6 +67,8 @@ pub enum AnyBsdf {
     Plastic(Plastic),
     /// Diffuse base under a rough coating.
     RoughPlastic(RoughPlastic),
+    /// Mitsuba's `principled` (the Disney BRDF), reflection only.
+    Principled(Principled),
     /// A blend of two materials.
     Blend(Blend),
     /// A material with an opacity.
@@ -79,6 +86,7 @@ macro_rules! dispatch {
             AnyBsdf::ThinDielectric($b) => $e,
             AnyBsdf::Plastic($b) => $e,
             AnyBsdf::RoughPlastic($b) => $e,
+            AnyBsdf::Principled($b) => $e,
             AnyBsdf::Blend($b) => $e,
             AnyBsdf::Mask($b) => $e,
         }
@@ -284,6 +292,7 @@ impl AnyBsdf {
                 int_ior / ext_ior,
                 *nonlinear,
             )?),
+            BsdfDesc::Principled(params) => AnyBsdf::Principled(Principled::new(*params)?),
             BsdfDesc::Blend {
                 weight,
                 first,

@@ -33,6 +33,10 @@ impl AnyBsdf {
                 b.weight = v.x.clamp(0.0, 1.0);
                 return true;
             }
+            (AnyBsdf::Principled(b), P::BaseColor) => {
+                b.set_base_color(v);
+                return true;
+            }
             (AnyBsdf::Mask(b), P::Opacity) => {
                 b.opacity = v.x.clamp(0.0, 1.0);
                 return true;

@@ -1,0 +1,230 @@
+//! Mitsuba 3's `principled` BSDF (the Disney BRDF), reflection only: a diffuse lobe with
+//! retro-reflection, flatness and sheen, a main anisotropic GGX lobe whose Fresnel blends a
+//! dielectric, a tinted dielectric and a metal, and a GTR1 clearcoat. The model and where
+//! each term comes from: `docs/bsdf-models.md`, section "Principled".
+
+use super::fresnel_dielectric;
+use super::principled_lobes::{
+    clearcoat_alpha, gtr1_d, gtr1_sample, r0_of_eta, schlick, schlick_weight, smith_g1_isotropic,
+    AnisoGgx,
+};
+use super::principled_params::PrincipledParams;
+use crate::integrator::{is_positive, Bsdf, BsdfFlags, BsdfSample};
+use crate::sampling::warp::{CosineHemisphere, Warp};
+use crate::sampling::SamplingError;
+use glam::{Vec2, Vec3};
+use std::f32::consts::FRAC_1_PI;
+
+/// Roughness of the clearcoat's Smith masking (Burley 2012, §5.6).
+const CLEARCOAT_G_ALPHA: f32 = 0.25;
+/// Normal-incidence reflectance of the clearcoat (index 1.5; Burley 2012, §5.6).
+const CLEARCOAT_R0: f32 = 0.04;
+
+/// The principled BSDF of Burley 2012 ("Physically Based Shading at Disney", SIGGRAPH
+/// course notes) with the diffuse split of Burley 2015 ("Extending the Disney BRDF to a
+/// BSDF with Integrated Subsurface Scattering", SIGGRAPH course notes), as Mitsuba 3 defines
+/// it; see [`PrincipledParams`] for the parameters. One-sided: black when `wo` or `wi` is
+/// below the surface. `f · cos θ_i` is
+///
+/// - diffuse, weight `1 − metallic`: `cos θ_i (base/π · ((1 − flatness)(f_d + f_retro) +
+///   flatness · f_ss) + f_sheen)`;
+/// - main specular: `F(wo·h) D(h) G₁(wo) G₁(wi) / (4 cos θ_o)`, anisotropic GGX;
+/// - clearcoat: `clearcoat/4 · F_s(wo·h) D_gtr1(h) G₁(wo) G₁(wi) · cos θ_i` (Mitsuba leaves
+///   out the `1/(4 cos θ_o cos θ_i)` here, and so do we, to match it).
+///
+/// Sampling picks a lobe with probabilities proportional to `(1 − metallic) ·
+/// diffuse_reflectance_sampling_rate`, `main_specular_sampling_rate` and `clearcoat/4 ·
+/// clearcoat_sampling_rate`, then draws a cosine-weighted direction, a visible GGX normal
+/// or a GTR1 normal; the pdf is the mixture of the three.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Principled {
+    /// The parameters, as given.
+    pub params: PrincipledParams,
+    ggx: AnisoGgx,
+    clearcoat_alpha: f32,
+    /// Probabilities of sampling the diffuse, main specular and clearcoat lobes (sum 1, or
+    /// all 0 when every rate is 0).
+    probs: [f32; 3],
+}
+
+impl Principled {
+    /// The material with parameters `params`.
+    ///
+    /// # Errors
+    /// A parameter out of range ([`PrincipledParams::check`]).
+    pub fn new(params: PrincipledParams) -> Result<Self, SamplingError> {
+        params.check()?;
+        let p = &params;
+        let weights = [
+            (1.0 - p.metallic) * p.diffuse_reflectance_sampling_rate,
+            p.main_specular_sampling_rate,
+            0.25 * p.clearcoat * p.clearcoat_sampling_rate,
+        ];
+        let total: f32 = weights.iter().sum();
+        let probs = if total > 0.0 {
+            weights.map(|w| w / total)
+        } else {
+            [0.0; 3]
+        };
+        Ok(Self {
+            params,
+            ggx: AnisoGgx::new(p.roughness, p.anisotropic),
+            clearcoat_alpha: clearcoat_alpha(p.clearcoat_gloss),
+            probs,
+        })
+    }
+
+    /// Set the base colour (what a texture on `base_color` does at each hit).
+    pub fn set_base_color(&mut self, c: Vec3) {
+        self.params.base_color = c;
+    }
+
+    /// The base colour over its luminance (white for a black base): the hue that
+    /// `spec_tint` and `sheen_tint` blend toward (Burley 2012, §5.3 "Ctint").
+    fn tint(&self) -> Vec3 {
+        let c = self.params.base_color;
+        let lum = c.dot(Vec3::new(0.212671, 0.715160, 0.072169));
+        if lum > 0.0 {
+            c / lum
+        } else {
+            Vec3::ONE
+        }
+    }
+
+    /// The main lobe's Fresnel term at `cos = wo·h`: `(1 − metallic)(1 − spec_tint) ·
+    /// F_dielectric + (1 − metallic) spec_tint · Schlick(tint · R0(η)) + metallic ·
+    /// Schlick(base_color)` (Burley 2012, §5.3 and §5.5).
+    fn main_fresnel(&self, cos: f32, tint: Vec3) -> Vec3 {
+        let p = &self.params;
+        let dielectric = fresnel_dielectric(cos, p.eta).0;
+        let schlick3 = |r0: Vec3| {
+            Vec3::new(
+                schlick(r0.x, cos, p.eta),
+                schlick(r0.y, cos, p.eta),
+                schlick(r0.z, cos, p.eta),
+            )
+        };
+        let mut f = Vec3::splat((1.0 - p.metallic) * (1.0 - p.spec_tint) * dielectric);
+        if p.spec_tint > 0.0 {
+            f += (1.0 - p.metallic) * p.spec_tint * schlick3(tint * r0_of_eta(p.eta));
+        }
+        if p.metallic > 0.0 {
+            f += p.metallic * schlick3(p.base_color);
+        }
+        f
+    }
+
+    /// The diffuse lobe's `f · cos θ_i` without the `1 − metallic` weight (Burley 2015,
+    /// §5.3, eqs. 4–5 for `f_d` and `f_retro`; Burley 2012, §5.3 for the flat `f_ss`,
+    /// after Hanrahan and Krueger, and the sheen).
+    fn diffuse(&self, wo: Vec3, wi: Vec3, h: Vec3, tint: Vec3) -> Vec3 {
+        let p = &self.params;
+        let (fo, fi) = (schlick_weight(wo.z), schlick_weight(wi.z));
+        let cos_d = h.dot(wi);
+        let mut shape = 0.0;
+        if p.flatness < 1.0 {
+            let rr = 2.0 * p.roughness * cos_d * cos_d;
+            let f_d = (1.0 - 0.5 * fo) * (1.0 - 0.5 * fi);
+            let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
+            shape += (1.0 - p.flatness) * (f_d + f_retro);
+        }
+        if p.flatness > 0.0 {
+            let f90 = p.roughness * cos_d * cos_d;
+            let fss = (1.0 + (f90 - 1.0) * fo) * (1.0 + (f90 - 1.0) * fi);
+            let f_ss = 1.25 * (fss * (1.0 / (wo.z + wi.z) - 0.5) + 0.5);
+            shape += p.flatness * f_ss;
+        }
+        let mut f = p.base_color * (FRAC_1_PI * shape);
+        if p.sheen > 0.0 {
+            let c_sheen = Vec3::ONE + p.sheen_tint * (tint - Vec3::ONE);
+            f += schlick_weight(cos_d) * p.sheen * c_sheen;
+        }
+        f * wi.z
+    }
+}
+
+impl Bsdf for Principled {
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags {
+            smooth: true,
+            glossy: true,
+            ..BsdfFlags::default()
+        }
+    }
+
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        self.eval_pdf(wo, wi).0
+    }
+
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_pdf(wo, wi).1
+    }
+
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return (Vec3::ZERO, 0.0);
+        }
+        let Some(h) = (wo + wi).try_normalize() else {
+            return (Vec3::ZERO, 0.0);
+        };
+        let p = &self.params;
+        let tint = self.tint();
+        let (cos_oh, cos_ih) = (wo.dot(h), wi.dot(h));
+        // Main specular lobe.
+        let d = self.ggx.d(h);
+        let g = self.ggx.g1(wo, h) * self.ggx.g1(wi, h);
+        let mut f = self.main_fresnel(cos_oh, tint) * (d * g / (4.0 * wo.z));
+        let mut pdf = 0.0;
+        if is_positive(cos_ih) {
+            pdf += self.probs[1] * self.ggx.pdf_visible(wo, h) / (4.0 * cos_ih);
+        }
+        // Clearcoat.
+        if p.clearcoat > 0.0 {
+            let d_c = gtr1_d(h.z, self.clearcoat_alpha);
+            let g_c = smith_g1_isotropic(wo, CLEARCOAT_G_ALPHA)
+                * smith_g1_isotropic(wi, CLEARCOAT_G_ALPHA);
+            let f_c = schlick(CLEARCOAT_R0, cos_oh, 1.5);
+            f += Vec3::splat(0.25 * p.clearcoat * f_c * d_c * g_c * wi.z);
+            if is_positive(cos_ih) {
+                pdf += self.probs[2] * d_c * h.z / (4.0 * cos_ih);
+            }
+        }
+        // Diffuse, retro-reflection, flatness and sheen.
+        if p.metallic < 1.0 {
+            f += (1.0 - p.metallic) * self.diffuse(wo, wi, h, tint);
+        }
+        pdf += self.probs[0] * CosineHemisphere.pdf(wi);
+        (f, pdf)
+    }
+
+    fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
+        if wo.z <= 0.0 {
+            return None;
+        }
+        let [p_diffuse, p_main, _] = self.probs;
+        let wi = if u1 < p_diffuse {
+            CosineHemisphere.sample(u2)
+        } else {
+            let m = if u1 < p_diffuse + p_main {
+                self.ggx.sample_visible(wo, u2)?
+            } else {
+                gtr1_sample(u2, self.clearcoat_alpha)
+            };
+            2.0 * wo.dot(m) * m - wo
+        };
+        if wi.z <= 0.0 {
+            return None;
+        }
+        let (f, pdf) = self.eval_pdf(wo, wi);
+        if !is_positive(pdf) || !pdf.is_finite() {
+            return None;
+        }
+        Some(BsdfSample {
+            wi,
+            weight: f / pdf,
+            pdf,
+            delta: false,
+            eta: 1.0,
+        })
+    }
+}
