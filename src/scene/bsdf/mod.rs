@@ -67,8 +67,9 @@ pub enum AnyBsdf {
     Plastic(Plastic),
     /// Diffuse base under a rough coating.
     RoughPlastic(RoughPlastic),
-    /// Mitsuba's `principled` (the Disney BRDF), reflection only.
-    Principled(Principled),
+    /// Mitsuba's `principled` (the Disney BRDF), reflection only; boxed, so that its many
+    /// parameters do not enlarge every other material.
+    Principled(Box<Principled>),
     /// A blend of two materials.
     Blend(Blend),
     /// A material with an opacity.
@@ -292,7 +293,9 @@ impl AnyBsdf {
                 int_ior / ext_ior,
                 *nonlinear,
             )?),
-            BsdfDesc::Principled(params) => AnyBsdf::Principled(Principled::new(*params)?),
+            BsdfDesc::Principled(params) => {
+                AnyBsdf::Principled(Box::new(Principled::new(*params)?))
+            }
             BsdfDesc::Blend {
                 weight,
                 first,
