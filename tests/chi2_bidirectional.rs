@@ -1,6 +1,7 @@
 //! The bidirectional estimators' own sampling routines pass the chi-square harness against
 //! the densities they state: camera ray directions against `Camera::direction_pdf` (the
-//! density and importance of the camera endpoint), emission directions of an area light and
+//! density and importance of the camera endpoint) and, from one lens point, against
+//! `Camera::direction_pdf_from_lens` (the thin lens's), emission directions of an area light and
 //! arrival directions of an environment against `Lights::emission_pdf`, and emission points
 //! on a sphere light (uniform by area, so their normals are uniform over the sphere).
 //!
@@ -54,6 +55,35 @@ fn camera_ray_directions_follow_the_camera_density() {
         "camera ray directions",
     )
     .run(|u| cam.generate_ray(u * size).dir, |w| cam.direction_pdf(w))
+    .assert_passed();
+}
+
+/// The thin lens: from one lens point, the directions of rays through uniform film
+/// positions follow `Camera::direction_pdf_from_lens` (the density and importance of the
+/// lens endpoint).
+#[test]
+fn thin_lens_ray_directions_follow_the_lens_density() {
+    let desc = mcrt::scene::cornell_box::cornell_box_with(1, 64, -1);
+    let mut sensor = desc.sensor.clone();
+    sensor.film.width = 96;
+    sensor.lens = Some(mcrt::scene::description::ThinLensDesc {
+        aperture_radius: 0.2,
+        focus_distance: 2.5,
+    });
+    let cam = Camera::new(&sensor).expect("camera builds");
+    let size = Vec2::new(cam.width() as f32, cam.height() as f32);
+    let u_lens = Vec2::new(0.85, 0.3);
+    let lens = cam.lens_point(u_lens);
+    let corner = cam.generate_ray_through_lens(Vec2::ZERO, u_lens).0.dir;
+    let half = corner.dot(cam.forward()).clamp(-1.0, 1.0).acos() * 1.1;
+    chi2(
+        Directions::cap(cam.forward(), half).resolution(48, 64),
+        "thin-lens ray directions",
+    )
+    .run(
+        |u| cam.generate_ray_through_lens(u * size, u_lens).0.dir,
+        |w| cam.direction_pdf_from_lens(lens, w),
+    )
     .assert_passed();
 }
 

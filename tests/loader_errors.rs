@@ -430,6 +430,22 @@ fn texture_errors() {
         "<texture type=\"bitmap\"",
         "more than the 67108864 a texture may have",
     );
+    // An EXR whose header claims 10⁵ × 10⁵ pixels, as a texture and as an environment map:
+    // refused from the header, before the decoder allocates the layer.
+    let huge = dir.join("huge.exr");
+    std::fs::write(&huge, exr_claiming(100_000, 100_000)).unwrap();
+    let e = err(&bitmap(&file(huge.to_str().unwrap())));
+    check(
+        &e,
+        3,
+        "<texture type=\"bitmap\"",
+        "100000 × 100000 pixels is more than the 67108864 allowed",
+    );
+    let e = mcrt::scene::light::EnvMap::load(&huge, 1.0, glam::Mat4::IDENTITY).unwrap_err();
+    assert!(
+        e.contains("100000 × 100000 pixels is more than the 67108864 allowed"),
+        "{e}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 
     let grid = file("textures/grid.png");
@@ -463,6 +479,26 @@ fn texture_errors() {
         let e = err(&body);
         check(&e, line, element, words);
     }
+}
+
+/// A valid 2 × 2 EXR whose data and display windows are then rewritten to claim `w × h`
+/// pixels (the chunk table and pixels stay those of 2 × 2).
+fn exr_claiming(w: i32, h: i32) -> Vec<u8> {
+    let path = std::env::temp_dir().join(format!("mcrt-exr-claiming-{}.exr", std::process::id()));
+    mcrt::scene::film::write_exr(&path, 2, 2, &[glam::Vec3::ONE; 4]).unwrap();
+    let mut bytes = std::fs::read(&path).unwrap();
+    std::fs::remove_file(&path).ok();
+    for name in [&b"dataWindow\0box2i\0"[..], &b"displayWindow\0box2i\0"[..]] {
+        let at = bytes
+            .windows(name.len())
+            .position(|x| x == name)
+            .expect("a window attribute")
+            + name.len()
+            + 4;
+        bytes[at + 8..at + 12].copy_from_slice(&(w - 1).to_le_bytes());
+        bytes[at + 12..at + 16].copy_from_slice(&(h - 1).to_le_bytes());
+    }
+    bytes
 }
 
 /// The signature, a valid IHDR chunk (8-bit RGB) of a PNG of `w × h` pixels, an empty

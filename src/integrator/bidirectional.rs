@@ -119,4 +119,40 @@ pub trait BidirectionalScene: Scene {
 
     /// Film size in pixels.
     fn film_size(&self) -> (u32, u32);
+
+    /// Whether the camera has a lens of positive aperture: camera rays and connections to
+    /// the camera then take a lens sample. The default, `false`, is the pinhole that the
+    /// other camera methods describe; a lens camera implements the `*_lens` methods below
+    /// as well (the thin lens's densities are derived in `src/scene/camera/thin_lens.rs`).
+    fn camera_has_lens(&self) -> bool {
+        false
+    }
+
+    /// The camera ray through film position `raster` and the lens point of
+    /// `u_lens ∈ [0,1)²`, as [`Self::camera_ray`].
+    fn camera_ray_through_lens(&self, raster: Vec2, _u_lens: Vec2) -> (Vec3, Vec3, f32) {
+        self.camera_ray(raster)
+    }
+
+    /// The point on the lens that the camera ray from `origin` along `dir` left: the
+    /// camera subpath's first vertex. The default is [`Self::camera_position`].
+    fn camera_lens_point(&self, _origin: Vec3, _dir: Vec3) -> Vec3 {
+        self.camera_position()
+    }
+
+    /// [`Self::camera_pdf`] for a ray leaving the lens point `lens` along `dir`.
+    fn camera_pdf_from_lens(&self, _lens: Vec3, dir: Vec3) -> f32 {
+        self.camera_pdf(dir)
+    }
+
+    /// [`Self::connect_camera`] through the lens point of `u_lens ∈ [0,1)²` (chosen with
+    /// the same density as camera rays choose theirs): that lens point and the connection
+    /// from it. The default connects to [`Self::camera_position`].
+    fn connect_camera_through_lens(
+        &self,
+        p: Vec3,
+        _u_lens: Vec2,
+    ) -> Option<(Vec3, CameraConnection)> {
+        self.connect_camera(p).map(|c| (self.camera_position(), c))
+    }
 }

@@ -245,10 +245,13 @@ impl Camera {
             return None;
         }
         let cos = q.z / len;
-        // The image plane's area (one unit in front) that the rendered window covers.
+        Some((r, 1.0 / (self.image_area() * cos * cos * cos)))
+    }
+
+    /// The image plane's area (one unit in front) that the rendered window covers.
+    fn image_area(&self) -> f32 {
         let window = self.width as f32 * self.height as f32 * self.inv_res.x * self.inv_res.y;
-        let area = 4.0 * self.tan_half.x * self.tan_half.y * window;
-        Some((r, 1.0 / (area * cos * cos * cos)))
+        4.0 * self.tan_half.x * self.tan_half.y * window
     }
 
     /// The film position of the world point `p`, if `p` is in the field of view and between

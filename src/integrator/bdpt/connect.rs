@@ -62,8 +62,14 @@ pub(crate) fn connect<S: BidirectionalScene, R: SampleSource>(
         if !qs.connectible() {
             return None;
         }
-        let c = scene.connect_camera(qs.sp.p)?;
-        let mut cam = bare_point(scene.camera_position());
+        // A lens point for the connection, drawn as camera rays draw theirs (its density
+        // cancels against theirs in every weight); a pinhole draws no sample.
+        let (lens, c) = if scene.camera_has_lens() {
+            scene.connect_camera_through_lens(qs.sp.p, samples.next_2d())?
+        } else {
+            (scene.camera_position(), scene.connect_camera(qs.sp.p)?)
+        };
+        let mut cam = bare_point(lens);
         cam.ng = scene.camera_forward();
         let cam_v = Vertex::new(Kind::Camera, cam, Vec3::ONE, 1.0);
         let f = if s == 1 {

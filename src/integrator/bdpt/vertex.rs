@@ -259,7 +259,10 @@ impl Vertex {
     ) -> f32 {
         match (self.kind, w_in) {
             (Kind::Light(_), _) | (Kind::Surface, None) => self.pdf_light_along(scene, next, w, d2),
-            (Kind::Camera, _) => self.area_density_along(scene.camera_pdf(w), next, w, d2),
+            (Kind::Camera, _) => {
+                let pdf = scene.camera_pdf_from_lens(self.sp.p, w);
+                self.area_density_along(pdf, next, w, d2)
+            }
             (Kind::Surface, Some(wp)) => {
                 let f = &self.sp.frame;
                 let pdf = scene.bsdf(&self.sp).pdf(f.to_local(wp), f.to_local(w));

@@ -32,10 +32,11 @@ pub(crate) fn camera_subpath<S: BidirectionalScene, R: SampleSource>(
     if lim.max_vertices == 0 {
         return;
     }
-    let mut cam = bare_point(scene.camera_position());
+    let lens = scene.camera_lens_point(origin, dir);
+    let mut cam = bare_point(lens);
     cam.ng = scene.camera_forward();
     path.push(Vertex::new(Kind::Camera, cam, Vec3::ONE, 1.0));
-    let pdf = scene.camera_pdf(dir);
+    let pdf = scene.camera_pdf_from_lens(lens, dir);
     if !is_positive(pdf) {
         return;
     }

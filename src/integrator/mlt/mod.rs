@@ -121,7 +121,11 @@ impl Mlt {
             ((u.next_1d() * n as f32) as usize).min(n - 1)
         };
         let t = k + 1 - s;
-        let (origin, dir, t_max) = scene.camera_ray(raster);
+        let (origin, dir, t_max) = if scene.camera_has_lens() {
+            scene.camera_ray_through_lens(raster, u.next_2d())
+        } else {
+            scene.camera_ray(raster)
+        };
         let lim = |max_vertices| WalkLimits {
             max_vertices,
             rr_depth: u32::MAX,

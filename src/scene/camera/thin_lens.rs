@@ -55,6 +55,95 @@ impl Camera {
     }
 }
 
+/// The thin lens as an endpoint of light subpaths (bidirectional estimators).
+///
+/// For a fixed lens point `a` the film position maps to the focus-plane point `q` linearly,
+/// so the direction from `a` toward `q` has the pinhole's density `1/(A cos³θ)` per
+/// steradian, `θ` now the angle between that direction and the viewing axis: the focus
+/// plane's image area `f²A` and `dA_q/dω = f²/cos³θ` give `(1/(f²A))·f²/cos³θ` (Veach 1997,
+/// thesis, section 10.1.3; pbrt-v4, section 5.2.3, the same for a lens). The lens point is
+/// uniform over the aperture in both the camera subpath and the connection to the camera,
+/// so its density cancels between strategies; the importance per steradian of a
+/// connection is the direction density again, as for the pinhole.
+impl Camera {
+    /// The world-space lens point of `u_lens ∈ [0,1)²` (the concentric map onto the
+    /// aperture, as [`Camera::generate_ray_through_lens`] uses); the camera's position
+    /// without a lens.
+    pub fn lens_point(&self, u_lens: Vec2) -> Vec3 {
+        match self.lens {
+            Some((radius, _)) => self
+                .to_world
+                .transform_point3((UniformDiskConcentric.sample(u_lens) * radius).extend(0.0)),
+            None => self.position(),
+        }
+    }
+
+    /// The lens point a camera ray leaves from: its origin (on the near plane) traced back
+    /// along `dir` to the lens plane; the camera's position without a lens.
+    pub fn lens_point_of_ray(&self, origin: Vec3, dir: Vec3) -> Vec3 {
+        if self.lens.is_none() {
+            return self.position();
+        }
+        let along = self.to_camera.transform_vector3(dir).z;
+        let back = self.to_camera.transform_point3(origin).z / along;
+        if back.is_finite() {
+            origin - dir * back
+        } else {
+            self.position()
+        }
+    }
+
+    /// The focus-plane point (camera space) of the line from the camera-space lens point
+    /// `a` along `d`; `None` unless `d` points forward.
+    fn focus_point(&self, a: Vec3, d: Vec3) -> Option<Vec3> {
+        let focus = self.lens.map_or(1.0, |(_, f)| f);
+        if d.z.is_nan() || d.z <= 0.0 {
+            return None;
+        }
+        let q = a + d * ((focus - a.z) / d.z);
+        q.is_finite().then_some(q)
+    }
+
+    /// [`Camera::direction_density`] for a ray leaving the world-space lens point `lens`
+    /// along `dir`: the film position it came through (inside the image or not) and
+    /// `1/(A cos³θ)`.
+    pub(crate) fn direction_density_from(&self, lens: Vec3, dir: Vec3) -> Option<(Vec2, f32)> {
+        if self.lens.is_none() {
+            return self.direction_density(dir);
+        }
+        let a = self.to_camera.transform_point3(lens);
+        let d = self.to_camera.transform_vector3(dir);
+        let r = self.raster_of_local(self.focus_point(a, d)?)?;
+        let cos = d.z / d.length();
+        (cos.is_finite() && cos > 0.0).then(|| (r, 1.0 / (self.image_area() * cos * cos * cos)))
+    }
+
+    /// Density per steradian of the direction of [`Camera::generate_ray_through_lens`] from
+    /// the lens point `lens` (see [`Camera::lens_point`]) for a film position uniform over
+    /// the image (0 outside the field of view); also the importance `W(ω)` there. For a
+    /// pinhole, [`Camera::direction_pdf`].
+    pub fn direction_pdf_from_lens(&self, lens: Vec3, dir: Vec3) -> f32 {
+        match self.direction_density_from(lens, dir) {
+            Some((r, pdf)) if self.inside(r) => pdf,
+            _ => 0.0,
+        }
+    }
+
+    /// The film position whose rays through the world-space lens point `lens` pass through
+    /// the world point `p` (inside the image or not), if `p` lies between the clip planes.
+    pub(crate) fn raster_through_lens(&self, lens: Vec3, p: Vec3) -> Option<Vec2> {
+        if self.lens.is_none() {
+            return self.raster_of_unbounded(p);
+        }
+        let q = self.to_camera.transform_point3(p);
+        if !(q.z >= self.near && q.z <= self.far) {
+            return None;
+        }
+        let a = self.to_camera.transform_point3(lens);
+        self.raster_of_local(self.focus_point(a, q - a)?)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use crate::scene::camera::Camera;
@@ -129,6 +218,47 @@ mod tests {
         assert!(centre.is_finite() && centre < 1e-5, "{centre}");
         let rim = off_axis(Vec2::new(1.0, 0.3));
         assert!(rim.is_finite() && (rim - 0.25).abs() < 1e-5, "{rim}");
+    }
+
+    /// The lens as an endpoint: the lens point a ray leaves from is the sample's point, and
+    /// a point on the ray maps back to the ray's film position through that lens point.
+    #[test]
+    fn lens_points_and_film_positions_invert_the_rays() {
+        let cam = lens_camera(0.25, 3.0);
+        for (film, u) in [
+            (Vec2::new(384.0, 288.0), Vec2::new(0.1, 0.9)),
+            (Vec2::new(10.5, 500.25), Vec2::new(0.7, 0.3)),
+            (Vec2::new(700.0, 20.0), Vec2::new(0.999, 0.5)),
+        ] {
+            let (ray, _) = cam.generate_ray_through_lens(film, u);
+            let lens = cam.lens_point(u);
+            let back = cam.lens_point_of_ray(ray.origin, ray.dir);
+            assert!((back - lens).length() < 1e-5, "{back} against {lens}");
+            for t in [0.5, 2.0, 9.0] {
+                let r = cam
+                    .raster_through_lens(lens, ray.origin + ray.dir * t)
+                    .unwrap();
+                let err = (r - film).length();
+                assert!(err.is_finite() && err < 2e-2, "{film} {u} {t}: {r}");
+            }
+            let pdf = cam.direction_pdf_from_lens(lens, ray.dir);
+            let cos = ray.dir.dot(cam.forward());
+            let (pin, _) = cam.generate_ray_with_tmax(film);
+            let pin_cos = pin.dir.dot(cam.forward());
+            // The pinhole's density at its own angle, scaled to this ray's angle.
+            let expect = cam.direction_pdf(pin.dir) * (pin_cos / cos).powi(3);
+            assert!(
+                pdf.is_finite() && (pdf / expect - 1.0).abs() < 1e-3,
+                "{pdf} against {expect}"
+            );
+        }
+        // Behind the lens plane and outside the clip range: no film position.
+        assert!(cam
+            .raster_through_lens(
+                cam.lens_point(Vec2::splat(0.3)),
+                cam.position() - cam.forward()
+            )
+            .is_none());
     }
 
     #[test]

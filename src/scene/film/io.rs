@@ -103,6 +103,23 @@ pub fn write_exr(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Resul
 /// Reads the first RGB(A) layer of an OpenEXR file as linear float RGB, row-major from the
 /// top-left: `(width, height, pixels)`.
 pub fn read_exr(path: &Path) -> Result<(u32, u32, Vec<Vec3>), ImageError> {
+    read_exr_at_most(path, u64::MAX)
+}
+
+/// [`read_exr`] for files from users: the headers are read first, and a layer of more than
+/// `max_pixels` pixels is an error before any pixel storage is allocated (a 40-byte header
+/// can claim 2³¹ × 2³¹ pixels).
+pub fn read_exr_at_most(path: &Path, max_pixels: u64) -> Result<(u32, u32, Vec<Vec3>), ImageError> {
+    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| err(path, e))?;
+    for header in meta.headers.iter() {
+        let (w, h) = (header.layer_size.width(), header.layer_size.height());
+        if (w as u64).saturating_mul(h as u64) > max_pixels {
+            return Err(err(
+                path,
+                format!("a layer of {w} × {h} pixels is more than the {max_pixels} allowed"),
+            ));
+        }
+    }
     let img = exr::prelude::read_first_rgba_layer_from_file(
         path,
         |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),

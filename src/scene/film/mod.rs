@@ -20,7 +20,7 @@ mod window;
 
 pub use compare::{compare_blocks, z_two_sided, BlockReport};
 pub use filter::PixelFilter;
-pub use io::{read_exr, write_exr, write_png, ImageError};
+pub use io::{read_exr, read_exr_at_most, write_exr, write_png, ImageError};
 pub use merge::{merge_parts, MergeError};
 pub use output::{OutputError, OutputPlan, DEFAULT_FOLDER, EXIT_INTERRUPTED};
 pub use part::{read_part, write_part, Part, PartInfo};

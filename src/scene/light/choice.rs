@@ -15,7 +15,7 @@
 
 use crate::sampling::distribution::AliasTable;
 use crate::sampling::sampler::ONE_MINUS_EPSILON;
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 /// Lights up to which the choice is made per shading point (its cost is linear in them).
 pub(crate) const MAX_SPATIAL: usize = 16;
@@ -39,8 +39,9 @@ pub(crate) enum LightChoice {
     Power(AliasTable),
     /// By power over squared distance at the shading point, mixed with the power shares.
     Spatial {
-        /// Per light: centre, squared radius (with a floor), power.
-        lights: Vec<(Vec3, f32, f32)>,
+        /// Four lights at a time (structure of arrays, for 4-wide arithmetic): centres' x, y
+        /// and z, squared radii (with a floor), powers; unused lanes have power 0.
+        lights: Vec<[Vec4; 5]>,
         /// Per light: ε · Φ_i / ΣΦ.
         floor: Vec<f32>,
         /// The power distribution, for points where the weights are not finite.
@@ -59,9 +60,19 @@ impl LightChoice {
             Some(placed) if spatial && placed.len() == power.len() => {
                 let total: f32 = power.iter().sum();
                 let lights = placed
-                    .iter()
-                    .zip(power)
-                    .map(|(l, &phi)| (l.center, (l.radius * l.radius).max(f32::MIN_POSITIVE), phi))
+                    .chunks(4)
+                    .zip(power.chunks(4))
+                    .map(|(places, powers)| {
+                        let mut g = [Vec4::ZERO, Vec4::ZERO, Vec4::ZERO, Vec4::ONE, Vec4::ZERO];
+                        for (k, (l, &phi)) in places.iter().zip(powers).enumerate() {
+                            g[0][k] = l.center.x;
+                            g[1][k] = l.center.y;
+                            g[2][k] = l.center.z;
+                            g[3][k] = (l.radius * l.radius).max(f32::MIN_POSITIVE);
+                            g[4][k] = phi;
+                        }
+                        g
+                    })
                     .collect();
                 let floor = power.iter().map(|&phi| DEFENSIVE * phi / total).collect();
                 Some(Self::Spatial {
@@ -74,16 +85,25 @@ impl LightChoice {
         }
     }
 
-    /// The unnormalised weights `w_i(p)` into `w`, and their sum; `None` where the sum is
-    /// not a positive finite number (then the power choice stands in, at both sampling and
-    /// density evaluation, so the two always agree).
+    /// The unnormalised weights `w_i(p)` into `w`, four lights at a time, and their sum;
+    /// `None` where the sum is not a positive finite number (then the power choice stands
+    /// in, at both sampling and density evaluation, so the two always agree). A NaN
+    /// distance gives way to the radius floor (`max` returns its second operand then).
     #[inline]
-    fn weights(lights: &[(Vec3, f32, f32)], p: Vec3, w: &mut [f32; MAX_SPATIAL]) -> Option<f32> {
-        let mut sum = 0.0;
-        for (slot, &(c, r2, phi)) in w.iter_mut().zip(lights) {
-            *slot = phi / (c - p).length_squared().max(r2);
-            sum += *slot;
+    fn weights(lights: &[[Vec4; 5]], p: Vec3, w: &mut [f32; MAX_SPATIAL]) -> Option<f32> {
+        let mut sum = Vec4::ZERO;
+        for (slot, g) in w.chunks_exact_mut(4).zip(lights) {
+            let (dx, dy, dz) = (
+                g[0] - Vec4::splat(p.x),
+                g[1] - Vec4::splat(p.y),
+                g[2] - Vec4::splat(p.z),
+            );
+            let d2 = dx * dx + dy * dy + dz * dz;
+            let wk = g[4] / d2.max(g[3]);
+            wk.write_to_slice(slot);
+            sum += wk;
         }
+        let sum = sum.element_sum();
         (sum.is_finite() && sum > 0.0).then_some(sum)
     }
 
@@ -94,21 +114,19 @@ impl LightChoice {
         }
     }
 
-    /// At `p`: the spatial part of each light's probability, `(1 − ε)·w_i(p)/Σw`, and the
-    /// power floors `ε·Φ_i/ΣΦ` to add to it; `None` for the power choice (always, or at a
-    /// point where the weights are not finite). Sampling and [`LightChoice::pmf`] both go
-    /// through here, so they agree bit for bit.
+    /// At `p`: the unnormalised weights `w_i(p)`, the scale `(1 − ε)/Σw` that makes them
+    /// the spatial part of each light's probability, and the power floors `ε·Φ_i/ΣΦ` to
+    /// add to it: light `i`'s probability is `w_i·scale + floor_i`. `None` for the power
+    /// choice (always, or at a point where the weights are not finite). Sampling and
+    /// [`LightChoice::pmf`] both go through here, so they agree bit for bit.
     #[inline]
-    fn spatial_at(&self, p: Vec3) -> Option<([f32; MAX_SPATIAL], &[f32])> {
+    fn spatial_at(&self, p: Vec3) -> Option<([f32; MAX_SPATIAL], f32, &[f32])> {
         let Self::Spatial { lights, floor, .. } = self else {
             return None;
         };
         let mut w = [0.0; MAX_SPATIAL];
         let scale = (1.0 - DEFENSIVE) / Self::weights(lights, p, &mut w)?;
-        for x in &mut w {
-            *x *= scale;
-        }
-        Some((w, floor))
+        Some((w, scale, floor))
     }
 
     /// A light chosen at shading point `p` with `u ∈ [0, 1)`, its probability, and `u`
@@ -118,13 +136,13 @@ impl LightChoice {
     /// decorrelated sample value (Mitsuba 3 chooses its emitters this way).
     #[inline]
     pub(crate) fn sample(&self, p: Vec3, u: f32) -> (usize, f32, f32) {
-        let Some((w, floor)) = self.spatial_at(p) else {
+        let Some((w, scale, floor)) = self.spatial_at(p) else {
             return self.power().sample_reusing(u);
         };
         let mut last = (0, 0.0, 0.0);
         let mut cdf = 0.0;
         for (i, (&wi, &fi)) in w.iter().zip(floor).enumerate() {
-            let pi = wi + fi;
+            let pi = wi * scale + fi;
             if pi > 0.0 {
                 last = (i, pi, cdf);
                 cdf += pi;
@@ -144,7 +162,7 @@ impl LightChoice {
     #[inline]
     pub(crate) fn pmf(&self, p: Vec3, i: usize) -> f32 {
         match self.spatial_at(p) {
-            Some((w, floor)) => floor.get(i).map_or(0.0, |&fi| w[i] + fi),
+            Some((w, scale, floor)) => floor.get(i).map_or(0.0, |&fi| w[i] * scale + fi),
             None => self.power().pmf(i),
         }
     }

@@ -6,7 +6,8 @@
 use crate::integrator::is_positive;
 use crate::sampling::distribution::PiecewiseLinear2D;
 use crate::sampling::warp::{LatLong, Warp};
-use crate::scene::film::read_exr;
+use crate::scene::film::read_exr_at_most;
+use crate::scene::texture::MAX_TEXTURE_PIXELS;
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use std::path::Path;
 
@@ -90,7 +91,7 @@ impl EnvMap {
     /// Reads the map from an EXR file, with a scale on its radiance and a map-to-world
     /// rotation.
     pub fn load(path: &Path, scale: f32, to_world: Mat4) -> Result<Self, String> {
-        let (w, h, px) = read_exr(path).map_err(|e| e.to_string())?;
+        let (w, h, px) = read_exr_at_most(path, MAX_TEXTURE_PIXELS).map_err(|e| e.to_string())?;
         let texels: Vec<Vec3> = px.iter().map(|p| *p * scale).collect();
         Self::from_texels(w as usize, h as usize, texels, to_world)
     }

@@ -17,6 +17,10 @@ const BATCH: usize = 64;
 /// Most samples per pixel in one pass (bounds the splats a batch holds).
 const MAX_PASS: u32 = 16;
 
+/// The sample stream of a thin lens's sample (after the estimator's three: camera
+/// subpath, light subpath, connections).
+const LENS_STREAM: u32 = 3;
+
 /// What one tile hands back.
 struct TileOut {
     pixels: Vec<(usize, PixelAccum)>,
@@ -72,7 +76,14 @@ fn render_tile_with<S: BidirectionalScene, R: Sampler>(
                 sampler.start_pixel_sample([x, y], s);
                 let off = p.filter.sample(sampler.next_2d());
                 let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
-                let (ray, t_max) = p.camera.generate_ray_with_tmax(film);
+                // A thin lens's sample comes from a stream of its own (the estimator starts
+                // the camera subpath's stream itself); a pinhole draws none.
+                let (ray, t_max) = if p.camera.has_lens() {
+                    sampler.start_stream(LENS_STREAM);
+                    p.camera.generate_ray_through_lens(film, sampler.next_2d())
+                } else {
+                    p.camera.generate_ray_with_tmax(film)
+                };
                 let r = bdpt.sample(
                     scene,
                     ray.origin,

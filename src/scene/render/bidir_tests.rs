@@ -90,9 +90,16 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
             }))),
         },
     ));
+    // A thin lens: the camera vertex is a point on the aperture, not the pinhole.
+    let mut lens = mixed.clone();
+    lens.sensor.lens = Some(crate::scene::description::ThinLensDesc {
+        aperture_radius: 0.2,
+        focus_distance: 2.5,
+    });
     vec![
         ("cornell", cornell),
         ("caustic", caustic),
+        ("lens", lens),
         ("mixed", mixed),
         ("materials", materials),
     ]
@@ -221,7 +228,7 @@ fn weights_of_all_strategies_sum_to_one() {
         let mut rays = 0;
         for _ in 0..400 {
             let raster = rng.next_2d() * Vec2::splat(32.0);
-            let (ray, t_max) = r.camera.generate_ray_with_tmax(raster);
+            let (ray, t_max) = r.camera.generate_ray_through_lens(raster, rng.next_2d());
             camera_subpath(
                 &view, ray.origin, ray.dir, t_max, lim, &mut rng, &mut cam, &mut rays,
             );

@@ -1,5 +1,5 @@
 //! The built-in scene as the bidirectional estimators see it: emission from every light
-//! (`light/emission.rs`) and the pinhole camera as an endpoint.
+//! (`light/emission.rs`) and the camera, a pinhole or a thin lens, as an endpoint.
 
 use super::material::Material;
 use super::view::SceneView;
@@ -60,12 +60,55 @@ impl<B: Material, const DELTA: bool, const ENV: bool> BidirectionalScene
     }
 
     fn connect_camera(&self, p: Vec3) -> Option<CameraConnection> {
-        let raster = self.camera.raster_of_unbounded(p)?;
+        self.connect_from(self.camera.position(), p)
+    }
+
+    fn film_size(&self) -> (u32, u32) {
+        (self.camera.width(), self.camera.height())
+    }
+
+    fn camera_has_lens(&self) -> bool {
+        self.camera.has_lens()
+    }
+
+    fn camera_ray_through_lens(&self, raster: Vec2, u_lens: Vec2) -> (Vec3, Vec3, f32) {
+        let (ray, t_max) = self.camera.generate_ray_through_lens(raster, u_lens);
+        (ray.origin, ray.dir, t_max)
+    }
+
+    fn camera_lens_point(&self, origin: Vec3, dir: Vec3) -> Vec3 {
+        self.camera.lens_point_of_ray(origin, dir)
+    }
+
+    fn camera_pdf_from_lens(&self, lens: Vec3, dir: Vec3) -> f32 {
+        let Some((raster, pdf)) = self.camera.direction_density_from(lens, dir) else {
+            return 0.0;
+        };
+        let (w, h) = self.film_size();
+        pdf * self.filter.coverage(raster, w, h)
+    }
+
+    fn connect_camera_through_lens(
+        &self,
+        p: Vec3,
+        u_lens: Vec2,
+    ) -> Option<(Vec3, CameraConnection)> {
+        let lens = self.camera.lens_point(u_lens);
+        self.connect_from(lens, p).map(|c| (lens, c))
+    }
+}
+
+impl<B: Material, const DELTA: bool, const ENV: bool> SceneView<'_, B, DELTA, ENV> {
+    /// The connection of `p` to the camera through the world-space lens point `lens` (the
+    /// camera's position for a pinhole): the film position of the line through both, and
+    /// the importance per steradian there, `1/(A cos³θ)`.
+    fn connect_from(&self, lens: Vec3, p: Vec3) -> Option<CameraConnection> {
+        let raster = self.camera.raster_through_lens(lens, p)?;
         let (w, h) = self.film_size();
         if self.filter.coverage(raster, w, h) <= 0.0 {
             return None;
         }
-        let d = self.camera.position() - p;
+        let d = lens - p;
         let dist = d.length();
         if dist.is_nan() || dist <= 0.0 {
             return None;
@@ -73,7 +116,7 @@ impl<B: Material, const DELTA: bool, const ENV: bool> BidirectionalScene
         let wi = d / dist;
         let importance = self
             .camera
-            .direction_density(-wi)
+            .direction_density_from(lens, -wi)
             .map_or(0.0, |(_, pdf)| pdf);
         (importance > 0.0).then_some(CameraConnection {
             raster,
@@ -81,9 +124,5 @@ impl<B: Material, const DELTA: bool, const ENV: bool> BidirectionalScene
             dist,
             importance,
         })
-    }
-
-    fn film_size(&self) -> (u32, u32) {
-        (self.camera.width(), self.camera.height())
     }
 }

@@ -17,6 +17,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 const CHAIN_BATCH: usize = 8;
 /// Bootstrap samples per parallel task.
 const BOOT_CHUNK: usize = 256;
+
+/// Salt of the bootstrap's lens samples.
+const LENS_SALT: u64 = 0x6c65_6e73;
 /// Mutations between checks of the cancel flag.
 const CHECK_EVERY: u64 = 4096;
 
@@ -81,7 +84,16 @@ fn brightness_per_length<S: BidirectionalScene + Sync>(
                 ) + shift;
                 let u = lattice - lattice.floor();
                 let raster = (u * film).min(film * (1.0 - f32::EPSILON));
-                let (origin, dir, t_max) = scene.camera_ray(raster);
+                // A thin lens's point from the index's own hash (the bootstrap only has to
+                // be unbiased; its primary samples start inside the estimator).
+                let (origin, dir, t_max) = if scene.camera_has_lens() {
+                    let bits = mix64(combine(key ^ LENS_SALT, i as u64));
+                    let u_lens = Vec2::new((bits >> 40) as f32, ((bits >> 16) & 0xff_ffff) as f32)
+                        / 16_777_216.0;
+                    scene.camera_ray_through_lens(raster, u_lens)
+                } else {
+                    scene.camera_ray(raster)
+                };
                 let mut primary = PrimarySamples::new(combine(key, i as u64), 0.0, 1.0);
                 splats.clear();
                 bdpt.sample(

@@ -294,13 +294,6 @@ impl Renderer {
             }),
         };
         if matches!(integrator, Integrator::Bdpt(_) | Integrator::Mlt(_)) {
-            if camera.lens().is_some() {
-                return Err(RenderError::Unsupported {
-                    integrator: integrator.name(),
-                    reason: "the thinlens sensor is not an endpoint light subpaths can connect \
-                             to yet: use the path or direct integrator",
-                });
-            }
             if !camera.is_similarity() {
                 return Err(RenderError::Unsupported {
                     integrator: integrator.name(),

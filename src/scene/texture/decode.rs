@@ -31,7 +31,8 @@ pub fn read_image(path: &Path, raw: bool) -> Result<Image, String> {
         crate::scene::loader::read_capped(path, MAX_FILE_BYTES).map_err(|e| e.to_string())?;
     if bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
         drop(bytes);
-        let (w, h, px) = crate::scene::film::read_exr(path).map_err(|e| e.to_string())?;
+        let (w, h, px) = crate::scene::film::read_exr_at_most(path, MAX_TEXTURE_PIXELS)
+            .map_err(|e| e.to_string())?;
         check_size(u64::from(w), u64::from(h))?;
         return Image::new(w, h, px).ok_or_else(|| "an empty image".to_string());
     }
