@@ -107,6 +107,14 @@ CASES = [
      '<float name="diffuse_reflectance_sampling_rate" value="0.3"/>'
      '<float name="main_specular_sampling_rate" value="2"/>'
      '<float name="clearcoat_sampling_rate" value="0.7"/></bsdf>'),
+    ("principled-spec-trans", True,
+     '<bsdf type="principled"><float name="spec_trans" value="1"/>'
+     '<float name="roughness" value="0.3"/></bsdf>'),
+    ("principled-spec-trans-mixed", True,
+     '<bsdf type="principled"><rgb name="base_color" value="0.8, 0.3, 0.1"/>'
+     '<float name="spec_trans" value="0.6"/><float name="metallic" value="0.2"/>'
+     '<float name="clearcoat" value="0.5"/><float name="anisotropic" value="0.5"/>'
+     '<float name="eta" value="1.33"/><float name="sheen" value="0.4"/></bsdf>'),
     ("principled-twosided", False,
      '<bsdf type="twosided"><bsdf type="principled"><float name="roughness" value="0.2"/>'
      '<float name="clearcoat" value="0.3"/></bsdf></bsdf>'),

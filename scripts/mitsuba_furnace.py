@@ -29,6 +29,8 @@ MATERIALS = {
     "principled white metal aniso": {"type": "principled", "metallic": 1.0, "roughness": 0.4,
                                      "anisotropic": 0.8,
                                      "base_color": {"type": "rgb", "value": 1.0}},
+    "principled white spec_trans": {"type": "principled", "spec_trans": 0.8, "roughness": 0.3,
+                                    "base_color": {"type": "rgb", "value": 1.0}},
 }
 
 

@@ -1,7 +1,7 @@
 //! Our BSDFs against Mitsuba 3's own values: `tests/data/mitsuba-bsdf-values.txt`, written
 //! by `scripts/mitsuba_bsdf_values.py` from Mitsuba 3.9.1 (`scalar_rgb`), holds for each
 //! case a `<bsdf>` element, which both renderers load from the same text, Mitsuba's `eval`
-//! (radiance and importance transport) and `pdf` at about 4300 pairs of directions (nine
+//! (radiance and importance transport) and `pdf` at about 5000 pairs of directions (eleven
 //! of the cases are `principled`), and the
 //! Dirac components' sampled direction, probability, weight and relative index.
 //!

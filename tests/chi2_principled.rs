@@ -5,6 +5,9 @@
 //! `∫ f cos θ_i dω` stays at most 1 where the model conserves energy (see
 //! `white_furnace`).
 //!
+//! With `spec_trans` > 0 the same on the whole sphere, seen from both sides
+//! (`transmission_sampling_matches_density`).
+//!
 //! Cases: Mitsuba's defaults; a rough anisotropic metal; a smooth, strongly anisotropic
 //! half-metal with specular tint; a glossy clearcoat over diffuse with sheen and
 //! flatness; unequal sampling rates. Each seen from 0°, 45° and 80° at azimuth 40° (so the
@@ -13,7 +16,7 @@
 
 mod common;
 
-use common::{chi2, hemisphere, third_value};
+use common::{chi2, hemisphere, sphere, third_value};
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::integrator::Bsdf;
 use mcrt::scene::bsdf::{Principled, PrincipledParams};
@@ -103,6 +106,61 @@ fn sampling_matches_density() {
         let b = Principled::new(params).expect("valid parameters");
         for deg in [0.0, 45.0, 80.0] {
             check(&format!("principled-{name}-{deg}"), &b, wo_at(deg));
+        }
+    }
+}
+
+/// With `spec_trans` > 0 the sampler covers the sphere (reflection and refraction, from
+/// either side): pure transmission at roughness 0.3, and a mixture with metal, clearcoat,
+/// sheen and anisotropy at index 1.33; each from 20° and 70° above and below the surface.
+#[test]
+fn transmission_sampling_matches_density() {
+    let d = PrincipledParams::default();
+    let cases = [
+        (
+            "spec-trans",
+            PrincipledParams {
+                spec_trans: 1.0,
+                roughness: 0.3,
+                ..d
+            },
+        ),
+        (
+            "spec-trans-mixed",
+            PrincipledParams {
+                base_color: Vec3::new(0.8, 0.3, 0.1),
+                spec_trans: 0.6,
+                metallic: 0.2,
+                clearcoat: 0.5,
+                anisotropic: 0.5,
+                eta: 1.33,
+                sheen: 0.4,
+                ..d
+            },
+        ),
+    ];
+    for (name, params) in cases {
+        let b = Principled::new(params).expect("valid parameters");
+        for deg in [20.0, 70.0, 110.0, 160.0] {
+            let wo = wo_at(deg);
+            let out = chi2(sphere(), &format!("principled-{name}-{deg}")).run_weighted(
+                |u| {
+                    b.sample(wo, third_value(u), u)
+                        .map(|s| (s.wi, s.weight.max_element()))
+                },
+                |wi| b.pdf(wo, wi),
+            );
+            assert!(out.passed(), "{}", out.report());
+            for c in 0..3 {
+                let w = check_weights(
+                    |u: Vec2| b.sample(wo, third_value(u), u).map(|s| (s.wi, s.weight[c])),
+                    |wi| b.pdf(wo, wi),
+                    |wi| b.eval(wo, wi)[c],
+                    64,
+                    1e-3,
+                );
+                assert!(w.passed(), "{name} {deg}° channel {c}: {}", w.report());
+            }
         }
     }
 }

@@ -363,8 +363,9 @@ fn blend_and_mask_of_lossless_materials_return_one() {
 /// Furnace values of white `principled` spheres as Mitsuba 3.9.1 renders the same scene
 /// (`scripts/mitsuba_furnace.py --only principled`, 16384 spp, with its standard error):
 /// Mitsuba's defaults with `base_color` = 1, which reflect more than they receive (the
-/// Disney diffuse, retro-reflection and specular lobes are summed without coupling), and a
-/// white rough anisotropic metal, which loses energy (single-scattering GGX).
+/// Disney diffuse, retro-reflection and specular lobes are summed without coupling), a
+/// white rough anisotropic metal, which loses energy (single-scattering GGX), and a white
+/// sphere with `spec_trans` 0.8 at roughness 0.3, which refracts light through it.
 #[test]
 fn principled_spheres_return_what_mitsuba_returns() {
     let white = PrincipledParams {
@@ -377,8 +378,19 @@ fn principled_spheres_return_what_mitsuba_returns() {
         anisotropic: 0.8,
         ..white
     };
+    let glass = PrincipledParams {
+        spec_trans: 0.8,
+        roughness: 0.3,
+        ..white
+    };
     let cases = [
         ("white principled", white, 1.04312, 0.00009),
+        (
+            "white principled with spec_trans 0.8",
+            glass,
+            0.83771,
+            0.00011,
+        ),
         (
             "white anisotropic principled metal",
             metal,

@@ -1,6 +1,6 @@
 //! `<bsdf type="principled">`: Mitsuba 3.9's parameter names and defaults, `specular` or
 //! `eta` for the index, a texture on `base_color`, and located errors for values the
-//! material cannot take (among them `spec_trans` > 0: transmission is not implemented).
+//! material cannot take.
 //! Its values against Mitsuba's are `tests/bsdf_mitsuba_values.rs`.
 
 use mcrt::glam::{Vec2, Vec3};
@@ -112,7 +112,11 @@ fn bad_values_are_refused_where_they_are() {
         format!("<bsdf type=\"principled\">\n<float name=\"{name}\" value=\"{v}\"/></bsdf>")
     };
     // The parameter's own line (the <bsdf> is on line 3).
-    check(&one("spec_trans", "0.5"), 4, "\"spec_trans\" must be 0");
+    check(
+        &one("spec_trans", "1.5"),
+        4,
+        "\"spec_trans\" must be in [0, 1]",
+    );
     check(
         &one("roughness", "1.5"),
         4,
@@ -141,6 +145,21 @@ fn bad_values_are_refused_where_they_are() {
         4,
         "\"specular\" cannot be given with \"eta\"",
     );
+}
+
+/// A transmitting principled lets light through, so `twosided` refuses it (as Mitsuba 3
+/// refuses any nested material with transmission); without transmission it may be wrapped.
+#[test]
+fn twosided_takes_principled_without_transmission_only() {
+    let wrap = |st: &str| {
+        parse(&format!(
+            "<bsdf type=\"twosided\"><bsdf type=\"principled\">\
+             <float name=\"spec_trans\" value=\"{st}\"/></bsdf></bsdf>"
+        ))
+    };
+    assert!(matches!(wrap("0").expect("reads"), BsdfDesc::TwoSided(_)));
+    let e = wrap("0.5").expect_err("refused");
+    assert!(matches!(e.kind, SceneErrorKind::InvalidValue(_)), "{e}");
 }
 
 #[test]

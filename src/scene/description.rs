@@ -577,7 +577,7 @@ pub enum BsdfDesc {
         /// Whether internal scattering tints the base's colour (default false).
         nonlinear: bool,
     },
-    /// `principled`: the Disney BRDF (reflection only: `spec_trans` must be 0).
+    /// `principled`: the Disney BSDF (specular transmission when `spec_trans` > 0).
     Principled(PrincipledParams),
     /// `blendbsdf`: `(1 − weight) · first + weight · second`.
     Blend {
@@ -619,14 +619,14 @@ impl BsdfDesc {
             | Self::RoughDielectric { .. }
             | Self::ThinDielectric { .. }
             | Self::Mask { .. } => true,
+            Self::Principled(p) => p.spec_trans > 0.0,
             Self::Blend { first, second, .. } => first.transmits() || second.transmits(),
             Self::TwoSided(inner) | Self::Textured { inner, .. } => inner.transmits(),
             Self::Diffuse { .. }
             | Self::Conductor { .. }
             | Self::RoughConductor { .. }
             | Self::Plastic { .. }
-            | Self::RoughPlastic { .. }
-            | Self::Principled(_) => false,
+            | Self::RoughPlastic { .. } => false,
         }
     }
 }

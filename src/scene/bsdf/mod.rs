@@ -1,6 +1,6 @@
 //! Materials: Mitsuba 3's `diffuse`, `conductor`, `roughconductor` (both with the named
 //! materials of [`named_conductor`]), `dielectric`, `roughdielectric`, `thindielectric`,
-//! `plastic`, `roughplastic`, `principled` (reflection only) and `twosided`, as [`Bsdf`] implementations in the local z-up
+//! `plastic`, `roughplastic`, `principled` and `twosided`, as [`Bsdf`] implementations in the local z-up
 //! frame.
 //!
 //! One-sided BSDFs are black from the back (`wo.z ≤ 0`), as in Mitsuba; [`Sided`] adds the
@@ -20,6 +20,7 @@ mod plastic;
 mod principled;
 mod principled_lobes;
 mod principled_params;
+mod principled_transmission;
 mod rough_conductor;
 mod rough_dielectric;
 mod rough_plastic;
@@ -67,7 +68,7 @@ pub enum AnyBsdf {
     Plastic(Plastic),
     /// Diffuse base under a rough coating.
     RoughPlastic(RoughPlastic),
-    /// Mitsuba's `principled` (the Disney BRDF), reflection only; boxed, so that its many
+    /// Mitsuba's `principled` (the Disney BSDF); boxed, so that its many
     /// parameters do not enlarge every other material.
     Principled(Box<Principled>),
     /// A blend of two materials.

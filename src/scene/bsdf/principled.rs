@@ -1,6 +1,7 @@
-//! Mitsuba 3's `principled` BSDF (the Disney BRDF), reflection only: a diffuse lobe with
-//! retro-reflection, flatness and sheen, a main anisotropic GGX lobe whose Fresnel blends a
-//! dielectric, a tinted dielectric and a metal, and a GTR1 clearcoat. The model and where
+//! Mitsuba 3's `principled` BSDF (the Disney BSDF): a diffuse lobe with retro-reflection,
+//! flatness and sheen, a main anisotropic GGX lobe whose Fresnel blends a dielectric, a
+//! tinted dielectric and a metal, and a GTR1 clearcoat; with `spec_trans` > 0 the main
+//! lobe also refracts (`principled_transmission.rs`). The model and where
 //! each term comes from: `docs/bsdf-models.md`, section "Principled".
 
 use super::fresnel_dielectric;
@@ -23,28 +24,31 @@ const CLEARCOAT_R0: f32 = 0.04;
 /// The principled BSDF of Burley 2012 ("Physically Based Shading at Disney", SIGGRAPH
 /// course notes) with the diffuse split of Burley 2015 ("Extending the Disney BRDF to a
 /// BSDF with Integrated Subsurface Scattering", SIGGRAPH course notes), as Mitsuba 3 defines
-/// it; see [`PrincipledParams`] for the parameters. One-sided: black when `wo` or `wi` is
-/// below the surface. `f · cos θ_i` is
+/// it; see [`PrincipledParams`] for the parameters. Without transmission (`spec_trans` =
+/// 0) it is one-sided: black when `wo` or `wi` is below the surface. `f · cos θ_i` is
 ///
-/// - diffuse, weight `1 − metallic`: `cos θ_i (base/π · ((1 − flatness)(f_d + f_retro) +
-///   flatness · f_ss) + f_sheen)`;
+/// - diffuse, weight `(1 − metallic)(1 − spec_trans)`: `cos θ_i base/π · ((1 − flatness)
+///   (f_d + f_retro) + flatness · f_ss)`; sheen, weight `1 − metallic` (0 when
+///   `spec_trans` = 1): `cos θ_i f_sheen`;
 /// - main specular: `F(wo·h) D(h) G₁(wo) G₁(wi) / (4 cos θ_o)`, anisotropic GGX;
 /// - clearcoat: `clearcoat/4 · F_s(wo·h) D_gtr1(h) G₁(wo) G₁(wi) · cos θ_i` (Mitsuba leaves
-///   out the `1/(4 cos θ_o cos θ_i)` here, and so do we, to match it).
+///   out the `1/(4 cos θ_o cos θ_i)` here, and so do we, to match it);
+/// - with `spec_trans` > 0, refraction through the main lobe on both sides and reflection
+///   from the back (`eval_pdf_two_sided`).
 ///
-/// Sampling picks a lobe with probabilities proportional to `(1 − metallic) ·
-/// diffuse_reflectance_sampling_rate`, `main_specular_sampling_rate` and `clearcoat/4 ·
+/// Sampling picks a lobe with probabilities proportional to `(1 − metallic)(1 − spec_trans)
+/// · diffuse_reflectance_sampling_rate`, `main_specular_sampling_rate` and `clearcoat/4 ·
 /// clearcoat_sampling_rate`, then draws a cosine-weighted direction, a visible GGX normal
 /// or a GTR1 normal; the pdf is the mixture of the three.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Principled {
     /// The parameters, as given.
     pub params: PrincipledParams,
-    ggx: AnisoGgx,
-    clearcoat_alpha: f32,
-    /// Probabilities of sampling the diffuse, main specular and clearcoat lobes (sum 1, or
-    /// all 0 when every rate is 0).
-    probs: [f32; 3],
+    pub(super) ggx: AnisoGgx,
+    pub(super) clearcoat_alpha: f32,
+    /// Probabilities of sampling the diffuse, main specular and clearcoat lobes on the
+    /// front side (sum 1, or all 0 when every rate is 0).
+    pub(super) probs: [f32; 3],
 }
 
 impl Principled {
@@ -56,7 +60,7 @@ impl Principled {
         params.check()?;
         let p = &params;
         let weights = [
-            (1.0 - p.metallic) * p.diffuse_reflectance_sampling_rate,
+            (1.0 - p.metallic) * (1.0 - p.spec_trans) * p.diffuse_reflectance_sampling_rate,
             p.main_specular_sampling_rate,
             0.25 * p.clearcoat * p.clearcoat_sampling_rate,
         ];
@@ -81,7 +85,7 @@ impl Principled {
 
     /// The base colour over its luminance (white for a black base): the hue that
     /// `spec_tint` and `sheen_tint` blend toward (Burley 2012, §5.3 "Ctint").
-    fn tint(&self) -> Vec3 {
+    pub(super) fn tint(&self) -> Vec3 {
         let c = self.params.base_color;
         let lum = c.dot(Vec3::new(0.212671, 0.715160, 0.072169));
         if lum > 0.0 {
@@ -94,7 +98,7 @@ impl Principled {
     /// The main lobe's Fresnel term at `cos = wo·h`: `(1 − metallic)(1 − spec_tint) ·
     /// F_dielectric + (1 − metallic) spec_tint · Schlick(tint · R0(η)) + metallic ·
     /// Schlick(base_color)` (Burley 2012, §5.3 and §5.5).
-    fn main_fresnel(&self, cos: f32, tint: Vec3) -> Vec3 {
+    pub(super) fn main_fresnel(&self, cos: f32, tint: Vec3) -> Vec3 {
         let p = &self.params;
         let dielectric = fresnel_dielectric(cos, p.eta).0;
         let schlick3 = |r0: Vec3| {
@@ -114,10 +118,10 @@ impl Principled {
         f
     }
 
-    /// The diffuse lobe's `f · cos θ_i` without the `1 − metallic` weight (Burley 2015,
-    /// §5.3, eqs. 4–5 for `f_d` and `f_retro`; Burley 2012, §5.3 for the flat `f_ss`,
-    /// after Hanrahan and Krueger, and the sheen).
-    fn diffuse(&self, wo: Vec3, wi: Vec3, h: Vec3, tint: Vec3) -> Vec3 {
+    /// The diffuse lobe's `f · cos θ_i` and the sheen's, both without their weights
+    /// (Burley 2015, §5.3, eqs. 4–5 for `f_d` and `f_retro`; Burley 2012, §5.3 for the
+    /// flat `f_ss`, after Hanrahan and Krueger, and the sheen).
+    fn diffuse(&self, wo: Vec3, wi: Vec3, h: Vec3, tint: Vec3) -> (Vec3, Vec3) {
         let p = &self.params;
         let (fo, fi) = (schlick_weight(wo.z), schlick_weight(wi.z));
         let cos_d = h.dot(wi);
@@ -134,12 +138,45 @@ impl Principled {
             let f_ss = 1.25 * (fss * (1.0 / (wo.z + wi.z) - 0.5) + 0.5);
             shape += p.flatness * f_ss;
         }
-        let mut f = p.base_color * (FRAC_1_PI * shape);
+        let f = p.base_color * (FRAC_1_PI * shape);
+        let mut sheen = Vec3::ZERO;
         if p.sheen > 0.0 {
             let c_sheen = Vec3::ONE + p.sheen_tint * (tint - Vec3::ONE);
-            f += schlick_weight(cos_d) * p.sheen * c_sheen;
+            sheen = schlick_weight(cos_d) * p.sheen * c_sheen;
         }
-        f * wi.z
+        (f * wi.z, sheen * wi.z)
+    }
+}
+
+impl Principled {
+    /// The front-side reflection lobes besides the main one, for `wo` and `wi` above the
+    /// surface with half-vector `h`: clearcoat, and diffuse with retro-reflection, flatness
+    /// and sheen (weight `(1 − metallic)(1 − spec_trans)`); their `f · cos θ_i` and their
+    /// share of the pdf.
+    pub(super) fn front_lobes(&self, wo: Vec3, wi: Vec3, h: Vec3, tint: Vec3) -> (Vec3, f32) {
+        let p = &self.params;
+        let mut f = Vec3::ZERO;
+        let mut pdf = 0.0;
+        let cos_ih = wi.dot(h);
+        if p.clearcoat > 0.0 {
+            let d_c = gtr1_d(h.z, self.clearcoat_alpha);
+            let g_c = smith_g1_isotropic(wo, CLEARCOAT_G_ALPHA)
+                * smith_g1_isotropic(wi, CLEARCOAT_G_ALPHA);
+            let f_c = schlick(CLEARCOAT_R0, wo.dot(h), 1.5);
+            f += Vec3::splat(0.25 * p.clearcoat * f_c * d_c * g_c * wi.z);
+            if is_positive(cos_ih) {
+                pdf += self.probs[2] * d_c * h.z / (4.0 * cos_ih);
+            }
+        }
+        // Mitsuba weighs the sheen by 1 − metallic alone, and drops it with the diffuse
+        // lobe when spec_trans = 1.
+        let brdf = (1.0 - p.metallic) * (1.0 - p.spec_trans);
+        if brdf > 0.0 {
+            let (diffuse, sheen) = self.diffuse(wo, wi, h, tint);
+            f += brdf * diffuse + (1.0 - p.metallic) * sheen;
+        }
+        pdf += self.probs[0] * CosineHemisphere.pdf(wi);
+        (f, pdf)
     }
 }
 
@@ -148,6 +185,7 @@ impl Bsdf for Principled {
         BsdfFlags {
             smooth: true,
             glossy: true,
+            transmission: self.params.spec_trans > 0.0,
             ..BsdfFlags::default()
         }
     }
@@ -161,43 +199,40 @@ impl Bsdf for Principled {
     }
 
     fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        if self.params.spec_trans > 0.0 {
+            return self.eval_pdf_two_sided(wo, wi, false);
+        }
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return (Vec3::ZERO, 0.0);
         }
         let Some(h) = (wo + wi).try_normalize() else {
             return (Vec3::ZERO, 0.0);
         };
-        let p = &self.params;
         let tint = self.tint();
-        let (cos_oh, cos_ih) = (wo.dot(h), wi.dot(h));
+        let cos_ih = wi.dot(h);
         // Main specular lobe.
         let d = self.ggx.d(h);
         let g = self.ggx.g1(wo, h) * self.ggx.g1(wi, h);
-        let mut f = self.main_fresnel(cos_oh, tint) * (d * g / (4.0 * wo.z));
+        let f = self.main_fresnel(wo.dot(h), tint) * (d * g / (4.0 * wo.z));
         let mut pdf = 0.0;
         if is_positive(cos_ih) {
             pdf += self.probs[1] * self.ggx.pdf_visible(wo, h) / (4.0 * cos_ih);
         }
-        // Clearcoat.
-        if p.clearcoat > 0.0 {
-            let d_c = gtr1_d(h.z, self.clearcoat_alpha);
-            let g_c = smith_g1_isotropic(wo, CLEARCOAT_G_ALPHA)
-                * smith_g1_isotropic(wi, CLEARCOAT_G_ALPHA);
-            let f_c = schlick(CLEARCOAT_R0, cos_oh, 1.5);
-            f += Vec3::splat(0.25 * p.clearcoat * f_c * d_c * g_c * wi.z);
-            if is_positive(cos_ih) {
-                pdf += self.probs[2] * d_c * h.z / (4.0 * cos_ih);
-            }
+        let (f_front, pdf_front) = self.front_lobes(wo, wi, h, tint);
+        (f + f_front, pdf + pdf_front)
+    }
+
+    fn eval_adjoint(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        if self.params.spec_trans > 0.0 {
+            return self.eval_pdf_two_sided(wo, wi, true).0;
         }
-        // Diffuse, retro-reflection, flatness and sheen.
-        if p.metallic < 1.0 {
-            f += (1.0 - p.metallic) * self.diffuse(wo, wi, h, tint);
-        }
-        pdf += self.probs[0] * CosineHemisphere.pdf(wi);
-        (f, pdf)
+        self.eval(wo, wi)
     }
 
     fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
+        if self.params.spec_trans > 0.0 {
+            return self.sample_two_sided(wo, u1, u2);
+        }
         if wo.z <= 0.0 {
             return None;
         }

@@ -18,7 +18,7 @@ pub struct PrincipledParams {
     pub anisotropic: f32,
     /// Blend from dielectric to metal (default 0).
     pub metallic: f32,
-    /// Specular transmission weight (default 0; only 0 is supported).
+    /// Specular transmission weight (default 0).
     pub spec_trans: f32,
     /// Relative index of refraction (default 1.5, from Mitsuba's default `specular` 0.5).
     pub eta: f32,
@@ -79,7 +79,7 @@ impl PrincipledParams {
     }
 
     /// Checks every parameter: finite; the weights in \[0, 1\]; `eta` > 0; the sampling
-    /// rates ≥ 0; `spec_trans` = 0 (transmission is not implemented).
+    /// rates ≥ 0.
     ///
     /// # Errors
     /// The first parameter out of range, by its scene-file name.
@@ -99,6 +99,7 @@ impl PrincipledParams {
             ("roughness", self.roughness),
             ("anisotropic", self.anisotropic),
             ("metallic", self.metallic),
+            ("spec_trans", self.spec_trans),
             ("spec_tint", self.spec_tint),
             ("sheen", self.sheen),
             ("sheen_tint", self.sheen_tint),
@@ -109,13 +110,6 @@ impl PrincipledParams {
             if !(0.0..=1.0).contains(&v) {
                 return bad(name, v, "in [0, 1]");
             }
-        }
-        if self.spec_trans != 0.0 {
-            return bad(
-                "spec_trans",
-                self.spec_trans,
-                "0 (specular transmission is not supported yet)",
-            );
         }
         if !(self.eta.is_finite() && self.eta > 0.0) {
             return bad("eta", self.eta, "finite and > 0");

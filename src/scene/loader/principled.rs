@@ -1,4 +1,4 @@
-//! `<bsdf type="principled">`: Mitsuba 3's principled BSDF, reflection only.
+//! `<bsdf type="principled">`: Mitsuba 3's principled BSDF.
 
 use super::context::Res;
 use super::props::Props;
