@@ -263,3 +263,70 @@ impl Bsdf for Principled {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every sample, at the edges of the unit square and for directions on both sides and
+    /// at grazing angles, has a finite weight and a positive finite pdf that equals
+    /// [`Bsdf::pdf`] at its direction, with and without transmission.
+    #[test]
+    fn samples_at_edge_inputs_are_finite_and_consistent() {
+        let last = 1.0 - f32::EPSILON / 2.0; // 1 − 2⁻²⁴
+        let d = PrincipledParams::default();
+        let cases = [
+            d,
+            PrincipledParams {
+                roughness: 0.0,
+                anisotropic: 1.0,
+                metallic: 0.5,
+                clearcoat: 1.0,
+                clearcoat_gloss: 1.0,
+                ..d
+            },
+            PrincipledParams {
+                spec_trans: 1.0,
+                roughness: 0.05,
+                ..d
+            },
+            PrincipledParams {
+                spec_trans: 0.5,
+                eta: 0.7,
+                sheen: 1.0,
+                ..d
+            },
+        ];
+        let wos = [
+            Vec3::Z,
+            Vec3::new(0.6, 0.0, 0.8),
+            Vec3::new(0.0, 0.9999, 0.01).normalize(),
+            Vec3::new(0.3, -0.4, -0.866).normalize(),
+        ];
+        let mut n = 0;
+        for p in cases {
+            let b = Principled::new(p).expect("valid");
+            for wo in wos {
+                for u1 in [0.0, 0.3, 0.7, last] {
+                    for u2 in [0.0, 0.5, last] {
+                        for u3 in [0.0, 0.5, last] {
+                            let Some(s) = b.sample(wo, u1, Vec2::new(u2, u3)) else {
+                                continue;
+                            };
+                            let pdf = b.pdf(wo, s.wi);
+                            n += 1;
+                            assert!(
+                                s.weight.is_finite()
+                                    && s.pdf.is_finite()
+                                    && s.pdf > 0.0
+                                    && (pdf - s.pdf).abs() <= 1e-4 * s.pdf,
+                                "{p:?} wo {wo} u {u1} {u2} {u3}: {s:?}, pdf {pdf}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(n > 300, "only {n} samples");
+    }
+}
