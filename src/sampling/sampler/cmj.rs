@@ -2,7 +2,8 @@
 
 use glam::Vec2;
 
-use super::hash::{combine, in_stratum, mix64, permute, pixel_key, unit_f32};
+use super::hash::{in_stratum, mix64, permute, unit_f32};
+use super::padded::PaddedKeys;
 use super::{check_spp, stream_dimension, SampleSource, Sampler};
 use crate::sampling::SamplingError;
 
@@ -58,10 +59,7 @@ pub struct CmjSampler {
     spp: u32,
     seed: u64,
     jitter: bool,
-    round_key: u64,
-    sample_key: u64,
-    index_in_round: u32,
-    dimension: u64,
+    keys: PaddedKeys,
 }
 
 impl CmjSampler {
@@ -81,10 +79,7 @@ impl CmjSampler {
             spp,
             seed,
             jitter,
-            round_key: 0,
-            sample_key: 0,
-            index_in_round: 0,
-            dimension: 0,
+            keys: PaddedKeys::default(),
         })
     }
 
@@ -109,37 +104,16 @@ impl CmjSampler {
     pub fn jitter(&self) -> bool {
         self.jitter
     }
-
-    /// The key of the current dimension's pattern in this pixel and round.
-    #[inline]
-    fn pattern_key(&self, tag: u64) -> u64 {
-        combine(self.round_key, (self.dimension << 8) | tag)
-    }
-
-    /// 64 random bits for the jitter of the current dimension and pixel sample.
-    #[inline]
-    fn jitter_bits(&self) -> u64 {
-        combine(self.sample_key, self.dimension)
-    }
 }
 
 impl Sampler for CmjSampler {
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
-        let pixel_key = pixel_key(self.seed, pixel);
-        self.sample_key = combine(pixel_key, u64::from(sample_index));
-        self.index_in_round = sample_index % self.spp;
-        let round = sample_index / self.spp;
-        self.round_key = if round == 0 {
-            pixel_key
-        } else {
-            combine(pixel_key, u64::from(round))
-        };
-        self.dimension = 0;
+        self.keys.start(self.seed, self.spp, pixel, sample_index);
     }
 
     #[inline]
     fn skip_to_dimension(&mut self, dim: u32) {
-        self.dimension = u64::from(dim);
+        self.keys.dimension = u64::from(dim);
     }
 
     fn samples_per_pixel(&self) -> u32 {
@@ -149,33 +123,37 @@ impl Sampler for CmjSampler {
 
 impl SampleSource for CmjSampler {
     fn next_1d(&mut self) -> f32 {
-        let stratum = permute(self.index_in_round, self.spp, self.pattern_key(TAG_1D));
+        let stratum = permute(
+            self.keys.index_in_round,
+            self.spp,
+            self.keys.pattern_key(TAG_1D),
+        );
         let offset = if self.jitter {
-            unit_f32(self.jitter_bits() as u32)
+            unit_f32(self.keys.jitter_bits() as u32)
         } else {
             0.5
         };
-        self.dimension += 1;
+        self.keys.dimension += 1;
         in_stratum(stratum, offset, self.spp)
     }
 
     fn next_2d(&mut self) -> Vec2 {
-        let key = self.pattern_key(TAG_2D);
+        let key = self.keys.pattern_key(TAG_2D);
         let (m, n) = self.grid;
         // Which coarse cell (column c, row r) this sample takes in this dimension.
-        let s = permute(self.index_in_round, self.spp, mix64(key ^ SALT_ORDER));
+        let s = permute(self.keys.index_in_round, self.spp, mix64(key ^ SALT_ORDER));
         let (c, r) = (s % m, s / m);
         // The fine offsets: one permutation of the rows shared by every column (x), one of
         // the columns shared by every row (y).
         let fine_x = permute(r, n, mix64(key ^ SALT_ROWS));
         let fine_y = permute(c, m, mix64(key ^ SALT_COLUMNS));
         let (jx, jy) = if self.jitter {
-            let bits = self.jitter_bits();
+            let bits = self.keys.jitter_bits();
             (unit_f32(bits as u32), unit_f32((bits >> 32) as u32))
         } else {
             (0.5, 0.5)
         };
-        self.dimension += 1;
+        self.keys.dimension += 1;
         // x = (c + (fine_x + jx) / n) / m and y = (r + (fine_y + jy) / m) / n, each in one
         // of the N fine strata.
         Vec2::new(

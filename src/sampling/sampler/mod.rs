@@ -78,6 +78,7 @@ mod cmj;
 mod halton;
 pub(crate) mod hash;
 mod independent;
+mod padded;
 mod r2;
 #[cfg(feature = "sobol")]
 mod sobol;

@@ -2,7 +2,8 @@
 
 use glam::Vec2;
 
-use super::hash::{combine, in_stratum, permute, pixel_key, unit_f32};
+use super::hash::{in_stratum, permute, unit_f32};
+use super::padded::PaddedKeys;
 use super::{check_spp, stream_dimension, SampleSource, Sampler};
 use crate::sampling::SamplingError;
 
@@ -44,10 +45,7 @@ pub struct StratifiedSampler {
     spp: u32,
     seed: u64,
     jitter: bool,
-    round_key: u64,
-    sample_key: u64,
-    index_in_round: u32,
-    dimension: u64,
+    keys: PaddedKeys,
 }
 
 impl StratifiedSampler {
@@ -68,10 +66,7 @@ impl StratifiedSampler {
             spp,
             seed,
             jitter,
-            round_key: 0,
-            sample_key: 0,
-            index_in_round: 0,
-            dimension: 0,
+            keys: PaddedKeys::default(),
         })
     }
 
@@ -102,33 +97,11 @@ impl StratifiedSampler {
         }
         n
     }
-
-    /// The random permutation key of the current dimension, pixel and round.
-    #[inline]
-    fn permutation_key(&self, tag: u64) -> u64 {
-        combine(self.round_key, (self.dimension << 8) | tag)
-    }
-
-    /// 64 random bits for the jitter of the current dimension and pixel sample.
-    #[inline]
-    fn jitter_bits(&self) -> u64 {
-        combine(self.sample_key, self.dimension)
-    }
 }
 
 impl Sampler for StratifiedSampler {
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
-        let pixel_key = pixel_key(self.seed, pixel);
-        self.sample_key = combine(pixel_key, u64::from(sample_index));
-        self.index_in_round = sample_index % self.spp;
-        let round = sample_index / self.spp;
-        // Round 0 (the usual case) skips one hash.
-        self.round_key = if round == 0 {
-            pixel_key
-        } else {
-            combine(pixel_key, u64::from(round))
-        };
-        self.dimension = 0;
+        self.keys.start(self.seed, self.spp, pixel, sample_index);
     }
 
     fn samples_per_pixel(&self) -> u32 {
@@ -138,25 +111,33 @@ impl Sampler for StratifiedSampler {
 
 impl SampleSource for StratifiedSampler {
     fn next_1d(&mut self) -> f32 {
-        let stratum = permute(self.index_in_round, self.spp, self.permutation_key(TAG_1D));
+        let stratum = permute(
+            self.keys.index_in_round,
+            self.spp,
+            self.keys.pattern_key(TAG_1D),
+        );
         let offset = if self.jitter {
-            unit_f32(self.jitter_bits() as u32)
+            unit_f32(self.keys.jitter_bits() as u32)
         } else {
             0.5
         };
-        self.dimension += 1;
+        self.keys.dimension += 1;
         in_stratum(stratum, offset, self.spp)
     }
 
     fn next_2d(&mut self) -> Vec2 {
-        let stratum = permute(self.index_in_round, self.spp, self.permutation_key(TAG_2D));
+        let stratum = permute(
+            self.keys.index_in_round,
+            self.spp,
+            self.keys.pattern_key(TAG_2D),
+        );
         let (ox, oy) = if self.jitter {
-            let bits = self.jitter_bits();
+            let bits = self.keys.jitter_bits();
             (unit_f32(bits as u32), unit_f32((bits >> 32) as u32))
         } else {
             (0.5, 0.5)
         };
-        self.dimension += 1;
+        self.keys.dimension += 1;
         let n = self.resolution;
         Vec2::new(
             in_stratum(stratum % n, ox, n),
