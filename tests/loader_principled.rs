@@ -40,7 +40,7 @@ fn every_parameter_is_read() {
     let p = params(
         "<bsdf type=\"principled\">\
          <rgb name=\"base_color\" value=\"0.1, 0.2, 0.3\"/>\
-         <float name=\"roughness\" value=\"0.11\"/><float name=\"anisotropic\" value=\"0.12\"/>\
+         <float name=\"roughness\" value=\"0.11\"/><float name=\"anisotropic\" value=\"0\"/>\
          <float name=\"metallic\" value=\"0.13\"/><float name=\"spec_trans\" value=\"0\"/>\
          <float name=\"specular\" value=\"1\"/><float name=\"spec_tint\" value=\"0.14\"/>\
          <float name=\"sheen\" value=\"0.15\"/><float name=\"sheen_tint\" value=\"0.16\"/>\
@@ -53,7 +53,7 @@ fn every_parameter_is_read() {
     let want = PrincipledParams {
         base_color: Vec3::new(0.1, 0.2, 0.3),
         roughness: 0.11,
-        anisotropic: 0.12,
+        anisotropic: 0.0,
         metallic: 0.13,
         spec_trans: 0.0,
         eta: PrincipledParams::eta_from_specular(1.0),
@@ -123,6 +123,11 @@ fn bad_values_are_refused_where_they_are() {
         "\"roughness\" must be in [0, 1]",
     );
     check(&one("metallic", "-0.1"), 4, "\"metallic\"");
+    check(
+        &one("anisotropic", "0.5"),
+        4,
+        "\"anisotropic\" must be 0 (anisotropy is unsupported",
+    );
     check(&one("eta", "0"), 4, "\"eta\" must be finite and > 0");
     check(
         &one("specular", "13"),
