@@ -77,6 +77,47 @@ CASES = [
      '<bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.5, 0.2"/></bsdf></bsdf>'),
     ("mask-twosided-roughplastic", True,
      '<bsdf type="mask"><bsdf type="twosided"><bsdf type="roughplastic"/></bsdf></bsdf>'),
+    # principled: appended last so the earlier cases' random directions stay as they were.
+    ("principled-default", False, '<bsdf type="principled"/>'),
+    ("principled-diffuse-retro-sheen", False,
+     '<bsdf type="principled"><rgb name="base_color" value="0.8, 0.3, 0.1"/>'
+     '<float name="roughness" value="0.9"/><float name="sheen" value="0.8"/>'
+     '<float name="sheen_tint" value="0.5"/></bsdf>'),
+    ("principled-flatness", False,
+     '<bsdf type="principled"><rgb name="base_color" value="0.2, 0.6, 0.4"/>'
+     '<float name="roughness" value="0.7"/><float name="flatness" value="0.6"/></bsdf>'),
+    ("principled-metal-anisotropic", False,
+     '<bsdf type="principled"><rgb name="base_color" value="0.9, 0.6, 0.2"/>'
+     '<float name="metallic" value="1"/><float name="roughness" value="0.4"/>'
+     '<float name="anisotropic" value="0.8"/></bsdf>'),
+    ("principled-half-metal-spec-tint", False,
+     '<bsdf type="principled"><rgb name="base_color" value="0.2, 0.5, 0.9"/>'
+     '<float name="metallic" value="0.5"/><float name="spec_tint" value="0.7"/>'
+     '<float name="roughness" value="0.25"/><float name="specular" value="0.8"/></bsdf>'),
+    ("principled-eta-below-one", False,
+     '<bsdf type="principled"><float name="eta" value="0.8"/>'
+     '<float name="roughness" value="0.3"/><float name="spec_tint" value="0.4"/></bsdf>'),
+    ("principled-clearcoat", False,
+     '<bsdf type="principled"><rgb name="base_color" value="0.1, 0.1, 0.5"/>'
+     '<float name="clearcoat" value="1"/><float name="clearcoat_gloss" value="0.8"/>'
+     '<float name="roughness" value="0.6"/></bsdf>'),
+    ("principled-sampling-rates", False,
+     '<bsdf type="principled"><float name="clearcoat" value="0.5"/>'
+     '<float name="metallic" value="0.3"/><float name="anisotropic" value="0.4"/>'
+     '<float name="diffuse_reflectance_sampling_rate" value="0.3"/>'
+     '<float name="main_specular_sampling_rate" value="2"/>'
+     '<float name="clearcoat_sampling_rate" value="0.7"/></bsdf>'),
+    ("principled-spec-trans", True,
+     '<bsdf type="principled"><float name="spec_trans" value="1"/>'
+     '<float name="roughness" value="0.3"/></bsdf>'),
+    ("principled-spec-trans-mixed", True,
+     '<bsdf type="principled"><rgb name="base_color" value="0.8, 0.3, 0.1"/>'
+     '<float name="spec_trans" value="0.6"/><float name="metallic" value="0.2"/>'
+     '<float name="clearcoat" value="0.5"/><float name="anisotropic" value="0.5"/>'
+     '<float name="eta" value="1.33"/><float name="sheen" value="0.4"/></bsdf>'),
+    ("principled-twosided", False,
+     '<bsdf type="twosided"><bsdf type="principled"><float name="roughness" value="0.2"/>'
+     '<float name="clearcoat" value="0.3"/></bsdf></bsdf>'),
 ]
 
 WO_DEGREES = [(5.0, 10.0), (30.0, 200.0), (60.0, 45.0), (80.0, 300.0)]

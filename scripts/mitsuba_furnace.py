@@ -25,6 +25,12 @@ MATERIALS = {
     "roughplastic white ggx 0.3": {"type": "roughplastic", "distribution": "ggx", "alpha": 0.3,
                                    "diffuse_reflectance": {"type": "rgb", "value": 1.0}},
     "thindielectric": {"type": "thindielectric", "int_ior": 1.5, "ext_ior": 1.0},
+    "principled white": {"type": "principled", "base_color": {"type": "rgb", "value": 1.0}},
+    "principled white metal aniso": {"type": "principled", "metallic": 1.0, "roughness": 0.4,
+                                     "anisotropic": 0.8,
+                                     "base_color": {"type": "rgb", "value": 1.0}},
+    "principled white spec_trans": {"type": "principled", "spec_trans": 0.8, "roughness": 0.3,
+                                    "base_color": {"type": "rgb", "value": 1.0}},
 }
 
 
@@ -32,12 +38,15 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--spp", type=int, default=16384)
     ap.add_argument("--passes", type=int, default=16)
+    ap.add_argument("--only", default="", help="render only materials whose name has this")
     a = ap.parse_args()
     mi, _ = import_mitsuba(["llvm_ad_rgb"])
     check_variant(mi, "llvm_ad_rgb")
     import numpy as np
 
     for name, bsdf in MATERIALS.items():
+        if a.only not in name:
+            continue
         scene = mi.load_dict({
             "type": "scene",
             "integrator": {"type": "path", "max_depth": -1},

@@ -1,12 +1,14 @@
 //! Our BSDFs against Mitsuba 3's own values: `tests/data/mitsuba-bsdf-values.txt`, written
 //! by `scripts/mitsuba_bsdf_values.py` from Mitsuba 3.9.1 (`scalar_rgb`), holds for each
 //! case a `<bsdf>` element, which both renderers load from the same text, Mitsuba's `eval`
-//! (radiance and importance transport) and `pdf` at about 2800 pairs of directions, and the
+//! (radiance and importance transport) and `pdf` at about 5000 pairs of directions (eleven
+//! of the cases are `principled`), and the
 //! Dirac components' sampled direction, probability, weight and relative index.
 //!
 //! Tolerances (errors relative to the largest value at that `wo` plus the value itself;
 //! the worst found when written, printed with `--nocapture`, in brackets):
-//! - `eval` (radiance and importance) 10⁻³ [4·10⁻⁷ for everything except rough plastic],
+//! - `eval` (radiance and importance) 10⁻³ [4·10⁻⁷ for everything except rough plastic
+//!   and principled, 2.3·10⁻⁶ for principled's clearcoat],
 //!   and 2·10⁻³ for rough plastic [5.4·10⁻⁴], whose diffuse part holds transmittance and
 //!   internal-reflectance tables that both renderers integrate numerically by their own
 //!   rules;

@@ -4,8 +4,8 @@
 //! CPU).
 //! The material scenes are the Cornell box with Mitsuba 3's other BSDFs: rough and thin
 //! glass (`cornell-box-glass.xml`), smooth and rough plastic (`cornell-box-plastic.xml`),
-//! named conductors (`cornell-box-metals.xml`), and a blend and a mask
-//! (`cornell-box-blend-mask.xml`).
+//! named conductors (`cornell-box-metals.xml`), a blend and a mask
+//! (`cornell-box-blend-mask.xml`), and `principled` (`cornell-box-principled.xml`).
 //!
 //! For each scene: no NaN or infinite pixel; a z-test on 16×16 block means (for the
 //! material scenes 32×32, each allowed 1% beyond the noise: see `check_material_scene`; blocks brighter
@@ -52,7 +52,10 @@ struct Outcome {
 /// Samples per pixel of each reference (tests/data/REFERENCES.md).
 fn reference_spp(reference: &str) -> u32 {
     match reference {
-        "cornell-box-direct.exr" | "meshes.exr" | "tent-crop.exr" => 4096,
+        "cornell-box-direct.exr"
+        | "meshes.exr"
+        | "tent-crop.exr"
+        | "cornell-box-principled.exr" => 4096,
         _ => 16384,
     }
 }
@@ -268,6 +271,13 @@ fn named_conductors_match_mitsuba() {
 #[test]
 fn blend_and_mask_match_mitsuba() {
     check_material_scene("cornell-box-blend-mask.xml", "cornell-box-blend-mask.exr");
+}
+
+/// `principled`: a gold metal box, a clearcoated blue sphere with sheen, a back wall with
+/// tinted specular and a rough, flat floor with sheen (reference at 4096 spp).
+#[test]
+fn principled_matches_mitsuba() {
+    check_material_scene("cornell-box-principled.xml", "cornell-box-principled.exr");
 }
 
 /// Textures (`textures.xml`): a checkerboard floor through a top-level `<texture>` and

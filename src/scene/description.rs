@@ -2,6 +2,7 @@
 //! renderer. Every default is Mitsuba 3's, so a description built in code with
 //! [`Default`] values means what the same XML without those attributes means to Mitsuba.
 
+pub use crate::scene::bsdf::PrincipledParams;
 pub use crate::scene::texture::{Texture, TextureParam};
 use glam::{Mat4, Vec3};
 use std::path::PathBuf;
@@ -576,6 +577,8 @@ pub enum BsdfDesc {
         /// Whether internal scattering tints the base's colour (default false).
         nonlinear: bool,
     },
+    /// `principled`: the Disney BSDF (specular transmission when `spec_trans` > 0).
+    Principled(PrincipledParams),
     /// `blendbsdf`: `(1 − weight) · first + weight · second`.
     Blend {
         /// Weight of the second material, in [0, 1] (required; a constant, not a texture).
@@ -616,6 +619,7 @@ impl BsdfDesc {
             | Self::RoughDielectric { .. }
             | Self::ThinDielectric { .. }
             | Self::Mask { .. } => true,
+            Self::Principled(p) => p.spec_trans > 0.0,
             Self::Blend { first, second, .. } => first.transmits() || second.transmits(),
             Self::TwoSided(inner) | Self::Textured { inner, .. } => inner.transmits(),
             Self::Diffuse { .. }
@@ -661,6 +665,7 @@ impl BsdfDesc {
                     Self::Plastic { .. } | Self::RoughPlastic { .. },
                     P::DiffuseReflectance | P::SpecularReflectance,
                 )
+                | (Self::Principled(_), P::BaseColor)
         )
     }
 }

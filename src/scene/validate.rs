@@ -357,6 +357,7 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
                 *nonlinear,
             )
         }
+        BsdfDesc::Principled(params) => principled(params),
         BsdfDesc::Blend {
             weight,
             first,
@@ -413,6 +414,17 @@ fn texture_values(param: &'static str, t: &crate::scene::texture::Texture) -> Re
 
 /// A blend weight or an opacity: in [0, 1] (outside, Mitsuba's probabilities would turn
 /// negative).
+/// A principled material: [`PrincipledParams::check`](crate::scene::bsdf::PrincipledParams::check),
+/// its error named by the parameter.
+fn principled(p: &crate::scene::bsdf::PrincipledParams) -> Result<(), Invalid> {
+    p.check().map_err(|e| match e {
+        crate::sampling::SamplingError::InvalidParameter { name, expected, .. } => {
+            invalid(name, format!("must be {expected}"))
+        }
+        other => invalid("principled", other.to_string()),
+    })
+}
+
 fn unit_interval(param: &'static str, v: f32) -> Result<(), Invalid> {
     if (0.0..=1.0).contains(&v) {
         Ok(())

@@ -3,7 +3,8 @@
 
 use glam::Vec2;
 
-use super::hash::{combine, mix64, permute, pixel_key_of_mixed};
+use super::hash::mix64;
+use super::padded::ShuffledRound;
 use super::{check_spp, stream_dimension, SampleSource, Sampler};
 use crate::sampling::SamplingError;
 
@@ -68,11 +69,7 @@ pub struct HaltonSampler {
     spp: u32,
     seed: u64,
     mixed_seed: u64,
-    pixel_key: u64,
-    /// The first index of the current round of `spp` samples, and the offset in it.
-    round_start: u32,
-    offset: u32,
-    dimension: u64,
+    round: ShuffledRound,
 }
 
 impl HaltonSampler {
@@ -83,10 +80,7 @@ impl HaltonSampler {
             spp: check_spp(spp)?,
             seed,
             mixed_seed: mix64(seed),
-            pixel_key: 0,
-            round_start: 0,
-            offset: 0,
-            dimension: 0,
+            round: ShuffledRound::default(),
         })
     }
 
@@ -97,12 +91,9 @@ impl HaltonSampler {
 
     /// The key of the next dimension and the (shuffled) Halton index it uses.
     fn take(&mut self) -> (u64, u32) {
-        let key = combine(self.pixel_key, self.dimension);
-        self.dimension += 1;
+        let (key, round_start, shuffled) = self.round.take(self.spp, SHUFFLE_TAG);
         // Wrapping: the last round of u32 indices may run past u32::MAX; only 24 bits are used.
-        let index =
-            self.round_start
-                .wrapping_add(permute(self.offset, self.spp, key ^ SHUFFLE_TAG));
+        let index = round_start.wrapping_add(shuffled);
         (key, index & 0x00ff_ffff)
     }
 }
@@ -147,15 +138,13 @@ fn scrambled_base3(mut i: u32, key: u64) -> f32 {
 impl Sampler for HaltonSampler {
     #[inline]
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
-        self.pixel_key = pixel_key_of_mixed(self.mixed_seed, pixel);
-        self.offset = sample_index % self.spp;
-        self.round_start = sample_index - self.offset;
-        self.dimension = 0;
+        self.round
+            .start(self.mixed_seed, self.spp, pixel, sample_index);
     }
 
     #[inline]
     fn skip_to_dimension(&mut self, dim: u32) {
-        self.dimension = u64::from(dim);
+        self.round.dimension = u64::from(dim);
     }
 
     fn samples_per_pixel(&self) -> u32 {

@@ -3,7 +3,8 @@
 
 use glam::Vec2;
 
-use super::hash::{combine, mix64, permute, pixel_key_of_mixed};
+use super::hash::mix64;
+use super::padded::ShuffledRound;
 use super::{check_spp, stream_dimension, SampleSource, Sampler};
 use crate::sampling::SamplingError;
 
@@ -48,11 +49,7 @@ pub struct R2Sampler {
     spp: u32,
     seed: u64,
     mixed_seed: u64,
-    pixel_key: u64,
-    /// The first index of the current round of `spp` samples, and the offset in it.
-    round_start: u32,
-    offset: u32,
-    dimension: u64,
+    round: ShuffledRound,
 }
 
 impl R2Sampler {
@@ -62,10 +59,7 @@ impl R2Sampler {
             spp: check_spp(spp)?,
             seed,
             mixed_seed: mix64(seed),
-            pixel_key: 0,
-            round_start: 0,
-            offset: 0,
-            dimension: 0,
+            round: ShuffledRound::default(),
         })
     }
 
@@ -76,11 +70,9 @@ impl R2Sampler {
 
     /// The rotation of the next dimension and the (shuffled) lattice index it uses.
     fn take(&mut self) -> (u64, u64) {
-        let key = combine(self.pixel_key, self.dimension);
-        self.dimension += 1;
+        let (key, round_start, shuffled) = self.round.take(self.spp, SHUFFLE_TAG);
         // In u64: the last round of u32 indices may run past u32::MAX.
-        let index = u64::from(self.round_start)
-            + u64::from(permute(self.offset, self.spp, key ^ SHUFFLE_TAG));
+        let index = u64::from(round_start) + u64::from(shuffled);
         (key, index)
     }
 }
@@ -94,15 +86,13 @@ fn to_unit(x: u64) -> f32 {
 impl Sampler for R2Sampler {
     #[inline]
     fn start_pixel_sample(&mut self, pixel: [u32; 2], sample_index: u32) {
-        self.pixel_key = pixel_key_of_mixed(self.mixed_seed, pixel);
-        self.offset = sample_index % self.spp;
-        self.round_start = sample_index - self.offset;
-        self.dimension = 0;
+        self.round
+            .start(self.mixed_seed, self.spp, pixel, sample_index);
     }
 
     #[inline]
     fn skip_to_dimension(&mut self, dim: u32) {
-        self.dimension = u64::from(dim);
+        self.round.dimension = u64::from(dim);
     }
 
     fn samples_per_pixel(&self) -> u32 {

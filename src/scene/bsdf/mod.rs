@@ -1,6 +1,6 @@
 //! Materials: Mitsuba 3's `diffuse`, `conductor`, `roughconductor` (both with the named
 //! materials of [`named_conductor`]), `dielectric`, `roughdielectric`, `thindielectric`,
-//! `plastic`, `roughplastic` and `twosided`, as [`Bsdf`] implementations in the local z-up
+//! `plastic`, `roughplastic`, `principled` and `twosided`, as [`Bsdf`] implementations in the local z-up
 //! frame.
 //!
 //! One-sided BSDFs are black from the back (`wo.z ≤ 0`), as in Mitsuba; [`Sided`] adds the
@@ -17,6 +17,10 @@ mod mask;
 mod named_conductors;
 mod ndf;
 mod plastic;
+mod principled;
+mod principled_lobes;
+mod principled_params;
+mod principled_transmission;
 mod rough_conductor;
 mod rough_dielectric;
 mod rough_plastic;
@@ -32,6 +36,8 @@ pub use mask::Mask;
 pub use named_conductors::{conductor_names, named_conductor};
 pub use ndf::Ndf;
 pub use plastic::Plastic;
+pub use principled::Principled;
+pub use principled_params::{PrincipledParams, MAX_SPECULAR};
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
@@ -62,6 +68,9 @@ pub enum AnyBsdf {
     Plastic(Plastic),
     /// Diffuse base under a rough coating.
     RoughPlastic(RoughPlastic),
+    /// Mitsuba's `principled` (the Disney BSDF); boxed, so that its many
+    /// parameters do not enlarge every other material.
+    Principled(Box<Principled>),
     /// A blend of two materials.
     Blend(Blend),
     /// A material with an opacity.
@@ -79,6 +88,7 @@ macro_rules! dispatch {
             AnyBsdf::ThinDielectric($b) => $e,
             AnyBsdf::Plastic($b) => $e,
             AnyBsdf::RoughPlastic($b) => $e,
+            AnyBsdf::Principled($b) => $e,
             AnyBsdf::Blend($b) => $e,
             AnyBsdf::Mask($b) => $e,
         }
@@ -284,6 +294,9 @@ impl AnyBsdf {
                 int_ior / ext_ior,
                 *nonlinear,
             )?),
+            BsdfDesc::Principled(params) => {
+                AnyBsdf::Principled(Box::new(Principled::new(*params)?))
+            }
             BsdfDesc::Blend {
                 weight,
                 first,

@@ -33,6 +33,10 @@ impl AnyBsdf {
                 b.weight = v.x.clamp(0.0, 1.0);
                 return true;
             }
+            (AnyBsdf::Principled(b), P::BaseColor) => {
+                b.set_base_color(v);
+                return true;
+            }
             (AnyBsdf::Mask(b), P::Opacity) => {
                 b.opacity = v.x.clamp(0.0, 1.0);
                 return true;
@@ -72,7 +76,7 @@ struct Slot {
 /// texture coordinates `uv`: a copy of the constant material with every textured parameter
 /// set to its texture's value there (a colour, or the luminance for a blend weight or an
 /// opacity). The copy allocates only for `blendbsdf` and `mask`, which own their nested
-/// materials.
+/// materials, and `principled`, which is boxed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TexturedBsdf {
     /// The material with the textures' means in their parameters.

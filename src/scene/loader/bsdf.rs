@@ -1,5 +1,5 @@
 //! `<bsdf>`: `diffuse`, `conductor`, `roughconductor`, `dielectric`, `roughdielectric`,
-//! `thindielectric`, `plastic`, `roughplastic` and `twosided`, and `<ref>` to a BSDF
+//! `thindielectric`, `plastic`, `roughplastic`, `principled` and `twosided`, and `<ref>` to a BSDF
 //! declared elsewhere.
 
 use super::context::{Ctx, Res};
@@ -168,6 +168,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
                 nonlinear: p.bool("nonlinear")?.unwrap_or(false),
             }
         }
+        "principled" => super::principled::principled(e, &mut p)?,
         other => return Err(unknown_plugin(ctx, e, other)),
     };
     let desc = texture::attach(ctx, ty, desc, textures)?;

@@ -38,6 +38,7 @@ mod include;
 mod integrator;
 mod params;
 mod position;
+mod principled;
 mod props;
 mod sensor;
 mod shape;

@@ -147,7 +147,7 @@ pub(crate) fn take_textures<'a>(
                 SceneErrorKind::Unsupported(format!(
                     "a texture for \"{name}\" of bsdf \"{ty}\" (textures drive reflectance, \
                      diffuse_reflectance, specular_reflectance, specular_transmittance, \
-                     blendbsdf's weight and mask's opacity)"
+                     principled's base_color, blendbsdf's weight and mask's opacity)"
                 )),
             ));
         };
@@ -277,6 +277,7 @@ fn colour_mut(desc: &mut BsdfDesc, p: TextureParam) -> Option<&mut Vec3> {
             },
             P::DiffuseReflectance,
         ) => diffuse_reflectance,
+        (BsdfDesc::Principled(params), P::BaseColor) => &mut params.base_color,
         _ => return None,
     })
 }

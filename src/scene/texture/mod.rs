@@ -165,17 +165,20 @@ pub enum TextureParam {
     Weight,
     /// `mask`'s `opacity` (the texture's luminance).
     Opacity,
+    /// `principled`'s `base_color`.
+    BaseColor,
 }
 
 impl TextureParam {
     /// Every parameter, for lookups by name.
-    pub const ALL: [TextureParam; 6] = [
+    pub const ALL: [TextureParam; 7] = [
         Self::Reflectance,
         Self::DiffuseReflectance,
         Self::SpecularReflectance,
         Self::SpecularTransmittance,
         Self::Weight,
         Self::Opacity,
+        Self::BaseColor,
     ];
 
     /// The parameter's name in a scene file.
@@ -187,6 +190,7 @@ impl TextureParam {
             Self::SpecularTransmittance => "specular_transmittance",
             Self::Weight => "weight",
             Self::Opacity => "opacity",
+            Self::BaseColor => "base_color",
         }
     }
 
