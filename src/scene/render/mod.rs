@@ -196,6 +196,17 @@ fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, Sa
     })
 }
 
+/// Runs `f` in a pool of `threads` rayon threads (0: the global pool, all cores; also if
+/// the pool cannot be made).
+fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
+    if threads > 0 {
+        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+            return pool.install(f);
+        }
+    }
+    f()
+}
+
 fn bit(i: u32, b: u32) -> f32 {
     if (i >> b) & 1 == 1 {
         1.0
@@ -208,7 +219,13 @@ impl Renderer {
     /// Prepares a scene: geometry, lights, materials, camera and integrator. First refuses,
     /// naming the part of the scene, whatever [`validate::scene`](crate::scene::validate::scene)
     /// refuses (with `opts.spp` in place of the file's sample count, if given).
+    /// Mesh files are read and the acceleration structure built on `opts.threads` threads,
+    /// as the render runs.
     pub fn new(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {
+        on_threads(opts.threads, || Self::prepare(desc, opts))
+    }
+
+    fn prepare(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {
         let spp = opts.spp.unwrap_or(desc.sensor.sampler.sample_count);
         crate::scene::validate::scene(desc, spp).map_err(RenderError::Invalid)?;
         // The bidirectional estimators' s = 1 strategy samples rectangles and triangles by
@@ -422,18 +439,7 @@ impl Renderer {
             progress,
             cancel,
         };
-        let run = || self.dispatch(&params);
-        let (film, stats) = if self.threads > 0 {
-            match rayon::ThreadPoolBuilder::new()
-                .num_threads(self.threads)
-                .build()
-            {
-                Ok(pool) => pool.install(run),
-                Err(_) => run(),
-            }
-        } else {
-            run()
-        };
+        let (film, stats) = on_threads(self.threads, || self.dispatch(&params));
         RenderOutput {
             film,
             samples: stats.samples,
@@ -540,5 +546,22 @@ impl RenderOutput {
             self.film.height(),
             &self.film.variance(),
         )
+    }
+}
+
+#[cfg(test)]
+mod thread_tests {
+    use super::on_threads;
+
+    /// Scene preparation (mesh files, the BVH build) and rendering run on the pool
+    /// `--threads` asks for.
+    #[test]
+    fn work_runs_on_the_requested_number_of_threads() {
+        assert_eq!(on_threads(1, rayon::current_num_threads), 1);
+        assert_eq!(on_threads(3, rayon::current_num_threads), 3);
+        assert_eq!(
+            on_threads(0, rayon::current_num_threads),
+            rayon::current_num_threads()
+        );
     }
 }
