@@ -87,6 +87,22 @@ pub struct BsdfSample {
     pub eta: f32,
 }
 
+impl BsdfSample {
+    /// The sample of a component that is not a Dirac delta: direction `wi`, the BSDF's value
+    /// `f` there (times `|cos θ_i|`, as [`BsdfSample::weight`] counts it), its density `pdf`
+    /// and the relative index `eta` crossed; `None` unless `pdf` is positive and finite.
+    #[inline]
+    pub fn from_value(wi: Vec3, f: Vec3, pdf: f32, eta: f32) -> Option<Self> {
+        (super::is_positive(pdf) && pdf.is_finite()).then(|| Self {
+            wi,
+            weight: f / pdf,
+            pdf,
+            delta: false,
+            eta,
+        })
+    }
+}
+
 /// A BSDF in its local, z-up frame. `wo` points toward the viewer, `wi` toward the light;
 /// both are unit vectors.
 pub trait Bsdf {

@@ -251,16 +251,7 @@ impl Bsdf for Principled {
             return None;
         }
         let (f, pdf) = self.eval_pdf(wo, wi);
-        if !is_positive(pdf) || !pdf.is_finite() {
-            return None;
-        }
-        Some(BsdfSample {
-            wi,
-            weight: f / pdf,
-            pdf,
-            delta: false,
-            eta: 1.0,
-        })
+        BsdfSample::from_value(wi, f, pdf, 1.0)
     }
 }
 

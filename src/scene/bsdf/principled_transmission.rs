@@ -131,15 +131,6 @@ impl Principled {
             return None;
         }
         let (f, pdf) = self.eval_pdf_two_sided(wo, wi, false);
-        if !is_positive(pdf) || !pdf.is_finite() {
-            return None;
-        }
-        Some(BsdfSample {
-            wi,
-            weight: f / pdf,
-            pdf,
-            delta: false,
-            eta: refraction.unwrap_or(1.0),
-        })
+        BsdfSample::from_value(wi, f, pdf, refraction.unwrap_or(1.0))
     }
 }

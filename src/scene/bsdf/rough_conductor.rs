@@ -84,16 +84,7 @@ impl Bsdf for RoughConductor {
                 self.sample_with(&BeckmannVisible::new(b.alpha(), wo).ok()?, wo, u2)?
             }
         };
-        if !is_positive(pdf) || !pdf.is_finite() {
-            return None;
-        }
-        Some(BsdfSample {
-            wi,
-            weight: f / pdf,
-            pdf,
-            delta: false,
-            eta: 1.0,
-        })
+        BsdfSample::from_value(wi, f, pdf, 1.0)
     }
 }
 

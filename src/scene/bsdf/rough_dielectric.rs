@@ -158,16 +158,7 @@ impl Bsdf for RoughDielectric {
             (wi.normalize_or_zero(), eta_it)
         };
         let (value, pdf) = self.eval_pdf_at(wo, wi, m, pdf_m, false);
-        if !is_positive(pdf) || !pdf.is_finite() {
-            return None;
-        }
-        Some(BsdfSample {
-            wi,
-            weight: value / pdf,
-            pdf,
-            delta: false,
-            eta,
-        })
+        BsdfSample::from_value(wi, value, pdf, eta)
     }
 }
 
