@@ -11,13 +11,13 @@
 
 mod common;
 
-use common::{chi2, hemisphere, sphere, third_value};
-use mcrt::glam::{Vec2, Vec3};
+use common::{check_bsdf_sampling, hemisphere, sphere, third_value};
+use mcrt::glam::Vec3;
 use mcrt::integrator::{Bsdf, BsdfSample};
 use mcrt::scene::bsdf::{
     AnyBsdf, Blend, Diffuse, Fresnel, Mask, Plastic, RoughConductor, RoughDielectric, Sided,
 };
-use mcrt::stats::{check_weights, Directions};
+use mcrt::stats::Directions;
 
 fn wo_at(deg: f32) -> Vec3 {
     let t = deg.to_radians();
@@ -36,21 +36,9 @@ fn smooth_part(s: Option<BsdfSample>) -> Option<BsdfSample> {
 }
 
 fn check<B: Bsdf + Sync>(name: &str, b: &B, wo: Vec3, dirs: Directions) {
-    let out = chi2(dirs, name).run_weighted(
-        |u| smooth_part(b.sample(wo, third_value(u), u)).map(|s| (s.wi, s.weight.max_element())),
-        |wi| b.pdf(wo, wi),
-    );
-    assert!(out.passed(), "{}", out.report());
-    for c in 0..3 {
-        let w = check_weights(
-            |u: Vec2| smooth_part(b.sample(wo, third_value(u), u)).map(|s| (s.wi, s.weight[c])),
-            |wi| b.pdf(wo, wi),
-            |wi| b.eval(wo, wi)[c],
-            64,
-            1e-3,
-        );
-        assert!(w.passed(), "{name} channel {c}: {}", w.report());
-    }
+    check_bsdf_sampling(name, b, wo, dirs, |u| {
+        smooth_part(b.sample(wo, third_value(u), u))
+    });
 }
 
 #[test]

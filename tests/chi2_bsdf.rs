@@ -10,12 +10,12 @@
 
 mod common;
 
-use common::{chi2, hemisphere};
-use mcrt::glam::{Mat4, Vec2, Vec3};
+use common::{check_bsdf_sampling, chi2, hemisphere};
+use mcrt::glam::{Mat4, Vec3};
 use mcrt::integrator::Bsdf;
 use mcrt::scene::bsdf::{AnyBsdf, Diffuse, Fresnel, RoughConductor, Sided};
 use mcrt::scene::light::EnvMap;
-use mcrt::stats::{check_weights, Directions};
+use mcrt::stats::Directions;
 
 fn wo_at(deg: f32) -> Vec3 {
     let t = deg.to_radians();
@@ -38,21 +38,7 @@ fn rough(ggx: bool, alpha: f32) -> Sided<AnyBsdf> {
 /// Chi-square of the sampled directions (channel 0 weight decides rejection) and the weight
 /// check on every channel.
 fn check(name: &str, b: &Sided<AnyBsdf>, wo: Vec3, dirs: Directions) {
-    let out = chi2(dirs, name).run_weighted(
-        |u| b.sample(wo, 0.5, u).map(|s| (s.wi, s.weight.max_element())),
-        |wi| b.pdf(wo, wi),
-    );
-    assert!(out.passed(), "{}", out.report());
-    for c in 0..3 {
-        let w = check_weights(
-            |u: Vec2| b.sample(wo, 0.5, u).map(|s| (s.wi, s.weight[c])),
-            |wi| b.pdf(wo, wi),
-            |wi| b.eval(wo, wi)[c],
-            64,
-            1e-3,
-        );
-        assert!(w.passed(), "{name} channel {c}: {}", w.report());
-    }
+    check_bsdf_sampling(name, b, wo, dirs, |u| b.sample(wo, 0.5, u));
 }
 
 #[test]

@@ -16,11 +16,10 @@
 
 mod common;
 
-use common::{chi2, hemisphere, sphere, third_value};
-use mcrt::glam::{Vec2, Vec3};
+use common::{check_bsdf_sampling, hemisphere, sphere, third_value};
+use mcrt::glam::Vec3;
 use mcrt::integrator::Bsdf;
 use mcrt::scene::bsdf::{Principled, PrincipledParams};
-use mcrt::stats::check_weights;
 
 fn wo_at(deg: f32) -> Vec3 {
     let (t, p) = (deg.to_radians(), 40f32.to_radians());
@@ -80,24 +79,9 @@ fn cases() -> Vec<(&'static str, PrincipledParams)> {
 }
 
 fn check(name: &str, b: &Principled, wo: Vec3) {
-    let out = chi2(hemisphere(), name).run_weighted(
-        |u| {
-            b.sample(wo, third_value(u), u)
-                .map(|s| (s.wi, s.weight.max_element()))
-        },
-        |wi| b.pdf(wo, wi),
-    );
-    assert!(out.passed(), "{}", out.report());
-    for c in 0..3 {
-        let w = check_weights(
-            |u: Vec2| b.sample(wo, third_value(u), u).map(|s| (s.wi, s.weight[c])),
-            |wi| b.pdf(wo, wi),
-            |wi| b.eval(wo, wi)[c],
-            64,
-            1e-3,
-        );
-        assert!(w.passed(), "{name} channel {c}: {}", w.report());
-    }
+    check_bsdf_sampling(name, b, wo, hemisphere(), |u| {
+        b.sample(wo, third_value(u), u)
+    });
 }
 
 #[test]
@@ -143,24 +127,9 @@ fn transmission_sampling_matches_density() {
         let b = Principled::new(params).expect("valid parameters");
         for deg in [20.0, 70.0, 110.0, 160.0] {
             let wo = wo_at(deg);
-            let out = chi2(sphere(), &format!("principled-{name}-{deg}")).run_weighted(
-                |u| {
-                    b.sample(wo, third_value(u), u)
-                        .map(|s| (s.wi, s.weight.max_element()))
-                },
-                |wi| b.pdf(wo, wi),
-            );
-            assert!(out.passed(), "{}", out.report());
-            for c in 0..3 {
-                let w = check_weights(
-                    |u: Vec2| b.sample(wo, third_value(u), u).map(|s| (s.wi, s.weight[c])),
-                    |wi| b.pdf(wo, wi),
-                    |wi| b.eval(wo, wi)[c],
-                    64,
-                    1e-3,
-                );
-                assert!(w.passed(), "{name} {deg}° channel {c}: {}", w.report());
-            }
+            check_bsdf_sampling(&format!("principled-{name}-{deg}"), &b, wo, sphere(), |u| {
+                b.sample(wo, third_value(u), u)
+            });
         }
     }
 }

@@ -12,11 +12,10 @@
 
 mod common;
 
-use common::{chi2, sphere, third_value};
-use mcrt::glam::{Vec2, Vec3};
+use common::{check_bsdf_sampling, sphere, third_value};
+use mcrt::glam::Vec3;
 use mcrt::integrator::Bsdf;
 use mcrt::scene::bsdf::RoughDielectric;
-use mcrt::stats::check_weights;
 
 fn wo_at(deg: f32) -> Vec3 {
     let t = deg.to_radians();
@@ -24,24 +23,7 @@ fn wo_at(deg: f32) -> Vec3 {
 }
 
 fn check(name: &str, b: &RoughDielectric, wo: Vec3) {
-    let out = chi2(sphere(), name).run_weighted(
-        |u| {
-            b.sample(wo, third_value(u), u)
-                .map(|s| (s.wi, s.weight.max_element()))
-        },
-        |wi| b.pdf(wo, wi),
-    );
-    assert!(out.passed(), "{}", out.report());
-    for c in 0..3 {
-        let w = check_weights(
-            |u: Vec2| b.sample(wo, third_value(u), u).map(|s| (s.wi, s.weight[c])),
-            |wi| b.pdf(wo, wi),
-            |wi| b.eval(wo, wi)[c],
-            64,
-            1e-3,
-        );
-        assert!(w.passed(), "{name} channel {c}: {}", w.report());
-    }
+    check_bsdf_sampling(name, b, wo, sphere(), |u| b.sample(wo, third_value(u), u));
 }
 
 fn glass(ggx: bool, alpha: f32) -> RoughDielectric {

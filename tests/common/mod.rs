@@ -64,3 +64,32 @@ pub fn third_value(u: mcrt::glam::Vec2) -> f32 {
     z ^= z >> 31;
     (z >> 40) as f32 / (1u64 << 24) as f32
 }
+
+/// A BSDF's sampling at `wo` against its own density and value: the chi-square test of the
+/// directions `sample` draws (channel-maximum weight deciding rejection) over `dirs`, then
+/// the weight check `weight = f·|cos|/pdf` on every channel. `sample` is the BSDF's
+/// `sample` with the caller's choice of component value (and, for materials with Dirac
+/// parts, those parts left out).
+pub fn check_bsdf_sampling<B: mcrt::integrator::Bsdf + Sync>(
+    name: &str,
+    b: &B,
+    wo: mcrt::glam::Vec3,
+    dirs: Directions,
+    sample: impl Fn(mcrt::glam::Vec2) -> Option<mcrt::integrator::BsdfSample> + Sync,
+) {
+    let out = chi2(dirs, name).run_weighted(
+        |u| sample(u).map(|s| (s.wi, s.weight.max_element())),
+        |wi| b.pdf(wo, wi),
+    );
+    assert!(out.passed(), "{}", out.report());
+    for c in 0..3 {
+        let w = mcrt::stats::check_weights(
+            |u| sample(u).map(|s| (s.wi, s.weight[c])),
+            |wi| b.pdf(wo, wi),
+            |wi| b.eval(wo, wi)[c],
+            64,
+            1e-3,
+        );
+        assert!(w.passed(), "{name} channel {c}: {}", w.report());
+    }
+}
