@@ -39,13 +39,7 @@ impl Bsdf for Blend {
         }
     }
 
-    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        self.eval_pdf(wo, wi).0
-    }
-
-    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.eval_pdf(wo, wi).1
-    }
+    eval_and_pdf_from_eval_pdf!();
 
     fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
         self.mix(self.first.eval_pdf(wo, wi), self.second.eval_pdf(wo, wi))

@@ -8,6 +8,20 @@
 //! only is rendered with `Sided<Diffuse>` instead, so no glossy or refraction code is
 //! compiled into its render loop.
 
+/// `eval` and `pdf` for a BSDF whose `eval_pdf` computes both at once: each takes its half.
+macro_rules! eval_and_pdf_from_eval_pdf {
+    () => {
+        #[inline]
+        fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+            self.eval_pdf(wo, wi).0
+        }
+        #[inline]
+        fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+            self.eval_pdf(wo, wi).1
+        }
+    };
+}
+
 mod blend;
 mod conductor;
 mod dielectric;
@@ -146,14 +160,7 @@ impl<B: Bsdf> Bsdf for Sided<B> {
     fn flags(&self) -> BsdfFlags {
         self.bsdf.flags()
     }
-    #[inline]
-    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        self.eval_pdf(wo, wi).0
-    }
-    #[inline]
-    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.eval_pdf(wo, wi).1
-    }
+    eval_and_pdf_from_eval_pdf!();
     #[inline]
     fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
         if self.two_sided && wo.z < 0.0 {

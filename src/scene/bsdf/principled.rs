@@ -190,13 +190,7 @@ impl Bsdf for Principled {
         }
     }
 
-    fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        self.eval_pdf(wo, wi).0
-    }
-
-    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.eval_pdf(wo, wi).1
-    }
+    eval_and_pdf_from_eval_pdf!();
 
     fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
         if self.params.spec_trans > 0.0 {
