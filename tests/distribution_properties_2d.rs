@@ -6,53 +6,11 @@ use mcrt::glam::Vec2;
 use mcrt::sampling::distribution::{PiecewiseLinear2D, WindowedPiecewiseConstant2D};
 use mcrt::sampling::warp::{InvertibleWarp, Warp};
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
+#[path = "common/props.rs"]
+mod props;
+use props::{distribution_config as config, float_in, table_len, unit};
 
 use mcrt::sampling::ONE_MINUS_EPSILON as ONE_MINUS_EPS;
-
-fn config(cases: u32) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        rng_seed: RngSeed::Fixed(0x5eed_d157),
-        failure_persistence: None,
-        ..ProptestConfig::default()
-    }
-}
-
-/// A sample value in [0,1): free (24-bit grid, as samplers produce) or pinned to an edge.
-fn unit() -> impl Strategy<Value = f32> {
-    prop_oneof![
-        6 => (0u32..1 << 24).prop_map(|k| k as f32 / (1u32 << 24) as f32),
-        1 => Just(0.0f32),
-        1 => Just(0.5f32),
-        1 => Just(ONE_MINUS_EPS),
-    ]
-}
-
-/// A float in `[lo, hi)` on a grid of 2²⁴ steps.
-fn float_in(lo: f32, hi: f32) -> impl Strategy<Value = f32> {
-    (0u32..1 << 24)
-        .prop_map(move |k| (lo + (hi - lo) * (k as f32 / (1u32 << 24) as f32)).min(hi.next_down()))
-}
-
-/// A table entry: often zero, else in a moderate range.
-fn entry() -> impl Strategy<Value = f32> {
-    prop_oneof![3 => Just(0.0f32), 7 => float_in(0.01, 100.0)]
-}
-
-/// A table of a length in `len` with at least one nonzero entry.
-fn table_len(len: std::ops::Range<usize>) -> impl Strategy<Value = Vec<f32>> {
-    (
-        prop::collection::vec(entry(), len),
-        any::<prop::sample::Index>(),
-        float_in(0.01, 100.0),
-    )
-        .prop_map(|(mut v, i, x)| {
-            let k = i.index(v.len());
-            v[k] = x;
-            v
-        })
-}
 
 /// A `(width, height, table)` of 1 to 15 cells a side with at least one nonzero cell.
 fn table_2d() -> impl Strategy<Value = (usize, usize, Vec<f32>)> {

@@ -5,16 +5,9 @@
 
 use mcrt::sampling::{VarianceEstimator, WeightedReservoir};
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
-
-fn config(cases: u32) -> Config {
-    Config {
-        cases,
-        rng_seed: RngSeed::Fixed(0x6d63_7274),
-        failure_persistence: None,
-        ..Config::default()
-    }
-}
+#[path = "common/props.rs"]
+mod props;
+use props::config;
 
 fn weight() -> impl Strategy<Value = f32> {
     prop_oneof![

@@ -14,16 +14,9 @@ use mcrt::sampling::distribution::PiecewiseConstant2D;
 use mcrt::sampling::warp::{InvertibleWarp, LatLong, Warp};
 use mcrt::sampling::ONE_MINUS_EPSILON;
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
-
-fn config(cases: u32) -> Config {
-    Config {
-        cases,
-        rng_seed: RngSeed::Fixed(0x6d63_7274),
-        failure_persistence: None,
-        ..Config::default()
-    }
-}
+#[path = "common/props.rs"]
+mod props;
+use props::config;
 
 /// One coordinate of a direction: free, or an edge value (±0, ±1).
 fn component() -> impl Strategy<Value = f32> {

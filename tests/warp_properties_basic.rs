@@ -32,35 +32,14 @@ use mcrt::sampling::warp::{
     UniformHemisphere, UniformSphere, UniformTriangle, Warp,
 };
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
+#[path = "common/props.rs"]
+mod props;
+use mcrt::sampling::ONE_MINUS_EPSILON as ONE_MINUS;
+use props::{config, u_any};
 use std::f64::consts::PI;
 use warp_basic_support::*;
 
-const ONE_MINUS: f32 = 1.0 - 1.0 / 16_777_216.0;
 const EDGE_TOL: f64 = 1e-5;
-
-fn config(cases: u32) -> Config {
-    Config {
-        cases,
-        rng_seed: RngSeed::Fixed(0x6d63_7274),
-        failure_persistence: None,
-        ..Config::default()
-    }
-}
-
-/// One coordinate of u: free, or pinned to an edge.
-fn coord() -> impl Strategy<Value = f32> {
-    prop_oneof![
-        1 => Just(0.0f32),
-        1 => Just(0.5f32),
-        1 => Just(ONE_MINUS),
-        5 => 0.0f32..1.0,
-    ]
-}
-
-fn u_any() -> impl Strategy<Value = Vec2> {
-    (coord(), coord()).prop_map(|(a, b)| Vec2::new(a, b))
-}
 
 fn u_jacobian() -> impl Strategy<Value = Vec2> {
     (JAC_MARGIN..1.0 - JAC_MARGIN, JAC_MARGIN..1.0 - JAC_MARGIN).prop_map(|(a, b)| Vec2::new(a, b))

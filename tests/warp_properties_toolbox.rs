@@ -13,33 +13,12 @@
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::sampling::warp::*;
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
+#[path = "common/props.rs"]
+mod props;
+use mcrt::sampling::ONE_MINUS_EPSILON as ONE_MINUS;
+use props::{config, coord, u_any};
 
-const ONE_MINUS: f32 = 1.0 - 1.0 / 16_777_216.0;
 const RT_TOL: f64 = 4e-6;
-
-fn config(cases: u32) -> Config {
-    Config {
-        cases,
-        rng_seed: RngSeed::Fixed(0x6d63_7274),
-        failure_persistence: None,
-        ..Config::default()
-    }
-}
-
-/// One coordinate of u: free, or pinned to an edge.
-fn coord() -> impl Strategy<Value = f32> {
-    prop_oneof![
-        1 => Just(0.0f32),
-        1 => Just(0.5f32),
-        1 => Just(ONE_MINUS),
-        5 => 0.0f32..1.0,
-    ]
-}
-
-fn u_any() -> impl Strategy<Value = Vec2> {
-    (coord(), coord()).prop_map(|(a, b)| Vec2::new(a, b))
-}
 
 /// Every property of a 1D warp at one u; `support` is closed, `zero_ok(x)` tells where the
 /// density may vanish (an end where it is 0).
