@@ -1,7 +1,7 @@
 //! Unit tests of light sampling: the plans chosen once give the same samples as sampling the
 //! light's shape through the geometry.
 
-use super::{toward_area_light, Light, LightSample, Lights, SamplePlan};
+use super::{positive_finite, toward_area_light, Light, LightSample, Lights, SamplePlan};
 use crate::integrator::{Frame, SurfacePoint};
 use crate::scene::geometry::{AccelKind, Geometry, ShapeSampling};
 use glam::{Vec2, Vec3};
@@ -192,4 +192,35 @@ fn light_choice_is_drawn_only_when_read() {
         !Lights::new(&desc, &geo, 10.0).unwrap().reads_pick(),
         "two lights"
     );
+}
+
+/// The bit test is `0 < x < ∞` exactly, at the edges of every class.
+#[test]
+fn positive_finite_is_the_float_comparison() {
+    let edges = [
+        0.0,
+        -0.0,
+        f32::from_bits(1),
+        -f32::from_bits(1),
+        f32::MIN_POSITIVE,
+        1.0,
+        f32::MAX,
+        -f32::MAX,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        -f32::NAN,
+        f32::from_bits(0x7fc0_0001),
+    ];
+    for x in edges {
+        assert_eq!(positive_finite(x), x > 0.0 && x < f32::INFINITY, "{x:?}");
+    }
+    for bits in (0..=u32::MAX).step_by(65_521) {
+        let x = f32::from_bits(bits);
+        assert_eq!(
+            positive_finite(x),
+            x > 0.0 && x < f32::INFINITY,
+            "{bits:#x}"
+        );
+    }
 }
