@@ -147,35 +147,46 @@ fn diffuse_sphere_under_a_uniform_envmap_returns_its_albedo() {
     check("diffuse under envmap", got, rho);
 }
 
+/// The albedo of the plane tests' diffuse floor.
+const PLANE_RHO: Vec3 = Vec3::new(0.3, 0.5, 0.7);
+
+/// The mean of a 16 × 16 render, 4 spp, of the diffuse floor seen from (0, 0, 5) under one
+/// light, checked finite and within 0.1 % of `want` per channel.
+fn check_lit_plane(light: EmitterDesc, integrator: IntegratorDesc, want: Vec3) {
+    let mut floor = ShapeDesc::new(ShapeKind::Rectangle);
+    floor.to_world = Mat4::from_scale(Vec3::splat(10.0));
+    floor.bsdf = BsdfDesc::Diffuse {
+        reflectance: PLANE_RHO,
+    };
+    let desc = SceneDescription {
+        integrator,
+        sensor: camera(Vec3::new(0.0, 0.0, 5.0), 0.45, 16),
+        shapes: vec![floor],
+        emitters: vec![light.clone()],
+        source: None,
+    };
+    let (m, _) = render(&desc, 4);
+    for c in 0..3 {
+        assert!(
+            m[c].is_finite() && (m[c] / want[c] - 1.0).abs() < 1e-3,
+            "{integrator:?}, {light:?}: {m} vs {want}"
+        );
+    }
+}
+
 #[test]
 fn point_light_over_a_diffuse_plane() {
     // Radiance ρ/π · I cos θ / d² with d = 1 right under the light; the camera sees a disk
     // of radius 0.02 around that point, where cos θ / d² > 0.9994.
-    let rho = Vec3::new(0.3, 0.5, 0.7);
-    let mut floor = ShapeDesc::new(ShapeKind::Rectangle);
-    floor.to_world = Mat4::from_scale(Vec3::splat(10.0));
-    floor.bsdf = BsdfDesc::Diffuse { reflectance: rho };
-    let desc = SceneDescription {
-        integrator: IntegratorDesc::Path {
-            max_depth: 2,
-            rr_depth: 5,
-        },
-        sensor: camera(Vec3::new(0.0, 0.0, 5.0), 0.45, 16),
-        shapes: vec![floor],
-        emitters: vec![EmitterDesc::Point {
-            position: Vec3::new(0.0, 0.0, 1.0),
-            intensity: Vec3::ONE,
-        }],
-        source: None,
+    let light = EmitterDesc::Point {
+        position: Vec3::new(0.0, 0.0, 1.0),
+        intensity: Vec3::ONE,
     };
-    let (m, _) = render(&desc, 4);
-    let want = rho / std::f32::consts::PI;
-    for c in 0..3 {
-        assert!(
-            m[c].is_finite() && (m[c] / want[c] - 1.0).abs() < 1e-3,
-            "{m} vs {want}"
-        );
-    }
+    let path = IntegratorDesc::Path {
+        max_depth: 2,
+        rr_depth: 5,
+    };
+    check_lit_plane(light, path, PLANE_RHO / std::f32::consts::PI);
 }
 
 /// A directional light at angle θ to a diffuse plane gives irradiance `E cos θ` (the
@@ -183,10 +194,6 @@ fn point_light_over_a_diffuse_plane() {
 /// `ρ/π · I f(0) / d²` under it, its full intensity inside the beam. Path and direct.
 #[test]
 fn directional_and_spot_lights_over_a_diffuse_plane() {
-    let rho = Vec3::new(0.3, 0.5, 0.7);
-    let mut floor = ShapeDesc::new(ShapeKind::Rectangle);
-    floor.to_world = Mat4::from_scale(Vec3::splat(10.0));
-    floor.bsdf = BsdfDesc::Diffuse { reflectance: rho };
     let theta = 50f32.to_radians();
     let lights = [
         (
@@ -221,21 +228,8 @@ fn directional_and_spot_lights_over_a_diffuse_plane() {
         .iter()
         .flat_map(|l| integrators.iter().map(move |i| (l.clone(), *i)))
     {
-        let desc = SceneDescription {
-            integrator,
-            sensor: camera(Vec3::new(0.0, 0.0, 5.0), 0.45, 16),
-            shapes: vec![floor.clone()],
-            emitters: vec![light.clone()],
-            source: None,
-        };
-        let (m, _) = render(&desc, 4);
-        let want = rho / std::f32::consts::PI * irradiance;
-        for c in 0..3 {
-            assert!(
-                m[c].is_finite() && (m[c] / want[c] - 1.0).abs() < 1e-3,
-                "{integrator:?}, {light:?}: {m} vs {want}"
-            );
-        }
+        let want = PLANE_RHO / std::f32::consts::PI * irradiance;
+        check_lit_plane(light, integrator, want);
     }
 }
 
