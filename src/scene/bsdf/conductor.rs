@@ -46,13 +46,7 @@ impl Bsdf for Conductor {
         }
     }
 
-    fn eval(&self, _wo: Vec3, _wi: Vec3) -> Vec3 {
-        Vec3::ZERO
-    }
-
-    fn pdf(&self, _wo: Vec3, _wi: Vec3) -> f32 {
-        0.0
-    }
+    eval_and_pdf_of_a_delta_bsdf!();
 
     #[inline]
     fn samples_component(&self) -> bool {

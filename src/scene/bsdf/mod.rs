@@ -22,6 +22,21 @@ macro_rules! eval_and_pdf_from_eval_pdf {
     };
 }
 
+/// `eval` and `pdf` of a purely specular (Dirac) BSDF: no value and no density off its
+/// delta directions.
+macro_rules! eval_and_pdf_of_a_delta_bsdf {
+    () => {
+        #[inline]
+        fn eval(&self, _wo: Vec3, _wi: Vec3) -> Vec3 {
+            Vec3::ZERO
+        }
+        #[inline]
+        fn pdf(&self, _wo: Vec3, _wi: Vec3) -> f32 {
+            0.0
+        }
+    };
+}
+
 mod blend;
 mod conductor;
 mod dielectric;

@@ -43,13 +43,7 @@ impl Bsdf for ThinDielectric {
         }
     }
 
-    fn eval(&self, _wo: Vec3, _wi: Vec3) -> Vec3 {
-        Vec3::ZERO
-    }
-
-    fn pdf(&self, _wo: Vec3, _wi: Vec3) -> f32 {
-        0.0
-    }
+    eval_and_pdf_of_a_delta_bsdf!();
 
     fn sample(&self, wo: Vec3, u1: f32, _u2: Vec2) -> Option<BsdfSample> {
         if !wo.is_finite() {
