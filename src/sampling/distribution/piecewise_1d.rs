@@ -263,6 +263,24 @@ pub(crate) fn validate_table(values: &[f32]) -> Result<(), SamplingError> {
     }
 }
 
+/// Checks a row-major grid table: `width · height` values ([`SamplingError::ShapeMismatch`]
+/// otherwise), then as [`validate_table`]. Returns the number of values.
+pub(crate) fn validate_grid(
+    values: &[f32],
+    width: usize,
+    height: usize,
+) -> Result<usize, SamplingError> {
+    let expected = width.saturating_mul(height);
+    if values.len() != expected {
+        return Err(SamplingError::ShapeMismatch {
+            expected,
+            got: values.len(),
+        });
+    }
+    validate_table(values)?;
+    Ok(expected)
+}
+
 /// Rejects bins narrower than the `f32` spacing on `[min, max)`: such a bin may hold no
 /// `f32` at all, so a sample could not be placed inside it.
 fn check_bin_width(n: usize, min: f32, max: f32) -> Result<(), SamplingError> {

@@ -5,7 +5,7 @@ use glam::Vec2;
 
 use crate::sampling::warp::{InvertibleWarp, Warp};
 
-use super::piecewise_1d::{drop_underflowing, validate_table, PiecewiseConstant1D};
+use super::piecewise_1d::{drop_underflowing, validate_grid, PiecewiseConstant1D};
 use crate::sampling::SamplingError;
 
 /// A piecewise-constant density on `[0,1)²` proportional to a `width × height` table stored
@@ -69,20 +69,13 @@ impl PiecewiseConstant2D {
     /// is 0, [`SamplingError::InvalidParameter`] when `width` or `height` exceeds 2²⁴ (a
     /// cell would be narrower than an `f32` step).
     pub fn new(values: &[f32], width: usize, height: usize) -> Result<Self, SamplingError> {
-        let expected = width.saturating_mul(height);
-        if values.len() != expected {
-            return Err(SamplingError::ShapeMismatch {
-                expected,
-                got: values.len(),
-            });
-        }
-        validate_table(values)?;
+        let n = validate_grid(values, width, height)?;
         let mut cells: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
         let sum: f64 = cells.iter().sum();
         if sum <= 0.0 {
             return Err(SamplingError::ZeroTable);
         }
-        drop_underflowing(&mut cells, expected as f64 / sum);
+        drop_underflowing(&mut cells, n as f64 / sum);
         let mut conditional = Vec::with_capacity(height);
         let mut row_sums = Vec::with_capacity(height);
         for row in cells.chunks_exact(width) {
@@ -95,7 +88,7 @@ impl PiecewiseConstant2D {
             });
         }
         let marginal = PiecewiseConstant1D::from_validated(row_sums, 0.0, 1.0)?;
-        let pdf_scale = expected as f64 / marginal.total();
+        let pdf_scale = n as f64 / marginal.total();
         Ok(Self {
             conditional,
             marginal,

@@ -4,7 +4,7 @@
 
 use glam::Vec2;
 
-use super::piecewise_1d::{clamp_unit, validate_table};
+use super::piecewise_1d::{clamp_unit, validate_grid};
 use crate::sampling::warp::linear::{
     linear_cdf_normalised, normalise_ends, sample_linear_normalised,
 };
@@ -72,18 +72,11 @@ impl PiecewiseLinear2D {
                 });
             }
         }
-        let expected = width * height;
-        if values.len() != expected {
-            return Err(SamplingError::ShapeMismatch {
-                expected,
-                got: values.len(),
-            });
-        }
-        validate_table(values)?;
+        let n = validate_grid(values, width, height)?;
         let values: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
         let dx = 1.0 / (width - 1) as f64;
         let dy = 1.0 / (height - 1) as f64;
-        let mut row_cdf = Vec::with_capacity(expected);
+        let mut row_cdf = Vec::with_capacity(n);
         for row in values.chunks_exact(width) {
             let mut acc = 0.0;
             row_cdf.push(0.0);

@@ -3,7 +3,7 @@
 
 use glam::Vec2;
 
-use super::piecewise_1d::{clamp_unit, validate_table};
+use super::piecewise_1d::{clamp_unit, validate_grid};
 use crate::sampling::warp::{InvertibleWarp, Warp};
 use crate::sampling::SamplingError;
 
@@ -44,15 +44,8 @@ impl SummedAreaTable {
     /// [`SamplingError::EmptyTable`] for a zero dimension, [`SamplingError::InvalidEntry`] for
     /// a negative, NaN or infinite value.
     pub fn new(values: &[f32], width: usize, height: usize) -> Result<Self, SamplingError> {
-        let expected = width.saturating_mul(height);
-        if values.len() != expected {
-            return Err(SamplingError::ShapeMismatch {
-                expected,
-                got: values.len(),
-            });
-        }
-        validate_table(values)?;
-        let cell = 1.0 / expected as f64;
+        let n = validate_grid(values, width, height)?;
+        let cell = 1.0 / n as f64;
         let stride = width + 1;
         let mut sums = vec![0.0; stride * (height + 1)];
         for y in 0..height {
