@@ -14,6 +14,7 @@
 use super::area_to_solid_angle;
 use crate::sampling::warp::polar::azimuth_polynomial;
 use crate::sampling::warp::{UniformSphere, Warp};
+use crate::sampling::Frame;
 use crate::scene::geometry::ShapeSample;
 use glam::{Vec2, Vec3};
 use std::f32::consts::{PI, TAU};
@@ -66,19 +67,6 @@ impl Cone {
     }
 }
 
-/// An orthonormal basis (s, t) completing the unit `n` (Duff et al. 2017, "Building an
-/// Orthonormal Basis, Revisited", JCGT 6(1)).
-#[inline]
-fn basis(n: Vec3) -> (Vec3, Vec3) {
-    let sign = 1.0f32.copysign(n.z);
-    let a = -1.0 / (sign + n.z);
-    let b = n.x * n.y * a;
-    (
-        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-        Vec3::new(b, sign + n.y * n.y * a, -n.y),
-    )
-}
-
 /// A point on the sphere for lighting `reference` (module docs) with its density per
 /// steradian; `None` where that is not finite.
 #[inline(always)]
@@ -115,7 +103,7 @@ pub(super) fn sample(
     let sin_alpha = sin_theta * dist * inv_r;
     // n = −cos α · axis + sin α · (cos φ s + sin φ t), the axis pointing to the centre.
     let axis = cone.to_c / d;
-    let (s, t) = basis(axis);
+    let Frame { s, t, .. } = Frame::from_normal(axis);
     let (cos_phi, sin_phi) = azimuth_polynomial(u.y);
     let n = (s * cos_phi + t * sin_phi) * sin_alpha - axis * cos_alpha;
     let p = center + radius * n;
@@ -146,21 +134,6 @@ pub(super) fn pdf(center: Vec3, radius: f32, reference: Vec3, p: Vec3) -> Option
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn basis_is_orthonormal() {
-        for n in [
-            Vec3::Z,
-            -Vec3::Z,
-            Vec3::new(0.6, 0.0, -0.8),
-            Vec3::new(0.0, 1.0, 0.0),
-        ] {
-            let (s, t) = basis(n);
-            assert!(s.is_finite() && t.is_finite());
-            assert!(s.dot(t).abs() < 1e-6 && s.dot(n).abs() < 1e-6 && t.dot(n).abs() < 1e-6);
-            assert!((s.length() - 1.0).abs() < 1e-6 && (t.length() - 1.0).abs() < 1e-6);
-        }
-    }
 
     #[test]
     fn tiny_distant_sphere_samples_near_its_centre() {
