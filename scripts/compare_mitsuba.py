@@ -21,7 +21,7 @@ Example:
 
     python3 scripts/compare_mitsuba.py --quick
     python3 scripts/compare_mitsuba.py --json out/peer.json --markdown out/peer.md
-    python3 scripts/compare_mitsuba.py tests/data/cornell-box-caustic.xml --no-build \
+    python3 scripts/compare_mitsuba.py mcrt-render/tests/data/cornell-box-caustic.xml --no-build \
         --variants llvm_ad_rgb --samplers independent \
         --ours-args "" "--integrator bdpt" "--integrator bdpt --sampler sobol"
 """
@@ -49,8 +49,8 @@ from contenders import (
     read_exr,
 )
 
-DEFAULT_SCENES = ["tests/data/cornell-box.xml", "tests/data/veach-mis.xml"]
-DEFAULT_BINARY = "target/release/examples/render"
+DEFAULT_SCENES = ["mcrt-render/tests/data/cornell-box.xml", "mcrt-render/tests/data/veach-mis.xml"]
+DEFAULT_BINARY = "target/release/render"
 MITSUBA_VARIANTS = ["scalar_rgb", "llvm_ad_rgb"]
 MITSUBA_SAMPLERS = ["independent", "ldsampler", "multijitter"]
 # The ratio columns divide by the most efficient result whose "renderer sampler" starts with
@@ -289,7 +289,7 @@ def parse_args(argv=None) -> argparse.Namespace:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("scenes", nargs="*", default=DEFAULT_SCENES,
                    help="scene files, optionally 'scene.xml:reference.exr' "
-                        "(default: the Cornell box and Veach's MIS scene in tests/data)")
+                        "(default: the Cornell box and Veach's MIS scene in mcrt-render/tests/data)")
     p.add_argument("-D", dest="define", action="append", default=[], metavar="NAME=VALUE",
                    help="scene parameter for both renderers (as the render example's -D)")
     p.add_argument("--spp", type=int, nargs="+", default=[64, 256], help="sample counts")
@@ -374,7 +374,7 @@ def main(argv=None) -> int:
             build_renderer(a.renderer)
         elif not a.renderer.exists():
             fail(f"renderer binary {a.renderer} missing: run "
-                 "'cargo build --release --example render' or drop --no-build")
+                 "'cargo build --release --bin render' or drop --no-build")
     seeds = list(range(1, a.repeats + 1))
     results: list[Result] = []
     with tempfile.TemporaryDirectory(prefix="mcrt-peer-") as tmp:

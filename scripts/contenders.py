@@ -225,7 +225,7 @@ class OursContender:
     """mcrt's render example with one sampler and extra arguments, run as a child process.
 
     `extra` may itself hold '--sampler X'; then X is the sampler (`sampler` is ignored).
-    `independent` passes no --sampler: the scene file's sampler (independent in tests/data)
+    `independent` passes no --sampler: the scene file's sampler (independent in mcrt-render/tests/data)
     is used; the sampler the renderer reports on its first line is checked in setup()."""
 
     def __init__(self, binary: Path, sampler: str, extra: str, defines: dict[str, str],
@@ -293,12 +293,12 @@ class OursContender:
 
 def build_renderer(binary: Path) -> None:
     """Build the render example in release mode (not timed)."""
-    cmd = ["cargo", "build", "--release", "--example", "render"]
+    cmd = ["cargo", "build", "--release", "--bin", "render"]
     print("building:", " ".join(cmd), file=sys.stderr)
     if shutil.which("cargo") is None:
         fail("cargo not found; build the renderer yourself and pass --no-build")
     if subprocess.run(cmd, cwd=REPO).returncode != 0:
-        fail("cargo build failed (is examples/render.rs in this checkout?)")
+        fail("cargo build failed (is mcrt-render/src/bin/render.rs in this checkout?)")
     if not binary.exists():
         fail(f"the build did not produce {binary}")
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Writes the mesh files of tests/data/meshes/ (PLY and Mitsuba `serialized`), checks that
+"""Writes the mesh files of mcrt-render/tests/data/meshes/ (PLY and Mitsuba `serialized`), checks that
 Mitsuba 3 reads each to the geometry written, and with --render renders the references
-tests/data/meshes.exr and tests/data/tent-crop.exr with Mitsuba 3 (llvm_ad_rgb, path
+mcrt-render/tests/data/meshes.exr and mcrt-render/tests/data/tent-crop.exr with Mitsuba 3 (llvm_ad_rgb, path
 integrator, the mean of many independent passes).
 
     python3 scripts/make_mesh_data.py            # write and check the mesh files
@@ -27,7 +27,7 @@ import numpy as np
 from contenders import import_mitsuba
 
 REPO = Path(__file__).resolve().parent.parent
-DATA = REPO / "tests" / "data"
+DATA = REPO / "mcrt-render" / "tests" / "data"
 MESHES = DATA / "meshes"
 
 

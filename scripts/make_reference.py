@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""Render a Mitsuba 3 reference image for tests/data, the way tests/data/REFERENCES.md
+"""Render a Mitsuba 3 reference image for mcrt-render/tests/data, the way mcrt-render/tests/data/REFERENCES.md
 describes: the mean of independent passes `mi.render(scene, spp=PASS, seed=i)`, i = 0, 1, ...,
 written as linear RGB float32 EXR. Prints the image mean and the render time.
 
 Usage:
-    python3 scripts/make_reference.py tests/data/cornell-box-glass.xml --spp 4096
-    python3 scripts/make_reference.py tests/data/cornell-box.xml -D max_depth=2 \\
-        --spp 4096 --out tests/data/cornell-box-direct.exr
+    python3 scripts/make_reference.py mcrt-render/tests/data/cornell-box-glass.xml --spp 4096
+    python3 scripts/make_reference.py mcrt-render/tests/data/cornell-box.xml -D max_depth=2 \\
+        --spp 4096 --out mcrt-render/tests/data/cornell-box-direct.exr
 
 The output defaults to the scene's path with `.exr`. `-D NAME=VALUE` sets a scene
 parameter (repeatable). Needs the packages of scripts/requirements.txt and, for the

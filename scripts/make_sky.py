@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Write tests/data/sky.exr: a small synthetic latitude-longitude environment map (64 x 32,
+"""Write mcrt-render/tests/data/sky.exr: a small synthetic latitude-longitude environment map (64 x 32,
 linear RGB float32) for the rotated-envmap reference scene: a blue-to-white sky over a dark
 brown ground, with a warm sun disk of about 10 degrees radius at azimuth u = 0.3, elevation
 35 degrees, so that a rotation of the map is plain in the render (shadows, colours).
 
-Usage: python3 scripts/make_sky.py [--out tests/data/sky.exr]
+Usage: python3 scripts/make_sky.py [--out mcrt-render/tests/data/sky.exr]
 """
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ def sky(width: int = 64, height: int = 32):
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--out", type=Path, default=Path("tests/data/sky.exr"))
+    ap.add_argument("--out", type=Path, default=Path("mcrt-render/tests/data/sky.exr"))
     a = ap.parse_args()
     mi, _ = import_mitsuba(["scalar_rgb"])
     mi.Bitmap(sky()).write(str(a.out))

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Write the texture images of tests/data/textures/ (used by tests/data/textures.xml) and
-print what Mitsuba 3 makes of them, the facts src/scene/texture/ was checked against.
+"""Write the texture images of mcrt-render/tests/data/textures/ (used by mcrt-render/tests/data/textures.xml) and
+print what Mitsuba 3 makes of them, the facts mcrt-render/src/texture/ was checked against.
 
 Usage:
     python3 scripts/make_texture_data.py            # write the images
@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-OUT = Path(__file__).resolve().parent.parent / "tests" / "data" / "textures"
+OUT = Path(__file__).resolve().parent.parent / "mcrt-render" / "tests" / "data" / "textures"
 
 
 def grid() -> np.ndarray:
@@ -50,7 +50,7 @@ def tiles() -> np.ndarray:
 
 
 def probe(mi) -> None:
-    """Mitsuba's lookups that the unit tests pin (src/scene/texture/)."""
+    """Mitsuba's lookups that the unit tests pin (mcrt-render/src/texture/)."""
     def ev(tex, uv):
         si = mi.SurfaceInteraction3f()
         si.uv = mi.Point2f(*uv)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Write tests/data/mitsuba-bsdf-values.txt: Mitsuba 3's own values of the BSDFs the
-loader reads, for tests/bsdf_mitsuba_values.rs to compare ours against.
+"""Write mcrt-render/tests/data/mitsuba-bsdf-values.txt: Mitsuba 3's own values of the BSDFs the
+loader reads, for mcrt-render/tests/bsdf_mitsuba_values.rs to compare ours against.
 
 For each case (a <bsdf> element, loaded by Mitsuba from the same text our test loads) and
 each pair of directions it records Mitsuba's `eval` (BSDF times the cosine of the sampled
@@ -13,7 +13,7 @@ Mitsuba's `si.wi`, our `wi` (toward the light) is Mitsuba's `wo`. The shading fr
 identity (z up). Directions: a fixed random set over the sphere (seed 1), plus the mirror
 and refracted directions of each `wo` and points around them, so that narrow lobes are hit.
 
-Usage:  python3 scripts/mitsuba_bsdf_values.py [OUT]   (default tests/data/mitsuba-bsdf-values.txt)
+Usage:  python3 scripts/mitsuba_bsdf_values.py [OUT]   (default mcrt-render/tests/data/mitsuba-bsdf-values.txt)
 Needs the packages of scripts/requirements.txt; uses the scalar_rgb variant.
 """
 
@@ -153,7 +153,7 @@ def fmt(v) -> str:
 
 
 def main() -> None:
-    out_path = Path(sys.argv[1]) if len(sys.argv) > 1 else REPO / "tests/data/mitsuba-bsdf-values.txt"
+    out_path = Path(sys.argv[1]) if len(sys.argv) > 1 else REPO / "mcrt-render/tests/data/mitsuba-bsdf-values.txt"
     import mitsuba as mi
 
     mi.set_variant("scalar_rgb")

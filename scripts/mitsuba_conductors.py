@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Print the RGB complex indices of refraction that Mitsuba 3's RGB variants use for the
 named conductor materials (`<string name="material" value="Au"/>`), as the Rust table of
-`src/scene/bsdf/named_conductors.rs`.
+`mcrt-render/src/bsdf/named_conductors.rs`.
 
 Mitsuba 3 ships each material as two tabulated spectra (`data/ior/<name>.eta.spd` and
 `<name>.k.spd`, measured optical constants from the LuxPop database, which compiles Palik,

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Write tests/data/mitsuba-emitter-values.txt: Mitsuba 3's own values of the emitters and
-the sensor that issue 16 added, for tests/emitter_mitsuba_values.rs to compare ours against.
+"""Write mcrt-render/tests/data/mitsuba-emitter-values.txt: Mitsuba 3's own values of the emitters and
+the sensor that issue 16 added, for mcrt-render/tests/emitter_mitsuba_values.rs to compare ours against.
 
 Each case is a scene fragment (an <emitter> or a <sensor>), loaded by Mitsuba from the same
 text our test loads, inside `<scene version="3.0.0"> ... </scene>` with the scene file's
-folder tests/data (for envmap files). Per case:
+folder mcrt-render/tests/data (for envmap files). Per case:
 
 - spot, directional: for points p, Mitsuba's `sample_direction` from p: the unit direction
   toward the light and the radiance arriving (its weight; intensity times falloff over the
@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parent.parent
-DATA = REPO / "tests" / "data"
+DATA = REPO / "mcrt-render" / "tests" / "data"
 
 CASES = [
     ("spot-default", '<emitter type="spot"/>'),

@@ -8,7 +8,7 @@ mkdir -p target/criterion
 cargo bench --features bench --bench warps
 cargo bench --features bench --bench distributions
 cargo bench --features bench --bench samplers
-cargo bench --features bench --bench render_threads
-cargo bench --features bench --bench accel
+cargo bench --features bench -p mcrt-render --bench render_threads
+cargo bench --features bench -p mcrt-render --bench accel
 { printf 'end %s: ' "$(date -u +%H:%M)"; cut -d' ' -f1-3 /proc/loadavg; } >> target/criterion/loadavg.txt
 python3 scripts/perf_doc.py

@@ -10,7 +10,7 @@ Results are cached in --cache (JSON), keyed by (scene, spp, seed, contender labe
 rerun only renders what is missing; --tag names our renderer's build in the label (change
 it when the code changes, or pass --fresh).
 
-    python3 scripts/sampler_error.py tests/data/veach-mis.xml --spp 64 256 --seeds 8 \\
+    python3 scripts/sampler_error.py mcrt-render/tests/data/veach-mis.xml --spp 64 256 --seeds 8 \\
         --samplers sobol sobol4d cmj --mitsuba-samplers ldsampler multijitter \\
         --markdown out/samplers.md
 """
@@ -59,8 +59,8 @@ def save(path: Path, cache: dict) -> None:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("scenes", nargs="*", default=[
-        "tests/data/cornell-box.xml", "tests/data/veach-mis.xml",
-        "tests/data/cornell-box-caustic.xml"])
+        "mcrt-render/tests/data/cornell-box.xml", "mcrt-render/tests/data/veach-mis.xml",
+        "mcrt-render/tests/data/cornell-box-caustic.xml"])
     p.add_argument("--spp", type=int, nargs="+", default=[64, 256])
     p.add_argument("--seeds", type=int, default=8, help="seeds 1..N per configuration")
     p.add_argument("--samplers", nargs="+", default=["independent", "sobol"],
@@ -74,7 +74,7 @@ def main() -> None:
     p.add_argument("--cache", default="out/sampler_error.json")
     p.add_argument("--fresh", action="store_true", help="ignore cached results")
     p.add_argument("--no-build", action="store_true")
-    p.add_argument("--renderer", type=Path, default=REPO / "target/release/examples/render",
+    p.add_argument("--renderer", type=Path, default=REPO / "target/release/render",
                    help="our render binary (a copy keeps a run independent of rebuilds)")
     p.add_argument("--skip-mitsuba", action="store_true")
     p.add_argument("--threads", type=int, default=0)

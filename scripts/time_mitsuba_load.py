@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Times Mitsuba 3 loading the loader bench's PLY file (10^6 triangles), to compare with
-`cargo bench --bench loader -- mesh_1m`: the `ply` shape alone (read, transform, bounding
+`cargo bench -p mcrt-render --bench loader -- mesh_1m`: the `ply` shape alone (read, transform, bounding
 box) and a scene holding it (that plus Mitsuba's acceleration structure).
 
-    cargo bench --bench loader -- mesh_1m     # writes target/bench-data/torus-1000000.ply
+    cargo bench -p mcrt-render --bench loader -- mesh_1m     # writes target/bench-data/torus-1000000.ply
     python3 scripts/time_mitsuba_load.py [--variant scalar_rgb|llvm_ad_rgb] [--repeats 5]
 
 Prints the best and the median of the repeats, in seconds. Run it on an idle machine.
@@ -30,7 +30,7 @@ def main() -> int:
     ap.add_argument("--repeats", type=int, default=5)
     args = ap.parse_args()
     if not args.file.exists():
-        print(f"{args.file} is missing: run `cargo bench --bench loader -- mesh_1m` first",
+        print(f"{args.file} is missing: run `cargo bench -p mcrt-render --bench loader -- mesh_1m` first",
               file=sys.stderr)
         return 1
     mi, dr = import_mitsuba([args.variant])

@@ -21,14 +21,6 @@
     doc = "| `stats` | the public chi-square goodness-of-fit harness and pdf-integration checks | `stats` |"
 )]
 //! | [`integrator`] | path tracing, direct lighting, bidirectional path tracing and Metropolis light transport, over small traits ([`integrator::Scene`], [`integrator::Bsdf`]) that any renderer implements | always |
-#![cfg_attr(
-    feature = "render",
-    doc = "| [`scene`] | the reference scene, its Mitsuba 3 XML loader, and the renderer | `render` |"
-)]
-#![cfg_attr(
-    not(feature = "render"),
-    doc = "| `scene` | the reference scene, its Mitsuba 3 XML loader, and the renderer | `render` |"
-)]
 //!
 //! ## A first example
 //!
@@ -90,7 +82,5 @@ pub struct ReadmeDoctests;
 
 pub mod integrator;
 pub mod sampling;
-#[cfg(feature = "render")]
-pub mod scene;
 #[cfg(feature = "stats")]
 pub mod stats;

@@ -123,7 +123,7 @@ pub trait BidirectionalScene: Scene {
     /// Whether the camera has a lens of positive aperture: camera rays and connections to
     /// the camera then take a lens sample. The default, `false`, is the pinhole that the
     /// other camera methods describe; a lens camera implements the `*_lens` methods below
-    /// as well (the thin lens's densities are derived in `src/scene/camera/thin_lens.rs`).
+    /// as well (the thin lens's densities are derived in `mcrt-render/src/camera/thin_lens.rs`).
     fn camera_has_lens(&self) -> bool {
         false
     }

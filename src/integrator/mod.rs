@@ -60,7 +60,7 @@ pub(crate) fn occluded<S: Scene + ?Sized>(
 
 /// `x > 0`, false for NaN: the guard in front of every division by a density.
 #[inline]
-pub(crate) fn is_positive(x: f32) -> bool {
+pub fn is_positive(x: f32) -> bool {
     x > 0.0
 }
 

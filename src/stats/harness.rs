@@ -108,7 +108,8 @@ impl<D: Domain> ChiSquareTest<D> {
         self
     }
 
-    /// Names the test (the image files are `<name>-observed.png` etc.).
+    /// Names the test (the image files are `<name>-observed.ppm` etc., `.png` with the
+    /// feature `report-png`).
     #[must_use]
     pub fn name(mut self, name: &str) -> Self {
         self.settings.name = name.into();

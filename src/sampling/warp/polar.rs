@@ -8,7 +8,7 @@ use std::f32::consts::TAU;
 
 /// (cos φ, sin φ) for φ = 2π u₂.
 #[inline]
-pub(crate) fn azimuth(u2: f32) -> (f32, f32) {
+pub fn azimuth(u2: f32) -> (f32, f32) {
     let (s, c) = (TAU * u2).sin_cos();
     (c, s)
 }
@@ -20,7 +20,7 @@ pub(crate) fn azimuth(u2: f32) -> (f32, f32) {
 /// that interval), then `q` quarter turns (Cody and Waite 1980, "Software Manual for the
 /// Elementary Functions", Prentice-Hall, ch. 8). Within 2·10⁻⁷ of the exact values (test).
 #[inline]
-pub(crate) fn azimuth_polynomial(u2: f32) -> (f32, f32) {
+pub fn azimuth_polynomial(u2: f32) -> (f32, f32) {
     let q = (4.0 * u2 + 0.5) as i32;
     let x = TAU * (u2 - 0.25 * q as f32);
     let x2 = x * x;
@@ -43,7 +43,7 @@ pub(crate) fn azimuth_polynomial(u2: f32) -> (f32, f32) {
 
 /// The u₂ ∈ [0, 1) whose azimuth φ = 2π u₂ points along `(x, y)`; 0 at the origin.
 #[inline]
-pub(crate) fn azimuth_to_unit(x: f32, y: f32) -> f32 {
+pub fn azimuth_to_unit(x: f32, y: f32) -> f32 {
     let mut phi = y.atan2(x);
     if phi < 0.0 {
         phi += TAU;
@@ -53,21 +53,21 @@ pub(crate) fn azimuth_to_unit(x: f32, y: f32) -> f32 {
 
 /// The unit direction with the given sin θ, cos θ and azimuth 2π u₂ about +z.
 #[inline]
-pub(crate) fn direction(sin_theta: f32, cos_theta: f32, u2: f32) -> Vec3 {
+pub fn direction(sin_theta: f32, cos_theta: f32, u2: f32) -> Vec3 {
     let (c, s) = azimuth(u2);
     Vec3::new(sin_theta * c, sin_theta * s, cos_theta)
 }
 
 /// sin²θ = x² + y² of a direction (exact for unit vectors, accurate near the pole).
 #[inline]
-pub(crate) fn sin2_theta(w: Vec3) -> f32 {
+pub fn sin2_theta(w: Vec3) -> f32 {
     w.x * w.x + w.y * w.y
 }
 
 /// 1 − cos θ of a unit direction, computed as (x² + y²)/(1 + z) where z is near 1 (no
 /// cancellation) and as 1 − z elsewhere.
 #[inline]
-pub(crate) fn one_minus_cos_theta(w: Vec3) -> f32 {
+pub fn one_minus_cos_theta(w: Vec3) -> f32 {
     if w.z > 0.5 {
         sin2_theta(w) / (1.0 + w.z)
     } else {
@@ -77,7 +77,7 @@ pub(crate) fn one_minus_cos_theta(w: Vec3) -> f32 {
 
 /// sin θ from t = 1 − cos θ ∈ [0, 2]: √(t (2 − t)), never NaN.
 #[inline]
-pub(crate) fn sin_from_one_minus_cos(t: f32) -> f32 {
+pub fn sin_from_one_minus_cos(t: f32) -> f32 {
     (t * (2.0 - t)).max(0.0).sqrt()
 }
 

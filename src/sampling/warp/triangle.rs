@@ -164,7 +164,7 @@ mod tests {
 
     #[test]
     fn first_barycentric_keeps_its_digits_near_u1_one() {
-        // Found by the f32/f64 study (examples/convergence): 1 − √u₁ lost every digit.
+        // Found by the f32/f64 study (mcrt-render/examples/convergence): 1 − √u₁ lost every digit.
         for k in [1, 3, 10, 20, 24] {
             let u1 = 1.0 - (2f32).powi(-k);
             let b = UniformTriangle.sample(Vec2::new(u1, 0.3));

@@ -1,0 +1,753 @@
+//! What a scene file says, as plain data: the output of the XML loader and the input of the
+//! renderer. Every default is Mitsuba 3's, so a description built in code with
+//! [`Default`] values means what the same XML without those attributes means to Mitsuba.
+
+pub use crate::bsdf::PrincipledParams;
+pub use crate::texture::{Texture, TextureParam};
+use glam::{Mat4, Vec3};
+use std::path::PathBuf;
+
+/// A whole scene: integrator, sensor, shapes with their materials and area emitters, and the
+/// emitters that are not attached to shapes.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SceneDescription {
+    /// How light transport is estimated.
+    pub integrator: IntegratorDesc,
+    /// The camera, its film and its sampler.
+    pub sensor: SensorDesc,
+    /// Every shape, in file order.
+    pub shapes: Vec<ShapeDesc>,
+    /// Emitters not attached to a shape (point, spot, directional, constant environment,
+    /// environment map).
+    pub emitters: Vec<EmitterDesc>,
+    /// The file the description was read from, if any (for messages and relative paths).
+    pub source: Option<PathBuf>,
+}
+
+/// The integrator plugin and its parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IntegratorDesc {
+    /// Mitsuba's `path`: unidirectional path tracing with next-event estimation and MIS.
+    Path {
+        /// Longest path depth: −1 unlimited, 1 emitters seen directly, 2 direct lighting.
+        max_depth: i32,
+        /// Depth from which Russian roulette starts (Mitsuba's default 5).
+        rr_depth: u32,
+    },
+    /// Mitsuba's `direct`: direct lighting with a number of emitter and BSDF samples.
+    Direct {
+        /// Light samples per shading point (Mitsuba's default 1).
+        emitter_samples: u32,
+        /// BSDF samples per shading point (Mitsuba's default 1).
+        bsdf_samples: u32,
+    },
+    /// Bidirectional path tracing (Mitsuba 0.6's and pbrt-v4's `bdpt`).
+    Bdpt {
+        /// Longest path in segments: −1 unlimited, 1 emitters seen directly, 2 direct
+        /// lighting.
+        max_depth: i32,
+        /// Bounces after which Russian roulette applies on the camera subpath (default 5;
+        /// light subpaths play it from their first bounce).
+        rr_depth: u32,
+    },
+    /// Metropolis light transport in primary sample space over bidirectional paths
+    /// (Mitsuba 0.6's `pssmlt` parameters under pbrt-v4's `mlt` names).
+    Mlt {
+        /// Longest path in segments (−1: unlimited is not allowed; default 5).
+        max_depth: i32,
+        /// Paths sampled to estimate the image's brightness and seed the chains
+        /// (default 100000).
+        bootstrap_samples: u32,
+        /// Independent Markov chains (default 1000).
+        chains: u32,
+        /// Mutations per pixel over all chains (default 100).
+        mutations_per_pixel: u32,
+        /// Probability of a large step, an independent new path (default 0.3).
+        large_step_prob: f32,
+        /// Standard deviation of a small step's perturbation of each primary sample
+        /// value (default 0.01).
+        sigma: f32,
+    },
+}
+
+/// The integrator types, for overriding a scene file's choice (`--integrator`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// `path`.
+    Path,
+    /// `direct`.
+    Direct,
+    /// `bdpt`.
+    Bdpt,
+    /// `mlt`.
+    Mlt,
+}
+
+impl IntegratorKind {
+    /// Parses `path`, `direct`, `bdpt` or `mlt`.
+    pub fn parse(s: &str) -> Option<Self> {
+        Some(match s {
+            "path" => Self::Path,
+            "direct" => Self::Direct,
+            "bdpt" => Self::Bdpt,
+            "mlt" => Self::Mlt,
+            _ => return None,
+        })
+    }
+
+    /// The name [`IntegratorKind::parse`] reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Path => "path",
+            Self::Direct => "direct",
+            Self::Bdpt => "bdpt",
+            Self::Mlt => "mlt",
+        }
+    }
+}
+
+impl IntegratorDesc {
+    /// Default values of the `mlt` parameters other than `max_depth` (pbrt-v4's).
+    pub const MLT_DEFAULTS: IntegratorDesc = IntegratorDesc::Mlt {
+        max_depth: 5,
+        bootstrap_samples: 100_000,
+        chains: 1000,
+        mutations_per_pixel: 100,
+        large_step_prob: 0.3,
+        sigma: 0.01,
+    };
+
+    /// Which integrator this is.
+    pub fn kind(&self) -> IntegratorKind {
+        match self {
+            Self::Path { .. } => IntegratorKind::Path,
+            Self::Direct { .. } => IntegratorKind::Direct,
+            Self::Bdpt { .. } => IntegratorKind::Bdpt,
+            Self::Mlt { .. } => IntegratorKind::Mlt,
+        }
+    }
+
+    /// `max_depth`, where the integrator has one.
+    pub fn max_depth(&self) -> Option<i32> {
+        match *self {
+            Self::Path { max_depth, .. }
+            | Self::Bdpt { max_depth, .. }
+            | Self::Mlt { max_depth, .. } => Some(max_depth),
+            Self::Direct { .. } => None,
+        }
+    }
+
+    /// This description as integrator `kind`, keeping `max_depth` and `rr_depth` where both
+    /// have them and taking the defaults for the rest (an unlimited depth becomes MLT's
+    /// default 5, since MLT needs a bound). Unchanged if it already is of that kind.
+    pub fn with_kind(&self, kind: IntegratorKind) -> IntegratorDesc {
+        if self.kind() == kind {
+            return *self;
+        }
+        let depth = self.max_depth().unwrap_or(-1);
+        let rr = match *self {
+            Self::Path { rr_depth, .. } | Self::Bdpt { rr_depth, .. } => rr_depth,
+            _ => 5,
+        };
+        match kind {
+            IntegratorKind::Path => Self::Path {
+                max_depth: depth,
+                rr_depth: rr,
+            },
+            IntegratorKind::Direct => Self::Direct {
+                emitter_samples: 1,
+                bsdf_samples: 1,
+            },
+            IntegratorKind::Bdpt => Self::Bdpt {
+                max_depth: depth,
+                rr_depth: rr,
+            },
+            IntegratorKind::Mlt => match Self::MLT_DEFAULTS {
+                Self::Mlt {
+                    bootstrap_samples,
+                    chains,
+                    mutations_per_pixel,
+                    large_step_prob,
+                    sigma,
+                    max_depth,
+                } => Self::Mlt {
+                    max_depth: if depth < 0 { max_depth } else { depth },
+                    bootstrap_samples,
+                    chains,
+                    mutations_per_pixel,
+                    large_step_prob,
+                    sigma,
+                },
+                d => d,
+            },
+        }
+    }
+}
+
+impl Default for IntegratorDesc {
+    fn default() -> Self {
+        Self::Path {
+            max_depth: -1,
+            rr_depth: 5,
+        }
+    }
+}
+
+/// Which image axis `fov` spans.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FovAxis {
+    /// The horizontal axis (Mitsuba's default).
+    #[default]
+    X,
+    /// The vertical axis.
+    Y,
+    /// The shorter of the two.
+    Smaller,
+    /// The longer of the two.
+    Larger,
+}
+
+/// A perspective sensor (Mitsuba's `perspective`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SensorDesc {
+    /// Field of view in degrees, along [`SensorDesc::fov_axis`].
+    pub fov: f32,
+    /// Which axis `fov` spans.
+    pub fov_axis: FovAxis,
+    /// Near clip distance (default 0.01).
+    pub near_clip: f32,
+    /// Far clip distance (default 10⁴).
+    pub far_clip: f32,
+    /// Camera-to-world transform. The camera looks down +z in its own space, +y up, and
+    /// (as in Mitsuba) +x to the left of the image.
+    pub to_world: Mat4,
+    /// The film.
+    pub film: FilmDesc,
+    /// The sampler.
+    pub sampler: SamplerDesc,
+    /// The thin lens of a `thinlens` sensor; `None` for a pinhole (`perspective`).
+    pub lens: Option<ThinLensDesc>,
+}
+
+impl Default for SensorDesc {
+    fn default() -> Self {
+        Self {
+            fov: 45.0,
+            fov_axis: FovAxis::X,
+            near_clip: 1e-2,
+            far_clip: 1e4,
+            to_world: Mat4::IDENTITY,
+            film: FilmDesc::default(),
+            sampler: SamplerDesc::default(),
+            lens: None,
+        }
+    }
+}
+
+/// The film (Mitsuba's `hdrfilm`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FilmDesc {
+    /// Width in pixels (default 768).
+    pub width: u32,
+    /// Height in pixels (default 576).
+    pub height: u32,
+    /// The pixel reconstruction filter.
+    pub filter: FilterDesc,
+    /// Render only this window of the `width` × `height` image (Mitsuba's `crop_*`); the
+    /// output is the window's size. `None`: the whole image.
+    pub crop: Option<CropWindow>,
+}
+
+impl Default for FilmDesc {
+    fn default() -> Self {
+        Self {
+            width: 768,
+            height: 576,
+            filter: FilterDesc::default(),
+            crop: None,
+        }
+    }
+}
+
+impl FilmDesc {
+    /// The window that is rendered: the crop window, or the whole image.
+    pub fn window(&self) -> CropWindow {
+        self.crop.unwrap_or(CropWindow {
+            offset_x: 0,
+            offset_y: 0,
+            width: self.width,
+            height: self.height,
+        })
+    }
+}
+
+/// A window of the film in pixels, `(0, 0)` the top-left corner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CropWindow {
+    /// Left edge (`crop_offset_x`).
+    pub offset_x: u32,
+    /// Top edge (`crop_offset_y`).
+    pub offset_y: u32,
+    /// Width (`crop_width`).
+    pub width: u32,
+    /// Height (`crop_height`).
+    pub height: u32,
+}
+
+/// A pixel reconstruction filter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FilterDesc {
+    /// One pixel wide: each pixel is the plain mean of radiance over its footprint.
+    Box,
+    /// A Gaussian of the given standard deviation in pixels, truncated at 4σ (Mitsuba's
+    /// default filter, σ = 0.5).
+    Gaussian {
+        /// Standard deviation in pixels.
+        stddev: f32,
+    },
+    /// Mitsuba's `tent`: `max(0, 1 − |x|/r)` per axis.
+    Tent {
+        /// Radius in pixels (Mitsuba's default 1).
+        radius: f32,
+    },
+}
+
+impl Default for FilterDesc {
+    fn default() -> Self {
+        Self::Gaussian { stddev: 0.5 }
+    }
+}
+
+/// Which sample generator a scene asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SamplerKind {
+    /// Mitsuba's `independent`.
+    #[default]
+    Independent,
+    /// Mitsuba's `stratified` (jittered).
+    Stratified,
+    /// Mitsuba's `ldsampler`; ours is Owen-scrambled Sobol padded in 4D sets
+    /// ([`Sobol4dSampler`](mcrt::sampling::sampler::Sobol4dSampler), `--sampler sobol4d`),
+    /// the lower error per sample of our two Sobol samplers in `docs/sampler-error.md`.
+    LowDiscrepancy,
+    /// Owen-scrambled Sobol padded per 2D dimension
+    /// ([`SobolSampler`](mcrt::sampling::sampler::SobolSampler)); no scene-file name (the
+    /// file's `ldsampler` is [`SamplerKind::LowDiscrepancy`]): chosen through the API or
+    /// `--sampler sobol`.
+    Sobol,
+    /// Mitsuba's `multijitter` (jittered): correlated multi-jittered patterns
+    /// ([`CmjSampler`](mcrt::sampling::sampler::CmjSampler)).
+    MultiJitter,
+    /// Mitsuba's `orthogonal` (strength 2, jittered): rendered with the same correlated
+    /// multi-jittered patterns, the sample count rounded up to the square of a prime as
+    /// Mitsuba's is (64 → 121).
+    Orthogonal,
+    /// Scrambled Halton ([`HaltonSampler`](mcrt::sampling::sampler::HaltonSampler)); no
+    /// Mitsuba 3 plugin, so no scene-file name: chosen through the API or `--sampler halton`.
+    Halton,
+    /// The R2 lattice ([`R2Sampler`](mcrt::sampling::sampler::R2Sampler)); no Mitsuba 3
+    /// plugin, so no scene-file name: chosen through the API or `--sampler r2`.
+    R2,
+}
+
+/// The sampler plugin.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SamplerDesc {
+    /// The generator.
+    pub kind: SamplerKind,
+    /// Samples per pixel (default 4).
+    pub sample_count: u32,
+    /// Seed (default 0).
+    pub seed: u64,
+}
+
+impl Default for SamplerDesc {
+    fn default() -> Self {
+        Self {
+            kind: SamplerKind::Independent,
+            sample_count: 4,
+            seed: 0,
+        }
+    }
+}
+
+/// The geometry of a shape, in its object space (before `to_world`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ShapeKind {
+    /// `rectangle`: [−1,1]² in the z = 0 plane, facing +z.
+    Rectangle,
+    /// `cube`: [−1,1]³, faces pointing outwards.
+    Cube,
+    /// `disk`: the unit disk in the z = 0 plane, facing +z.
+    Disk,
+    /// `sphere`: centre and radius (applied before `to_world`), normals pointing outwards.
+    Sphere {
+        /// Centre (default origin).
+        center: Vec3,
+        /// Radius (default 1).
+        radius: f32,
+    },
+    /// `obj`: a triangle mesh read from a Wavefront OBJ file.
+    Obj {
+        /// The file, resolved against the scene file's folder.
+        filename: PathBuf,
+        /// Use flat face normals even where the file has vertex normals.
+        face_normals: bool,
+        /// Flip texture coordinates' `v` to `1 − v` (Mitsuba's default, true).
+        flip_tex_coords: bool,
+    },
+    /// `ply`: a triangle mesh read from a PLY file (ASCII or binary).
+    Ply {
+        /// The file, resolved against the scene file's folder.
+        filename: PathBuf,
+        /// Use flat face normals even where the file has vertex normals.
+        face_normals: bool,
+    },
+    /// `serialized`: one mesh of a file in Mitsuba's compressed mesh format.
+    Serialized {
+        /// The file, resolved against the scene file's folder.
+        filename: PathBuf,
+        /// Which mesh of the file (Mitsuba's default 0, the first).
+        shape_index: u32,
+        /// Use flat face normals even where the file has vertex normals (the file's own
+        /// face-normal flag asks for them too).
+        face_normals: bool,
+    },
+    /// A triangle mesh given in code.
+    Mesh {
+        /// Vertex positions.
+        positions: Vec<Vec3>,
+        /// Per-vertex normals (empty for flat shading).
+        normals: Vec<Vec3>,
+        /// Triangles as vertex indices.
+        indices: Vec<[u32; 3]>,
+    },
+}
+
+/// A shape with its transform, material and optional area emitter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeDesc {
+    /// The `id` attribute, if any.
+    pub id: Option<String>,
+    /// The geometry in object space.
+    pub kind: ShapeKind,
+    /// Object-to-world transform.
+    pub to_world: Mat4,
+    /// Flip the normals (Mitsuba's `flip_normals`).
+    pub flip_normals: bool,
+    /// The material. Mitsuba's default when a shape has none is diffuse with reflectance 0.5,
+    /// and black (reflectance 0) when the shape is an emitter.
+    pub bsdf: BsdfDesc,
+    /// The area emitter on the shape's front side, if any.
+    pub emitter: Option<AreaEmitterDesc>,
+}
+
+impl ShapeDesc {
+    /// A shape of the given kind with identity transform, the default material and no
+    /// emitter.
+    pub fn new(kind: ShapeKind) -> Self {
+        Self {
+            id: None,
+            kind,
+            to_world: Mat4::IDENTITY,
+            flip_normals: false,
+            bsdf: BsdfDesc::default(),
+            emitter: None,
+        }
+    }
+}
+
+/// Microfacet normal distribution of a rough material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MicrofacetKind {
+    /// Beckmann (Mitsuba's default).
+    #[default]
+    Beckmann,
+    /// GGX / Trowbridge–Reitz.
+    Ggx,
+}
+
+/// The Fresnel term of a conductor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ConductorFresnel {
+    /// Mitsuba's `material = "none"` (its default): a 100% reflecting mirror.
+    Perfect,
+    /// A complex index of refraction per RGB channel (given as `eta` and `k`, or by a
+    /// named `material`, see [`named_conductor`](crate::bsdf::named_conductor)).
+    Complex {
+        /// Real part η.
+        eta: Vec3,
+        /// Imaginary part k.
+        k: Vec3,
+    },
+}
+
+/// A material (Mitsuba's BSDF plugins that the loader supports).
+#[derive(Debug, Clone, PartialEq)]
+pub enum BsdfDesc {
+    /// `diffuse`: Lambertian, one-sided.
+    Diffuse {
+        /// Albedo, linear RGB (default 0.5).
+        reflectance: Vec3,
+    },
+    /// `conductor`: a smooth mirror.
+    Conductor {
+        /// The Fresnel term.
+        fresnel: ConductorFresnel,
+        /// Scale on the reflectance (default 1).
+        specular_reflectance: Vec3,
+    },
+    /// `roughconductor`: a microfacet conductor, sampled with visible normals.
+    RoughConductor {
+        /// The normal distribution.
+        distribution: MicrofacetKind,
+        /// Roughness α (default 0.1). Isotropic only.
+        alpha: f32,
+        /// The Fresnel term.
+        fresnel: ConductorFresnel,
+        /// Scale on the reflectance (default 1).
+        specular_reflectance: Vec3,
+    },
+    /// `dielectric`: smooth glass that reflects and refracts.
+    Dielectric {
+        /// Interior index of refraction (default 1.5046, BK7).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Scale on reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Scale on transmission (default 1).
+        specular_transmittance: Vec3,
+    },
+    /// `roughdielectric`: microfacet glass that reflects and refracts, sampled with
+    /// visible normals.
+    RoughDielectric {
+        /// The normal distribution (default Beckmann).
+        distribution: MicrofacetKind,
+        /// Roughness α (default 0.1). Isotropic only.
+        alpha: f32,
+        /// Interior index of refraction (default 1.5046, BK7).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Scale on reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Scale on transmission (default 1).
+        specular_transmittance: Vec3,
+    },
+    /// `thindielectric`: a pane of glass of negligible thickness (reflects, or lets light
+    /// through undeflected).
+    ThinDielectric {
+        /// Index of refraction of the pane (default 1.5046, BK7).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Scale on reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Scale on transmission (default 1).
+        specular_transmittance: Vec3,
+    },
+    /// `plastic`: a diffuse base under a smooth dielectric coating.
+    Plastic {
+        /// Index of refraction of the coating (default 1.49, polypropylene).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Albedo of the base (default 0.5).
+        diffuse_reflectance: Vec3,
+        /// Scale on the coating's reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Whether internal scattering tints the base's colour (default false).
+        nonlinear: bool,
+    },
+    /// `roughplastic`: a diffuse base under a rough dielectric coating.
+    RoughPlastic {
+        /// The coating's normal distribution (default Beckmann).
+        distribution: MicrofacetKind,
+        /// Roughness α (default 0.1). Isotropic only.
+        alpha: f32,
+        /// Index of refraction of the coating (default 1.49, polypropylene).
+        int_ior: f32,
+        /// Exterior index of refraction (default 1.000277, air).
+        ext_ior: f32,
+        /// Albedo of the base (default 0.5).
+        diffuse_reflectance: Vec3,
+        /// Scale on the coating's reflection (default 1).
+        specular_reflectance: Vec3,
+        /// Whether internal scattering tints the base's colour (default false).
+        nonlinear: bool,
+    },
+    /// `principled`: the Disney BSDF (specular transmission when `spec_trans` > 0).
+    Principled(PrincipledParams),
+    /// `blendbsdf`: `(1 − weight) · first + weight · second`.
+    Blend {
+        /// Weight of the second material, in [0, 1] (required; a constant, not a texture).
+        weight: f32,
+        /// The first nested material.
+        first: Box<BsdfDesc>,
+        /// The second nested material.
+        second: Box<BsdfDesc>,
+    },
+    /// `mask`: the nested material with opacity `opacity`; light passes the rest of the
+    /// surface unchanged.
+    Mask {
+        /// Opacity in [0, 1] (default 0.5; a constant, not a texture).
+        opacity: f32,
+        /// The nested material.
+        inner: Box<BsdfDesc>,
+    },
+    /// `twosided`: the nested BSDF on both sides of the surface.
+    TwoSided(Box<BsdfDesc>),
+    /// A material (`diffuse`, a conductor, dielectric, plastic, `blendbsdf` or `mask`, never
+    /// `twosided`) some of whose parameters are textures. `inner` holds, for each textured
+    /// parameter, the texture's mean (Mitsuba 3 derives a plastic's sampling weights from
+    /// its textures' means); at each hit the renderer replaces it with the texture's value.
+    Textured {
+        /// The material, with textures' means in their parameters.
+        inner: Box<BsdfDesc>,
+        /// The textured parameters, each at most once.
+        textures: Vec<(TextureParam, Texture)>,
+    },
+}
+
+impl BsdfDesc {
+    /// Whether the material lets light through the surface (Mitsuba 3's `twosided` refuses
+    /// such a nested material).
+    pub fn transmits(&self) -> bool {
+        match self {
+            Self::Dielectric { .. }
+            | Self::RoughDielectric { .. }
+            | Self::ThinDielectric { .. }
+            | Self::Mask { .. } => true,
+            Self::Principled(p) => p.spec_trans > 0.0,
+            Self::Blend { first, second, .. } => first.transmits() || second.transmits(),
+            Self::TwoSided(inner) | Self::Textured { inner, .. } => inner.transmits(),
+            Self::Diffuse { .. }
+            | Self::Conductor { .. }
+            | Self::RoughConductor { .. }
+            | Self::Plastic { .. }
+            | Self::RoughPlastic { .. } => false,
+        }
+    }
+}
+
+impl BsdfDesc {
+    /// Whether a texture drives any parameter of this material or of those nested in it.
+    pub fn is_textured(&self) -> bool {
+        match self {
+            Self::Textured { .. } => true,
+            Self::TwoSided(inner) | Self::Mask { inner, .. } => inner.is_textured(),
+            Self::Blend { first, second, .. } => first.is_textured() || second.is_textured(),
+            _ => false,
+        }
+    }
+
+    /// Whether this material (not looking into nested ones) has the parameter `p`, which
+    /// a texture may then drive.
+    pub fn has_param(&self, p: TextureParam) -> bool {
+        use TextureParam as P;
+        matches!(
+            (self, p),
+            (Self::Diffuse { .. }, P::Reflectance)
+                | (
+                    Self::Conductor { .. } | Self::RoughConductor { .. },
+                    P::SpecularReflectance
+                )
+                | (Self::Blend { .. }, P::Weight)
+                | (Self::Mask { .. }, P::Opacity)
+                | (
+                    Self::Dielectric { .. }
+                        | Self::RoughDielectric { .. }
+                        | Self::ThinDielectric { .. },
+                    P::SpecularReflectance | P::SpecularTransmittance,
+                )
+                | (
+                    Self::Plastic { .. } | Self::RoughPlastic { .. },
+                    P::DiffuseReflectance | P::SpecularReflectance,
+                )
+                | (Self::Principled(_), P::BaseColor)
+        )
+    }
+}
+
+impl Default for BsdfDesc {
+    fn default() -> Self {
+        Self::Diffuse {
+            reflectance: Vec3::splat(0.5),
+        }
+    }
+}
+
+/// An `area` emitter attached to a shape: constant radiance leaving the front side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AreaEmitterDesc {
+    /// Emitted radiance, linear RGB.
+    pub radiance: Vec3,
+}
+
+/// An emitter that is not attached to a shape.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EmitterDesc {
+    /// `point`: an isotropic point light.
+    Point {
+        /// Position in world space.
+        position: Vec3,
+        /// Radiant intensity, linear RGB (W/sr).
+        intensity: Vec3,
+    },
+    /// `constant`: radiance arriving equally from every direction.
+    Constant {
+        /// Radiance, linear RGB.
+        radiance: Vec3,
+    },
+    /// `envmap`: an environment map read from an EXR file (latitude–longitude).
+    EnvMap {
+        /// The file, resolved against the scene file's folder.
+        filename: PathBuf,
+        /// Scale on the radiance (default 1).
+        scale: f32,
+        /// Map-to-world transform.
+        to_world: Mat4,
+    },
+    /// `spot`: a point light whose intensity falls off inside a cone about its local +z
+    /// axis (Mitsuba 3's `spot`).
+    Spot {
+        /// Peak radiant intensity, linear RGB (W/sr), along the axis.
+        intensity: Vec3,
+        /// Half-angle in degrees beyond which nothing is emitted (default 20).
+        cutoff_angle: f32,
+        /// Half-angle in degrees up to which the intensity is the peak's; it falls off
+        /// linearly in the angle from there to `cutoff_angle` (default ¾ of the cutoff).
+        beam_width: f32,
+        /// Light-to-world transform: the light sits at its origin and shines along its +z.
+        to_world: Mat4,
+    },
+    /// `directional`: light arriving from one direction everywhere (Mitsuba 3's
+    /// `directional`).
+    Directional {
+        /// Irradiance on a surface facing the light, linear RGB (W/m²).
+        irradiance: Vec3,
+        /// Unit direction the light travels along, world space (default +z).
+        direction: Vec3,
+    },
+}
+
+impl EmitterDesc {
+    /// Mitsuba 3's default `cutoff_angle` of a `spot`, in degrees.
+    pub const SPOT_CUTOFF_ANGLE: f32 = 20.0;
+}
+
+/// A thin lens in front of the perspective camera (Mitsuba 3's `thinlens` sensor): rays
+/// leave a disk of radius `aperture_radius` and meet on the plane `focus_distance` in front.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThinLensDesc {
+    /// Radius of the aperture disk, in world units (required by Mitsuba; no default).
+    pub aperture_radius: f32,
+    /// Distance of the plane in focus along the viewing axis (default 10⁴, Mitsuba's).
+    pub focus_distance: f32,
+}
+
+impl ThinLensDesc {
+    /// Mitsuba 3's default `focus_distance`.
+    pub const FOCUS_DISTANCE: f32 = 1e4;
+}

@@ -1,0 +1,150 @@
+//! Building [`Lights`] from a scene description: each emitter with its power, the
+//! choice of lights and the sampling plan.
+
+use super::choice::{LightChoice, LightPlace};
+use super::{mean, EnvMap, Light, LightError, Lights, SamplePlan, Spot};
+use crate::description::{EmitterDesc, SceneDescription};
+use crate::geometry::{Geometry, RectangleSampler, ShapeSampling};
+use std::f32::consts::PI;
+
+impl Lights {
+    /// The lights of a scene; `radius` bounds the scene (for the power of environment
+    /// lights).
+    pub fn new(desc: &SceneDescription, geo: &Geometry, radius: f32) -> Result<Self, LightError> {
+        let mut lights = Vec::new();
+        let mut power = Vec::new();
+        let mut shape_light = vec![None; desc.shapes.len()];
+        for (i, s) in desc.shapes.iter().enumerate() {
+            if let Some(e) = &s.emitter {
+                shape_light[i] = Some(lights.len() as u32);
+                power.push(PI * geo.shape_area(i as u32) * mean(e.radiance).max(0.0));
+                lights.push(Light::Area {
+                    shape: i as u32,
+                    radiance: e.radiance,
+                });
+            }
+        }
+        let mut env = None;
+        let mut has_delta = false;
+        for e in &desc.emitters {
+            match e {
+                EmitterDesc::Point {
+                    position,
+                    intensity,
+                } => {
+                    has_delta = true;
+                    power.push(4.0 * PI * mean(*intensity).max(0.0));
+                    lights.push(Light::Point {
+                        position: *position,
+                        intensity: *intensity,
+                    });
+                }
+                EmitterDesc::Spot {
+                    intensity,
+                    cutoff_angle,
+                    beam_width,
+                    to_world,
+                } => {
+                    let spot = Spot::new(*intensity, *cutoff_angle, *beam_width, *to_world)?;
+                    has_delta = true;
+                    power.push(spot.power());
+                    lights.push(Light::Spot(Box::new(spot)));
+                }
+                EmitterDesc::Directional {
+                    irradiance,
+                    direction,
+                } => {
+                    // The light through the disk of the scene's bounding sphere.
+                    has_delta = true;
+                    power.push(PI * radius * radius * mean(*irradiance).max(0.0));
+                    lights.push(Light::Directional {
+                        direction: direction.normalize_or_zero(),
+                        irradiance: *irradiance,
+                    });
+                }
+                EmitterDesc::Constant { radiance } => {
+                    if env.is_some() {
+                        return Err(LightError::SeveralEnvironments);
+                    }
+                    env = Some(lights.len() as u32);
+                    power.push(4.0 * PI * PI * radius * radius * mean(*radiance).max(0.0));
+                    lights.push(Light::Constant {
+                        radiance: *radiance,
+                    });
+                }
+                EmitterDesc::EnvMap {
+                    filename,
+                    scale,
+                    to_world,
+                } => {
+                    if env.is_some() {
+                        return Err(LightError::SeveralEnvironments);
+                    }
+                    let map = EnvMap::load(filename, *scale, *to_world).map_err(|reason| {
+                        LightError::EnvMap {
+                            path: filename.clone(),
+                            reason,
+                        }
+                    })?;
+                    env = Some(lights.len() as u32);
+                    power.push(PI * radius * radius * map.integral());
+                    lights.push(Light::EnvMap(Box::new(map)));
+                }
+            }
+        }
+        let rectangles: Vec<Option<RectangleSampler>> = lights
+            .iter()
+            .map(|l| match *l {
+                Light::Area { shape, .. } => geo.rectangle_sampler(shape).cloned(),
+                _ => None,
+            })
+            .collect();
+        let single = lights.len() == 1;
+        let places: Vec<Option<LightPlace>> = lights
+            .iter()
+            .map(|l| match *l {
+                Light::Area { shape, .. } => geo
+                    .shape_bounding_sphere(shape)
+                    .map(|(center, radius)| LightPlace { center, radius }),
+                Light::Point { position, .. } => Some(LightPlace {
+                    center: position,
+                    radius: 0.0,
+                }),
+                Light::Spot(ref s) => Some(LightPlace {
+                    center: s.position(),
+                    radius: 0.0,
+                }),
+                Light::Constant { .. } | Light::EnvMap(_) | Light::Directional { .. } => None,
+            })
+            .collect();
+        let picker = LightChoice::new(&power, &places);
+        let lone_rectangle = single && picker.is_some() && matches!(rectangles[..], [Some(_)]);
+        let plan = match (picker.is_some(), lone_rectangle, geo.shape_sampling()) {
+            (false, _, _) => SamplePlan::Nothing,
+            (true, true, ShapeSampling::Area) => SamplePlan::LoneRectangleByArea,
+            (true, true, ShapeSampling::SolidAngle) => SamplePlan::LoneRectangleBySolidAngle,
+            (true, true, ShapeSampling::Auto) => SamplePlan::LoneRectangleByDistance,
+            (true, false, _) => SamplePlan::Choose { single },
+        };
+        let on_mesh =
+            |l: &Light| matches!(*l, Light::Area { shape, .. } if geo.shape_reads_pick(shape));
+        let shape_radiance = shape_light
+            .iter()
+            .map(|l| match l.map(|i| &lights[i as usize]) {
+                Some(Light::Area { radiance, .. }) => Some(*radiance),
+                _ => None,
+            })
+            .collect();
+        Ok(Self {
+            shape_radiance,
+            picker,
+            plan,
+            reads_pick: lights.iter().any(on_mesh),
+            rectangles,
+            lights,
+            shape_light,
+            env,
+            has_delta,
+        })
+    }
+}

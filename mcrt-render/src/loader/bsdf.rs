@@ -1,0 +1,382 @@
+//! `<bsdf>`: `diffuse`, `conductor`, `roughconductor`, `dielectric`, `roughdielectric`,
+//! `thindielectric`, `plastic`, `roughplastic`, `principled` and `twosided`, and `<ref>` to a BSDF
+//! declared elsewhere.
+
+use super::context::{Ctx, Res};
+use super::error::SceneErrorKind;
+use super::props::{Props, Value};
+use super::texture;
+use super::tree::Elem;
+use super::{no_objects, plugin_type, unknown_plugin};
+use crate::bsdf::named_conductor;
+use crate::description::{BsdfDesc, ConductorFresnel, MicrofacetKind, TextureParam};
+use crate::validate::{self, MIN_ROUGHNESS};
+use glam::Vec3;
+
+/// A `<bsdf>` element, or a `<ref>` whose id names one.
+pub(crate) fn read_bsdf_or_ref<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<BsdfDesc> {
+    read_bsdf(ctx, resolve(ctx, e)?)
+}
+
+/// Follows a `<ref>` to the BSDF it names (a `<bsdf>` is returned as is).
+fn resolve<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<&'a Elem> {
+    if e.tag != "ref" {
+        return Ok(e);
+    }
+    super::transform::check_attrs(ctx, e, &["id", "name"], &["id"])?;
+    let id = e.attr("id").unwrap_or("");
+    match ctx.ids.get(id) {
+        Some(target) if target.tag == "bsdf" => Ok(target),
+        Some(target) => Err(ctx.err(
+            e,
+            SceneErrorKind::UndefinedReference(format!(
+                "id \"{id}\" names a <{}> (line {}), not a <bsdf>",
+                target.tag, target.line
+            )),
+        )),
+        None => Err(ctx.err(
+            e,
+            SceneErrorKind::UndefinedReference(format!("no object has id \"{id}\"")),
+        )),
+    }
+}
+
+/// Deepest nesting of BSDFs inside `blendbsdf`, `mask` and `twosided` (through `ref`s too,
+/// so a cycle of references is an error, not endless recursion).
+const MAX_NESTING: u32 = 16;
+
+/// Reads a `<bsdf>` element.
+pub(crate) fn read_bsdf(ctx: &Ctx, e: &Elem) -> Res<BsdfDesc> {
+    read_nested(ctx, e, 0)
+}
+
+/// Reads a `<bsdf>` element nested `depth` levels deep in other BSDFs.
+fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
+    if depth > MAX_NESTING {
+        return Err(ctx.err(
+            e,
+            SceneErrorKind::InvalidValue(format!(
+                "BSDFs nest more than {MAX_NESTING} deep (a cycle of references?)"
+            )),
+        ));
+    }
+    let ty = plugin_type(ctx, e)?;
+    let mut p = Props::new(ctx, e)?;
+    let textures = texture::take_textures(ctx, ty, &mut p)?;
+    // A textured weight or opacity stands in as the texture's mean luminance.
+    let scalar = |q: TextureParam| {
+        textures
+            .iter()
+            .find(|t| t.0 == q)
+            .map(|t| t.1.mean().clamp(0.0, 1.0))
+    };
+    match ty {
+        "twosided" => {
+            if let Some((_, _, o)) = textures.first() {
+                return Err(texture::not_here(ctx, o));
+            }
+            return twosided(ctx, e, p, depth);
+        }
+        "blendbsdf" => {
+            let weight = match (p.float("weight")?, scalar(TextureParam::Weight)) {
+                (Some(w), _) | (None, Some(w)) => w,
+                (None, None) => {
+                    return Err(ctx.err(
+                        e,
+                        SceneErrorKind::InvalidValue("blendbsdf needs a \"weight\"".into()),
+                    ))
+                }
+            };
+            let [first, second] = nested::<2>(ctx, e, p, depth)?;
+            let desc = BsdfDesc::Blend {
+                weight,
+                first: Box::new(first),
+                second: Box::new(second),
+            };
+            return checked(ctx, e, texture::attach(ctx, ty, desc, textures)?);
+        }
+        "mask" => {
+            let opacity = p.float("opacity")?;
+            let opacity = opacity.or(scalar(TextureParam::Opacity)).unwrap_or(0.5);
+            let [inner] = nested::<1>(ctx, e, p, depth)?;
+            let desc = BsdfDesc::Mask {
+                opacity,
+                inner: Box::new(inner),
+            };
+            return checked(ctx, e, texture::attach(ctx, ty, desc, textures)?);
+        }
+        _ => {}
+    }
+    no_objects(ctx, &p)?;
+    let one = Vec3::ONE;
+    let desc = match ty {
+        "diffuse" => BsdfDesc::Diffuse {
+            reflectance: p.rgb("reflectance")?.unwrap_or(Vec3::splat(0.5)),
+        },
+        "conductor" => BsdfDesc::Conductor {
+            fresnel: fresnel(e, &mut p)?,
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+        },
+        "roughconductor" => {
+            let (distribution, alpha) = microfacet(e, &mut p)?;
+            BsdfDesc::RoughConductor {
+                distribution,
+                alpha,
+                fresnel: fresnel(e, &mut p)?,
+                specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            }
+        }
+        "dielectric" => BsdfDesc::Dielectric {
+            int_ior: ior(e, &mut p, "int_ior", BK7)?,
+            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+        },
+        "roughdielectric" => {
+            let (distribution, alpha) = microfacet(e, &mut p)?;
+            BsdfDesc::RoughDielectric {
+                distribution,
+                alpha,
+                int_ior: ior(e, &mut p, "int_ior", BK7)?,
+                ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+                specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+                specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+            }
+        }
+        "thindielectric" => BsdfDesc::ThinDielectric {
+            int_ior: ior(e, &mut p, "int_ior", BK7)?,
+            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+        },
+        "plastic" => BsdfDesc::Plastic {
+            int_ior: ior(e, &mut p, "int_ior", POLYPROPYLENE)?,
+            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+            diffuse_reflectance: p.rgb("diffuse_reflectance")?.unwrap_or(Vec3::splat(0.5)),
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            nonlinear: p.bool("nonlinear")?.unwrap_or(false),
+        },
+        "roughplastic" => {
+            let (distribution, alpha) = microfacet(e, &mut p)?;
+            BsdfDesc::RoughPlastic {
+                distribution,
+                alpha,
+                int_ior: ior(e, &mut p, "int_ior", POLYPROPYLENE)?,
+                ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+                diffuse_reflectance: p.rgb("diffuse_reflectance")?.unwrap_or(Vec3::splat(0.5)),
+                specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+                nonlinear: p.bool("nonlinear")?.unwrap_or(false),
+            }
+        }
+        "principled" => super::principled::principled(e, &mut p)?,
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    let desc = texture::attach(ctx, ty, desc, textures)?;
+    validate::bsdf(&desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    p.finish()?;
+    Ok(desc)
+}
+
+/// A blend or mask checked by [`validate::bsdf`], the error at the element.
+fn checked(ctx: &Ctx, e: &Elem, desc: BsdfDesc) -> Res<BsdfDesc> {
+    validate::bsdf(&desc).map_err(|i| ctx.err(e, SceneErrorKind::InvalidValue(i.to_string())))?;
+    Ok(desc)
+}
+
+/// Exactly `N` nested `<bsdf>` or `<ref>` elements of a plugin with parameters `p` (whose
+/// other parameters must all have been read), read in file order.
+fn nested<'a, const N: usize>(
+    ctx: &Ctx<'a>,
+    e: &'a Elem,
+    p: Props<'_, 'a>,
+    depth: u32,
+) -> Res<[BsdfDesc; N]> {
+    let objects: Vec<&Elem> = p.objects.clone();
+    p.finish()?;
+    let ty = e.attr("type").unwrap_or("");
+    if objects.len() != N {
+        return Err(ctx.err(
+            e,
+            SceneErrorKind::Unsupported(format!(
+                "{ty} needs exactly {} nested BSDF{}, found {}",
+                ["no", "one", "two"].get(N).copied().unwrap_or("more"),
+                if N == 1 { "" } else { "s" },
+                objects.len()
+            )),
+        ));
+    }
+    let mut out = Vec::with_capacity(N);
+    for inner in objects {
+        if inner.tag != "bsdf" && inner.tag != "ref" {
+            return Err(ctx.err(
+                inner,
+                SceneErrorKind::Misplaced(format!("<{}> inside a {ty} BSDF", inner.tag)),
+            ));
+        }
+        out.push(read_nested(ctx, resolve(ctx, inner)?, depth + 1)?);
+    }
+    out.try_into().map_err(|_| {
+        ctx.err(
+            e,
+            SceneErrorKind::Unsupported(format!("{ty} needs exactly {N} nested BSDFs")),
+        )
+    })
+}
+
+/// `twosided`: exactly one nested BSDF, which must not itself be two-sided nor let light
+/// through (Mitsuba 3 refuses both).
+fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>, depth: u32) -> Res<BsdfDesc> {
+    if let Some(inner) = p.objects.iter().find(|o| o.tag == "bsdf" || o.tag == "ref") {
+        let target = resolve(ctx, inner)?;
+        if target.attr("type") == Some("twosided") {
+            return Err(ctx.err(
+                inner,
+                SceneErrorKind::InvalidValue("a twosided BSDF cannot nest another".into()),
+            ));
+        }
+    }
+    let [inner] = nested::<1>(ctx, e, p, depth)?;
+    if inner.transmits() {
+        return Err(ctx.err(
+            e,
+            SceneErrorKind::InvalidValue(
+                "twosided cannot nest a material that lets light through (dielectric, \
+                 roughdielectric, thindielectric, mask, or a blend with one), as in Mitsuba 3"
+                    .into(),
+            ),
+        ));
+    }
+    Ok(BsdfDesc::TwoSided(Box::new(inner)))
+}
+
+/// Mitsuba's default interior index of a dielectric, BK7 glass.
+const BK7: f32 = 1.5046;
+/// Mitsuba's default interior index of a plastic coating, polypropylene.
+const POLYPROPYLENE: f32 = 1.49;
+/// Mitsuba's default exterior index, air.
+const AIR: f32 = 1.000277;
+
+/// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`], and
+/// `sample_visible`, which only changes the noise, never the expected value.
+fn microfacet(e: &Elem, p: &mut Props) -> Res<(MicrofacetKind, f32)> {
+    let distribution = p.string("distribution")?.map(|d| d.to_ascii_lowercase());
+    let distribution = match distribution.as_deref() {
+        None | Some("beckmann") => MicrofacetKind::Beckmann,
+        Some("ggx") => MicrofacetKind::Ggx,
+        Some(other) => {
+            return Err(p.invalid(
+                "distribution",
+                e,
+                &format!("\"{other}\" is not beckmann or ggx"),
+            ))
+        }
+    };
+    let alpha = roughness(e, p)?;
+    p.bool("sample_visible")?;
+    Ok((distribution, alpha))
+}
+
+/// The isotropic roughness: `alpha`, or `alpha_u` = `alpha_v`. Values in [0, 10⁻⁴) are
+/// raised to 10⁻⁴, as Mitsuba 3 does; negative values and values above 10 are refused.
+fn roughness(e: &Elem, p: &mut Props) -> Res<f32> {
+    let alpha = p.float("alpha")?;
+    let (au, av) = (p.float("alpha_u")?, p.float("alpha_v")?);
+    let alpha = match (alpha, au, av) {
+        (a, None, None) => a.unwrap_or(0.1),
+        (None, Some(u), Some(v)) if u == v => u,
+        (None, Some(_), Some(_)) => {
+            return Err(p.invalid(
+                "alpha_u",
+                e,
+                "differs from alpha_v (anisotropy is unsupported)",
+            ))
+        }
+        _ => return Err(p.invalid("alpha", e, "give either alpha or both alpha_u and alpha_v")),
+    };
+    if !(0.0..=validate::MAX_ROUGHNESS).contains(&alpha) {
+        return Err(p.invalid("alpha", e, "must lie in [0, 10]"));
+    }
+    Ok(alpha.max(MIN_ROUGHNESS))
+}
+
+/// Mitsuba's conductor rule: `material = "none"` (the default) without `eta` or `k` is a
+/// perfect mirror; `eta`/`k` (defaults 0 and 1) give a complex IOR; a named `material`
+/// (Au, Cu, Al, …) gives the RGB values Mitsuba's RGB variants use, and cannot be combined
+/// with `eta` or `k`.
+fn fresnel(e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
+    let material = p.string("material")?.unwrap_or_else(|| "none".into());
+    let unbounded = super::spectrum::SpectrumUse::Unbounded;
+    let (eta, k) = (p.colour("eta", unbounded)?, p.colour("k", unbounded)?);
+    if material != "none" {
+        if eta.is_some() || k.is_some() {
+            let which = if eta.is_some() { "eta" } else { "k" };
+            return Err(p.invalid(
+                which,
+                e,
+                &format!("cannot be given with material \"{material}\" (give one or the other)"),
+            ));
+        }
+        let Some((eta, k)) = named_conductor(&material) else {
+            return Err(p.invalid(
+                "material",
+                e,
+                &format!(
+                    "\"{material}\" is not a known conductor (names are case-sensitive, \
+                     e.g. Au, Ag, Al, Cu, Cr; docs/scene-format.md lists them)"
+                ),
+            ));
+        };
+        return Ok(ConductorFresnel::Complex { eta, k });
+    }
+    if eta.is_none() && k.is_none() {
+        return Ok(ConductorFresnel::Perfect);
+    }
+    let eta = eta.unwrap_or(Vec3::ZERO);
+    let k = k.unwrap_or(Vec3::ONE);
+    Ok(ConductorFresnel::Complex { eta, k })
+}
+
+/// An index of refraction given as a number or as one of Mitsuba's named media.
+fn ior(e: &Elem, p: &mut Props, name: &str, default: f32) -> Res<f32> {
+    let value = match p.raw(name) {
+        None => default,
+        Some((Value::Str(s), _)) => named_ior(&s)
+            .ok_or_else(|| p.invalid(name, e, &format!("\"{s}\" is not a known medium")))?,
+        Some((Value::Float(v), _)) => v,
+        Some((Value::Int(v), _)) => v as f32,
+        Some((_, el)) => return Err(p.wrong(el, name, "a <float> or a <string>")),
+    };
+    validate::ior("", value).map_err(|i| p.invalid(name, e, &i.message))?;
+    Ok(value)
+}
+
+/// Mitsuba's table of named indices of refraction.
+fn named_ior(name: &str) -> Option<f32> {
+    const TABLE: &[(&str, f32)] = &[
+        ("vacuum", 1.0),
+        ("helium", 1.000036),
+        ("hydrogen", 1.000132),
+        ("air", 1.000277),
+        ("carbon dioxide", 1.00045),
+        ("water", 1.333),
+        ("acetone", 1.36),
+        ("ethanol", 1.361),
+        ("carbon tetrachloride", 1.461),
+        ("glycerol", 1.4729),
+        ("benzene", 1.501),
+        ("silicone oil", 1.52045),
+        ("bromine", 1.661),
+        ("water ice", 1.31),
+        ("fused quartz", 1.458),
+        ("pyrex", 1.47),
+        ("acrylic glass", 1.49),
+        ("polypropylene", 1.49),
+        ("bk7", 1.5046),
+        ("sodium chloride", 1.544),
+        ("amber", 1.55),
+        ("pet", 1.575),
+        ("diamond", 2.419),
+    ];
+    let lower = name.to_ascii_lowercase();
+    TABLE.iter().find(|(n, _)| *n == lower).map(|(_, v)| *v)
+}

@@ -1,0 +1,282 @@
+//! `<sensor type="perspective">` or `"thinlens"` with its `<sampler>`, `<film type="hdrfilm">` and
+//! `<rfilter>`.
+
+use super::context::{Ctx, Res};
+use super::error::SceneErrorKind;
+use super::props::Props;
+use super::tree::Elem;
+use super::{no_objects, plugin_type, unknown_plugin};
+use crate::description::{
+    CropWindow, FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc, ThinLensDesc,
+};
+use crate::validate::{self, MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
+
+/// Largest accepted film side, in pixels (the area is bounded by [`MAX_FILM_PIXELS`]).
+pub(crate) const MAX_RESOLUTION: i64 = MAX_FILM_PIXELS as i64;
+
+/// Reads a `<sensor>` element.
+pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
+    let ty = plugin_type(ctx, e)?;
+    if ty != "perspective" && ty != "thinlens" {
+        return Err(unknown_plugin(ctx, e, ty));
+    }
+    let mut p = Props::new(ctx, e)?;
+    let mut s = SensorDesc::default();
+    if ty == "thinlens" {
+        s.lens = Some(read_lens(ctx, e, &mut p)?);
+    }
+    // Mitsuba 3 reads `fov` (with `fov_axis`) or `focal_length` (default 50 mm on a 36 × 24
+    // mm frame: a diagonal field of view), and refuses both. A diagonal fov becomes the
+    // horizontal one once the film's aspect is known.
+    let mut diagonal = None;
+    let focal = p.string("focal_length")?;
+    if let Some(fov) = p.float("fov")? {
+        if focal.is_some() {
+            return Err(p.invalid("fov", e, "and focal_length cannot both be given"));
+        }
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(p.invalid("fov", e, "must lie strictly between 0 and 180 degrees"));
+        }
+        s.fov = fov;
+        if let Some(axis) = p.string("fov_axis")? {
+            s.fov_axis = match axis.to_ascii_lowercase().as_str() {
+                "x" => FovAxis::X,
+                "y" => FovAxis::Y,
+                "smaller" => FovAxis::Smaller,
+                "larger" => FovAxis::Larger,
+                "diagonal" => {
+                    diagonal = Some(fov.to_radians());
+                    FovAxis::X
+                }
+                _ => {
+                    return Err(p.invalid(
+                        "fov_axis",
+                        e,
+                        &format!("\"{axis}\" is not supported (x, y, diagonal, smaller or larger)"),
+                    ))
+                }
+            };
+        }
+    } else {
+        let mm = match focal.as_deref() {
+            None => 50.0,
+            Some(text) => match parse_focal_length(text) {
+                Some(mm) => mm,
+                None => {
+                    return Err(p.invalid(
+                        "focal_length",
+                        e,
+                        &format!("\"{text}\" is not a positive length in mm (such as \"35mm\")"),
+                    ))
+                }
+            },
+        };
+        diagonal = Some(diagonal_fov(mm));
+    }
+    s.near_clip = p.float("near_clip")?.unwrap_or(s.near_clip);
+    s.far_clip = p.float("far_clip")?.unwrap_or(s.far_clip);
+    if !(s.near_clip > 0.0 && s.far_clip > s.near_clip) {
+        return Err(p.invalid("near_clip", e, "must be positive and below far_clip"));
+    }
+    s.to_world = p.transform("to_world")?.unwrap_or(s.to_world);
+    let (mut film, mut sampler) = (None, None);
+    for o in &p.objects {
+        let slot_is_free = match o.tag.as_str() {
+            "film" => film.replace(read_film(ctx, o)?).is_none(),
+            "sampler" => sampler.replace(read_sampler(ctx, o)?).is_none(),
+            _ => {
+                return Err(ctx.err(
+                    o,
+                    SceneErrorKind::Misplaced(format!("<{}> inside a <sensor>", o.tag)),
+                ))
+            }
+        };
+        if !slot_is_free {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::Misplaced(format!("a second <{}> in the sensor", o.tag)),
+            ));
+        }
+    }
+    s.film = film.unwrap_or_default();
+    if let Some(d) = diagonal {
+        s.fov = horizontal_fov(d, s.film.width as f32 / s.film.height as f32);
+        s.fov_axis = FovAxis::X;
+    }
+    s.sampler = sampler.unwrap_or_default();
+    p.finish()?;
+    Ok(s)
+}
+
+/// Mitsuba 3's `focal_length`: `N` or `Nmm`, N > 0 millimetres.
+fn parse_focal_length(text: &str) -> Option<f32> {
+    let t = text.trim();
+    let mm: f32 = t.strip_suffix("mm").unwrap_or(t).trim().parse().ok()?;
+    (mm.is_finite() && mm > 0.0).then_some(mm)
+}
+
+/// The diagonal field of view in radians of a lens of focal length `mm` on a 36 × 24 mm
+/// frame (Mitsuba 3's rule for `focal_length`).
+fn diagonal_fov(mm: f32) -> f32 {
+    2.0 * (36f32.hypot(24.0) / (2.0 * mm)).atan()
+}
+
+/// The horizontal field of view in degrees of a diagonal one of `diag` radians on a film
+/// of aspect `a = w/h`: `tan(x/2) = tan(d/2) · a/√(1 + a²)` (as Mitsuba 3 converts it).
+fn horizontal_fov(diag: f32, a: f32) -> f32 {
+    2.0 * ((0.5 * diag).tan() * a / (1.0 + a * a).sqrt())
+        .atan()
+        .to_degrees()
+}
+
+/// The lens parameters of a `thinlens` sensor: `aperture_radius` (required, as in
+/// Mitsuba 3) and `focus_distance`.
+fn read_lens(ctx: &Ctx, e: &Elem, p: &mut Props) -> Res<ThinLensDesc> {
+    let aperture_radius = p.float("aperture_radius")?.ok_or_else(|| {
+        ctx.err(
+            e,
+            SceneErrorKind::MissingAttribute("parameter \"aperture_radius\"".into()),
+        )
+    })?;
+    if !(aperture_radius.is_finite() && aperture_radius >= 0.0) {
+        return Err(p.invalid("aperture_radius", e, "must be finite and non-negative"));
+    }
+    let focus_distance = p
+        .float("focus_distance")?
+        .unwrap_or(ThinLensDesc::FOCUS_DISTANCE);
+    if !(focus_distance.is_finite() && focus_distance > 0.0) {
+        return Err(p.invalid("focus_distance", e, "must be finite and positive"));
+    }
+    Ok(ThinLensDesc {
+        aperture_radius,
+        focus_distance,
+    })
+}
+
+/// Reads a `<sampler>` element.
+fn read_sampler(ctx: &Ctx, e: &Elem) -> Res<SamplerDesc> {
+    let kind = match plugin_type(ctx, e)? {
+        "independent" => SamplerKind::Independent,
+        "stratified" => SamplerKind::Stratified,
+        "ldsampler" => SamplerKind::LowDiscrepancy,
+        "multijitter" => SamplerKind::MultiJitter,
+        "orthogonal" => SamplerKind::Orthogonal,
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    let mut p = Props::new(ctx, e)?;
+    no_objects(ctx, &p)?;
+    let mut s = SamplerDesc {
+        kind,
+        ..SamplerDesc::default()
+    };
+    if let Some(n) = p.int_in("sample_count", 1, MAX_SAMPLE_COUNT as i64)? {
+        s.sample_count = n as u32;
+    }
+    if let Some(seed) = p.int_in("seed", 0, i64::MAX)? {
+        s.seed = seed as u64;
+    }
+    let jittered = matches!(
+        kind,
+        SamplerKind::Stratified | SamplerKind::MultiJitter | SamplerKind::Orthogonal
+    );
+    if jittered && p.bool("jitter")? == Some(false) {
+        return Err(ctx.err(e, SceneErrorKind::Unsupported("jitter = false".into())));
+    }
+    // An orthogonal array of strength t stratifies every t-dimensional projection; ours
+    // stratifies each 2D dimension, which matches strength 2 (Mitsuba's default) only.
+    if kind == SamplerKind::Orthogonal {
+        if let Some((t, at)) = p.int("strength")? {
+            if t != 2 {
+                let what = format!("orthogonal sampler of strength {t} (only 2 is rendered)");
+                return Err(ctx.err(at, SceneErrorKind::Unsupported(what)));
+            }
+        }
+    }
+    p.finish()?;
+    Ok(s)
+}
+
+/// Reads a `<film>` element.
+fn read_film(ctx: &Ctx, e: &Elem) -> Res<FilmDesc> {
+    let ty = plugin_type(ctx, e)?;
+    if ty != "hdrfilm" {
+        return Err(unknown_plugin(ctx, e, ty));
+    }
+    let mut p = Props::new(ctx, e)?;
+    let mut f = FilmDesc::default();
+    if let Some(w) = p.int_in("width", 1, MAX_RESOLUTION)? {
+        f.width = w as u32;
+    }
+    if let Some(h) = p.int_in("height", 1, MAX_RESOLUTION)? {
+        f.height = h as u32;
+    }
+    // Output-format options: accepted and ignored (the renderer writes float RGB EXR).
+    for name in ["file_format", "pixel_format", "component_format"] {
+        p.string(name)?;
+    }
+    for name in ["sample_border", "compensate"] {
+        p.bool(name)?;
+    }
+    // Mitsuba's crop window: offsets default to 0, sizes to the rest of the film.
+    let max = MAX_RESOLUTION;
+    let (ox, oy) = (
+        p.int_in("crop_offset_x", 0, max)?,
+        p.int_in("crop_offset_y", 0, max)?,
+    );
+    let (cw, ch) = (
+        p.int_in("crop_width", 1, max)?,
+        p.int_in("crop_height", 1, max)?,
+    );
+    if ox.is_some() || oy.is_some() || cw.is_some() || ch.is_some() {
+        let (ox, oy) = (ox.unwrap_or(0) as u32, oy.unwrap_or(0) as u32);
+        f.crop = Some(CropWindow {
+            offset_x: ox,
+            offset_y: oy,
+            width: cw.map_or(f.width.saturating_sub(ox), |v| v as u32),
+            height: ch.map_or(f.height.saturating_sub(oy), |v| v as u32),
+        });
+    }
+    let mut filter = None;
+    for o in &p.objects {
+        if o.tag != "rfilter" {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::Misplaced(format!("<{}> inside a <film>", o.tag)),
+            ));
+        }
+        if filter.replace(read_filter(ctx, o)?).is_some() {
+            return Err(ctx.err(o, SceneErrorKind::Misplaced("a second <rfilter>".into())));
+        }
+    }
+    f.filter = filter.unwrap_or_default();
+    validate::film(&f).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    p.finish()?;
+    Ok(f)
+}
+
+/// Reads an `<rfilter>` element.
+fn read_filter(ctx: &Ctx, e: &Elem) -> Res<FilterDesc> {
+    let ty = plugin_type(ctx, e)?;
+    let mut p = Props::new(ctx, e)?;
+    no_objects(ctx, &p)?;
+    let f = match ty {
+        "box" => FilterDesc::Box,
+        "tent" => {
+            let radius = p.float("radius")?.unwrap_or(1.0);
+            if !(radius > 0.0 && radius <= 16.0) {
+                return Err(p.invalid("radius", e, "must lie in (0, 16] pixels"));
+            }
+            FilterDesc::Tent { radius }
+        }
+        "gaussian" => {
+            let stddev = p.float("stddev")?.unwrap_or(0.5);
+            if !(stddev > 0.0 && stddev <= 16.0) {
+                return Err(p.invalid("stddev", e, "must lie in (0, 16] pixels"));
+            }
+            FilterDesc::Gaussian { stddev }
+        }
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    p.finish()?;
+    Ok(f)
+}

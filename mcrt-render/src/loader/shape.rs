@@ -1,0 +1,99 @@
+//! `<shape>`: `rectangle`, `cube`, `disk`, `sphere` and the mesh files `obj`, `ply` and
+//! `serialized`, each with an optional BSDF (or `<ref>`) and an optional `area` emitter.
+
+use super::bsdf::read_bsdf_or_ref;
+use super::context::{Ctx, Res};
+use super::emitter::read_area;
+use super::error::SceneErrorKind;
+use super::props::Props;
+use super::tree::Elem;
+use super::{plugin_type, unknown_plugin};
+use crate::description::{BsdfDesc, ShapeDesc, ShapeKind};
+use crate::validate;
+use glam::Vec3;
+
+/// The parameters of a shape read from a mesh file; the file must exist and be readable
+/// (its contents are read when the geometry is built).
+fn mesh_file<'a>(ctx: &Ctx<'a>, e: &'a Elem, ty: &str, p: &mut Props) -> Res<ShapeKind> {
+    let name = p.string("filename")?.ok_or_else(|| {
+        ctx.err(
+            e,
+            SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
+        )
+    })?;
+    let filename = ctx.readable_file(e, &name, None)?;
+    let face_normals = p.bool("face_normals")?.unwrap_or(false);
+    Ok(match ty {
+        "obj" => ShapeKind::Obj {
+            filename,
+            face_normals,
+            flip_tex_coords: p.bool("flip_tex_coords")?.unwrap_or(true),
+        },
+        "ply" => ShapeKind::Ply {
+            filename,
+            face_normals,
+        },
+        _ => ShapeKind::Serialized {
+            filename,
+            shape_index: p
+                .int_in("shape_index", 0, i64::from(u32::MAX))?
+                .unwrap_or(0) as u32,
+            face_normals,
+        },
+    })
+}
+
+/// Reads a `<shape>` element.
+pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
+    let ty = plugin_type(ctx, e)?;
+    let mut p = Props::new(ctx, e)?;
+    let kind = match ty {
+        "rectangle" => ShapeKind::Rectangle,
+        "cube" => ShapeKind::Cube,
+        "disk" => ShapeKind::Disk,
+        "sphere" => {
+            let center = p.point("center")?.unwrap_or(Vec3::ZERO);
+            let radius = p.float("radius")?.unwrap_or(1.0);
+            if radius <= 0.0 {
+                return Err(p.invalid("radius", e, "must be positive"));
+            }
+            ShapeKind::Sphere { center, radius }
+        }
+        "obj" | "ply" | "serialized" => mesh_file(ctx, e, ty, &mut p)?,
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    let mut shape = ShapeDesc::new(kind);
+    shape.id = e.attr("id").map(str::to_string);
+    shape.to_world = p.transform("to_world")?.unwrap_or(shape.to_world);
+    shape.flip_normals = p.bool("flip_normals")?.unwrap_or(false);
+    let (mut bsdf, mut emitter) = (None, None);
+    for o in &p.objects {
+        let first = match o.tag.as_str() {
+            "bsdf" | "ref" => bsdf.replace(read_bsdf_or_ref(ctx, o)?).is_none(),
+            "emitter" => emitter.replace(read_area(ctx, o)?).is_none(),
+            _ => {
+                return Err(ctx.err(
+                    o,
+                    SceneErrorKind::Misplaced(format!("<{}> inside a <shape>", o.tag)),
+                ))
+            }
+        };
+        if !first {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::Misplaced(format!("a second <{}> in the shape", o.tag)),
+            ));
+        }
+    }
+    // As in Mitsuba 3: a shape without a BSDF is diffuse 0.5, but an emitting one is black.
+    shape.bsdf = bsdf.unwrap_or_else(|| match emitter {
+        Some(_) => BsdfDesc::Diffuse {
+            reflectance: Vec3::ZERO,
+        },
+        None => BsdfDesc::default(),
+    });
+    shape.emitter = emitter;
+    validate::shape(&shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    p.finish()?;
+    Ok(shape)
+}

@@ -1,0 +1,283 @@
+//! `<texture>`: `bitmap` and `checkerboard`, declared at top level or inside a BSDF, and
+//! the textures a BSDF's parameters name (nested, or `<ref name="…" id="…"/>`).
+
+use super::context::{Ctx, Res};
+use super::error::SceneErrorKind;
+use super::props::Props;
+use super::tree::Elem;
+use super::{no_objects, plugin_type, unknown_plugin};
+use crate::description::BsdfDesc;
+use crate::texture::{
+    read_image, uv_transform, Bitmap, Checkerboard, FilterType, Texture, TextureParam, WrapMode,
+};
+use glam::{Affine2, Vec3};
+use std::sync::Arc;
+
+/// Reads a `<texture>` element.
+pub(crate) fn read_texture(ctx: &Ctx, e: &Elem) -> Res<Texture> {
+    let ty = plugin_type(ctx, e)?;
+    let mut p = Props::new(ctx, e)?;
+    no_objects(ctx, &p)?;
+    let to_uv = match p.transform("to_uv")? {
+        Some(m) => uv_transform(&m),
+        None => Affine2::IDENTITY,
+    };
+    let texture = match ty {
+        "bitmap" => {
+            let Some(name) = p.string("filename")? else {
+                return Err(ctx.err(
+                    e,
+                    SceneErrorKind::InvalidValue("bitmap needs a \"filename\"".into()),
+                ));
+            };
+            let raw = p.bool("raw")?.unwrap_or(false);
+            let filter = match p.string("filter_type")? {
+                None => FilterType::default(),
+                Some(s) => FilterType::parse(&s).ok_or_else(|| {
+                    p.invalid(
+                        "filter_type",
+                        e,
+                        &format!("\"{s}\" is not bilinear or nearest"),
+                    )
+                })?,
+            };
+            let wrap = match p.string("wrap_mode")? {
+                None => WrapMode::default(),
+                Some(s) => WrapMode::parse(&s).ok_or_else(|| {
+                    p.invalid(
+                        "wrap_mode",
+                        e,
+                        &format!("\"{s}\" is not repeat, mirror or clamp"),
+                    )
+                })?,
+            };
+            let path = ctx.readable_file(e, &name, None)?;
+            let image = match ctx.cached_image(&path, raw) {
+                Some(image) => image,
+                None => {
+                    let image = read_image(&path, raw).map_err(|reason| {
+                        ctx.err(
+                            e,
+                            SceneErrorKind::Io {
+                                path: path.clone(),
+                                reason,
+                            },
+                        )
+                    })?;
+                    ctx.cache_image(&path, raw, Arc::new(image))
+                }
+            };
+            Texture::Bitmap(Bitmap {
+                image,
+                filter,
+                wrap,
+                to_uv,
+            })
+        }
+        "checkerboard" => {
+            let d = Checkerboard::default();
+            Texture::Checkerboard(Checkerboard {
+                color0: p.rgb("color0")?.unwrap_or(d.color0),
+                color1: p.rgb("color1")?.unwrap_or(d.color1),
+                to_uv,
+            })
+        }
+        other => return Err(unknown_plugin(ctx, e, other)),
+    };
+    if let Texture::Checkerboard(c) = &texture {
+        for (name, v) in [("color0", c.color0), ("color1", c.color1)] {
+            if !v.is_finite() {
+                return Err(p.invalid(name, e, "must be finite"));
+            }
+        }
+    }
+    if !to_uv.is_finite() {
+        return Err(p.invalid("to_uv", e, "must be finite"));
+    }
+    p.finish()?;
+    Ok(texture)
+}
+
+/// The `<texture>` element `e` is, or that the `<ref>` `e` names; `None` for anything else
+/// (a `<bsdf>`, or a `<ref>` to one).
+pub(crate) fn texture_elem<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Option<&'a Elem> {
+    match e.tag.as_str() {
+        "texture" => Some(e),
+        "ref" => ctx
+            .ids
+            .get(e.attr("id").unwrap_or(""))
+            .copied()
+            .filter(|t| t.tag == "texture"),
+        _ => None,
+    }
+}
+
+/// Takes the textures out of a BSDF's nested objects: each must carry the `name` of the
+/// parameter it drives, one that plugin `ty` has and that is given once.
+pub(crate) fn take_textures<'a>(
+    ctx: &Ctx<'a>,
+    ty: &str,
+    p: &mut Props<'_, 'a>,
+) -> Res<Vec<(TextureParam, Texture, &'a Elem)>> {
+    let mut out: Vec<(TextureParam, Texture, &'a Elem)> = Vec::new();
+    let mut rest = Vec::new();
+    for &o in &p.objects {
+        let id = o.attr("id").unwrap_or("");
+        if o.tag == "ref" && !ctx.ids.contains_key(id) {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::UndefinedReference(format!("no object has id \"{id}\"")),
+            ));
+        }
+        let Some(target) = texture_elem(ctx, o) else {
+            rest.push(o);
+            continue;
+        };
+        let Some(name) = o.attr("name") else {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::MissingAttribute(
+                    "name (the parameter a texture inside a BSDF drives)".into(),
+                ),
+            ));
+        };
+        let Some(param) = TextureParam::ALL.into_iter().find(|q| q.name() == name) else {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::Unsupported(format!(
+                    "a texture for \"{name}\" of bsdf \"{ty}\" (textures drive reflectance, \
+                     diffuse_reflectance, specular_reflectance, specular_transmittance, \
+                     principled's base_color, blendbsdf's weight and mask's opacity)"
+                )),
+            ));
+        };
+        if p.has(name) || out.iter().any(|(q, _, _)| *q == param) {
+            return Err(ctx.err(o, SceneErrorKind::DuplicateParameter(name.into())));
+        }
+        if o.tag == "ref" {
+            super::transform::check_attrs(ctx, o, &["id", "name"], &["id"])?;
+        }
+        out.push((param, read_texture(ctx, target)?, o));
+    }
+    p.objects = rest;
+    Ok(out)
+}
+
+/// The constant that stands for a texture in a material's description: its mean (grey).
+pub(crate) fn stand_in(t: &Texture) -> Vec3 {
+    Vec3::splat(t.mean())
+}
+
+/// The error for a texture in a place that takes none.
+pub(crate) fn not_here(ctx: &Ctx, o: &Elem) -> super::error::SceneError {
+    let what = match o.attr("name") {
+        Some(n) => format!("a texture for \"{n}\""),
+        None => "a texture".into(),
+    };
+    ctx.err(
+        o,
+        SceneErrorKind::Unsupported(format!(
+            "{what} here (textures drive BSDF colours, blendbsdf's weight and mask's \
+             opacity; emitters and textures' own colours take constants)"
+        )),
+    )
+}
+
+/// `desc` with `textures` attached: each must be a parameter of the plugin (`e`, of type
+/// `ty`); colour parameters take the texture's mean as their stand-in (blend weights and
+/// opacities took theirs when they were read).
+pub(crate) fn attach(
+    ctx: &Ctx,
+    ty: &str,
+    mut desc: BsdfDesc,
+    textures: Vec<(TextureParam, Texture, &Elem)>,
+) -> Res<BsdfDesc> {
+    if textures.is_empty() {
+        return Ok(desc);
+    }
+    for (param, texture, o) in &textures {
+        if !desc.has_param(*param) {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::UnknownParameter {
+                    plugin: format!("bsdf \"{ty}\""),
+                    name: param.name().into(),
+                },
+            ));
+        }
+        if let Some(slot) = colour_mut(&mut desc, *param) {
+            *slot = stand_in(texture);
+        }
+    }
+    Ok(BsdfDesc::Textured {
+        inner: Box::new(desc),
+        textures: textures.into_iter().map(|(p, t, _)| (p, t)).collect(),
+    })
+}
+
+/// The colour parameter `p` of a material description.
+fn colour_mut(desc: &mut BsdfDesc, p: TextureParam) -> Option<&mut Vec3> {
+    use TextureParam as P;
+    Some(match (desc, p) {
+        (BsdfDesc::Diffuse { reflectance }, P::Reflectance) => reflectance,
+        (
+            BsdfDesc::Conductor {
+                specular_reflectance,
+                ..
+            }
+            | BsdfDesc::RoughConductor {
+                specular_reflectance,
+                ..
+            }
+            | BsdfDesc::Dielectric {
+                specular_reflectance,
+                ..
+            }
+            | BsdfDesc::RoughDielectric {
+                specular_reflectance,
+                ..
+            }
+            | BsdfDesc::ThinDielectric {
+                specular_reflectance,
+                ..
+            }
+            | BsdfDesc::Plastic {
+                specular_reflectance,
+                ..
+            }
+            | BsdfDesc::RoughPlastic {
+                specular_reflectance,
+                ..
+            },
+            P::SpecularReflectance,
+        ) => specular_reflectance,
+        (
+            BsdfDesc::Dielectric {
+                specular_transmittance,
+                ..
+            }
+            | BsdfDesc::RoughDielectric {
+                specular_transmittance,
+                ..
+            }
+            | BsdfDesc::ThinDielectric {
+                specular_transmittance,
+                ..
+            },
+            P::SpecularTransmittance,
+        ) => specular_transmittance,
+        (
+            BsdfDesc::Plastic {
+                diffuse_reflectance,
+                ..
+            }
+            | BsdfDesc::RoughPlastic {
+                diffuse_reflectance,
+                ..
+            },
+            P::DiffuseReflectance,
+        ) => diffuse_reflectance,
+        (BsdfDesc::Principled(params), P::BaseColor) => &mut params.base_color,
+        _ => return None,
+    })
+}

@@ -1,0 +1,674 @@
+//! What the renderer can use: the one set of checks on a [`SceneDescription`], and the
+//! bounds that keep any scene's memory and work finite. The XML loader applies them to each
+//! element as it reads it (so its errors name file, line and element), and
+//! [`Renderer::new`](crate::render::Renderer::new) applies them again to
+//! descriptions built in code.
+//!
+//! The bounds, also listed in `docs/scene-format.md`:
+//!
+//! | what | bound |
+//! |---|---|
+//! | film pixels, width × height | [`MAX_FILM_PIXELS`] = 2²⁵ (8K UHD fits) |
+//! | `sample_count` | [`MAX_SAMPLE_COUNT`] = 2²⁴ |
+//! | `emitter_samples`, `bsdf_samples` | [`MAX_SHADING_SAMPLES`] = 2¹⁶ each |
+//! | pixels × spp × max(1, emitter + bsdf samples) | [`MAX_WORK`] = 2⁴² |
+//! | roughness α | [[`MIN_ROUGHNESS`], 10]; the loader clamps smaller α to 10⁻⁴ as Mitsuba 3 does |
+
+use crate::description::{
+    BsdfDesc, ConductorFresnel, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc,
+    SceneDescription, ShapeDesc, ShapeKind,
+};
+use glam::{Mat4, Vec3, Vec4};
+use std::fmt;
+
+/// Largest film, in pixels: 2²⁵ (33.5 M, e.g. 8192 × 4096 or 7680 × 4320). The film keeps
+/// about 64 bytes per pixel (sums, squares, counts and the output image), so at most about
+/// 2 GiB.
+pub const MAX_FILM_PIXELS: u64 = 1 << 25;
+
+/// Largest `sample_count` (samples per pixel): 2²⁴.
+pub const MAX_SAMPLE_COUNT: u32 = 1 << 24;
+
+/// Largest `emitter_samples` and `bsdf_samples` of the direct integrator: 2¹⁶ each, so one
+/// pixel sample stays short enough to cancel within a second.
+pub const MAX_SHADING_SAMPLES: u32 = 1 << 16;
+
+/// Largest total work, pixels × spp × max(1, emitter + bsdf samples): 2⁴² (4.4 · 10¹²,
+/// about a day at 50 M samples per second).
+pub const MAX_WORK: u64 = 1 << 42;
+
+/// Smallest microfacet roughness the renderer takes (Mitsuba 3 clamps to the same value).
+pub const MIN_ROUGHNESS: f32 = 1e-4;
+
+/// Largest microfacet roughness the renderer takes.
+pub const MAX_ROUGHNESS: f32 = 10.0;
+
+/// A value the renderer cannot use: the parameter and what is wrong with it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Invalid {
+    /// The parameter's name as in the scene format (`reflectance`, `int_ior`, …).
+    pub param: &'static str,
+    /// What is wrong, e.g. `must be finite and non-negative`.
+    pub message: String,
+}
+
+impl fmt::Display for Invalid {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "\"{}\" {}", self.param, self.message)
+    }
+}
+
+impl std::error::Error for Invalid {}
+
+fn invalid(param: &'static str, message: impl Into<String>) -> Invalid {
+    Invalid {
+        param,
+        message: message.into(),
+    }
+}
+
+/// A colour whose channels must be finite and non-negative.
+pub fn colour(param: &'static str, v: Vec3) -> Result<(), Invalid> {
+    if v.is_finite() && v.min_element() >= 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(param, "must be finite and non-negative"))
+    }
+}
+
+/// An index of refraction: finite and positive.
+pub fn ior(param: &'static str, v: f32) -> Result<(), Invalid> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(param, "must be finite and positive"))
+    }
+}
+
+/// An object-to-world transform: finite, affine (last row 0 0 0 1) and invertible.
+pub fn transform(param: &'static str, m: &Mat4) -> Result<(), Invalid> {
+    if !m.is_finite() {
+        return Err(invalid(param, "is not finite"));
+    }
+    if m.row(3).distance(Vec4::W) > 1e-6 {
+        return Err(invalid(
+            param,
+            "is projective (its last row is not 0 0 0 1); only affine transforms are supported",
+        ));
+    }
+    let det = glam::Mat3::from_mat4(*m).determinant();
+    if det == 0.0 || !det.is_finite() {
+        return Err(invalid(param, "is singular"));
+    }
+    Ok(())
+}
+
+/// A film: non-empty, at most [`MAX_FILM_PIXELS`], with a usable filter.
+pub fn film(f: &FilmDesc) -> Result<(), Invalid> {
+    let pixels = f.width as u64 * f.height as u64;
+    if pixels == 0 {
+        return Err(invalid("width", "and height must be positive"));
+    }
+    if pixels > MAX_FILM_PIXELS {
+        return Err(invalid(
+            "width",
+            format!(
+                "× height = {} × {} = {pixels} pixels exceeds the limit of {MAX_FILM_PIXELS}",
+                f.width, f.height
+            ),
+        ));
+    }
+    if let FilterDesc::Gaussian { stddev } = f.filter {
+        if !(stddev > 0.0 && stddev <= 16.0) {
+            return Err(invalid("stddev", "must lie in (0, 16] pixels"));
+        }
+    }
+    if let FilterDesc::Tent { radius } = f.filter {
+        if !(radius > 0.0 && radius <= 16.0) {
+            return Err(invalid("radius", "must lie in (0, 16] pixels"));
+        }
+    }
+    let w = f.window();
+    let fits = |o: u32, n: u32, full: u32| n > 0 && o.checked_add(n).is_some_and(|e| e <= full);
+    if !fits(w.offset_x, w.width, f.width) {
+        return Err(invalid(
+            "crop_width",
+            format!(
+                "and crop_offset_x: the window [{}, {} + {}) must be non-empty and lie within the width {}",
+                w.offset_x, w.offset_x, w.width, f.width
+            ),
+        ));
+    }
+    if !fits(w.offset_y, w.height, f.height) {
+        return Err(invalid(
+            "crop_height",
+            format!(
+                "and crop_offset_y: the window [{}, {} + {}) must be non-empty and lie within the height {}",
+                w.offset_y, w.offset_y, w.height, f.height
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A sample count in 1..=[`MAX_SAMPLE_COUNT`].
+pub fn sample_count(n: u32) -> Result<(), Invalid> {
+    if (1..=MAX_SAMPLE_COUNT).contains(&n) {
+        Ok(())
+    } else {
+        Err(invalid(
+            "sample_count",
+            format!("= {n} is outside [1, {MAX_SAMPLE_COUNT}]"),
+        ))
+    }
+}
+
+/// The integrator's parameters.
+pub fn integrator(i: &IntegratorDesc) -> Result<(), Invalid> {
+    match *i {
+        IntegratorDesc::Path {
+            max_depth,
+            rr_depth,
+        }
+        | IntegratorDesc::Bdpt {
+            max_depth,
+            rr_depth,
+        } => {
+            if max_depth < -1 {
+                return Err(invalid("max_depth", "must be -1 (unlimited) or at least 0"));
+            }
+            if rr_depth == 0 {
+                return Err(invalid("rr_depth", "must be at least 1"));
+            }
+        }
+        IntegratorDesc::Direct {
+            emitter_samples,
+            bsdf_samples,
+        } => {
+            for (param, n) in [
+                ("emitter_samples", emitter_samples),
+                ("bsdf_samples", bsdf_samples),
+            ] {
+                if n > MAX_SHADING_SAMPLES {
+                    return Err(invalid(
+                        param,
+                        format!("= {n} exceeds the limit of {MAX_SHADING_SAMPLES}"),
+                    ));
+                }
+            }
+            if emitter_samples == 0 && bsdf_samples == 0 {
+                return Err(invalid(
+                    "emitter_samples",
+                    "and bsdf_samples cannot both be zero",
+                ));
+            }
+        }
+        IntegratorDesc::Mlt {
+            max_depth,
+            bootstrap_samples,
+            chains,
+            mutations_per_pixel,
+            large_step_prob,
+            sigma,
+        } => {
+            if !(1..=MAX_MLT_DEPTH).contains(&max_depth) {
+                return Err(invalid(
+                    "max_depth",
+                    format!("must lie in [1, {MAX_MLT_DEPTH}] for mlt (a chain keeps its length)"),
+                ));
+            }
+            if chains == 0 || bootstrap_samples < chains {
+                return Err(invalid(
+                    "bootstrap_samples",
+                    "must be at least the number of chains, which must be at least 1",
+                ));
+            }
+            if mutations_per_pixel == 0 || mutations_per_pixel > MAX_SAMPLE_COUNT {
+                return Err(invalid(
+                    "mutations_per_pixel",
+                    format!("= {mutations_per_pixel} is outside [1, {MAX_SAMPLE_COUNT}]"),
+                ));
+            }
+            if !(large_step_prob > 0.0 && large_step_prob <= 1.0) {
+                return Err(invalid("large_step_prob", "must lie in (0, 1]"));
+            }
+            if !(sigma > 0.0 && sigma.is_finite()) {
+                return Err(invalid("sigma", "must be positive and finite"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Longest `max_depth` of `mlt` (its image keeps one buffer per path length).
+pub const MAX_MLT_DEPTH: i32 = 64;
+
+/// The total work of a render: pixels × spp × max(1, emitter + bsdf samples) at most
+/// [`MAX_WORK`].
+pub fn work(pixels: u64, spp: u32, i: &IntegratorDesc) -> Result<(), Invalid> {
+    let per_sample = match *i {
+        IntegratorDesc::Direct {
+            emitter_samples,
+            bsdf_samples,
+        } => (emitter_samples as u64 + bsdf_samples as u64).max(1),
+        IntegratorDesc::Path { .. } | IntegratorDesc::Bdpt { .. } => 1,
+        // The bootstrap's paths and normalisation samples, spread over the pixels.
+        IntegratorDesc::Mlt {
+            bootstrap_samples,
+            max_depth,
+            ..
+        } => 1 + (bootstrap_samples as u64 * (max_depth.max(1) as u64 + 1)) / pixels.max(1),
+    };
+    let w = pixels.saturating_mul(spp as u64).saturating_mul(per_sample);
+    if w > MAX_WORK {
+        return Err(invalid(
+            "sample_count",
+            format!(
+                "× pixels × shading samples = {w} exceeds the limit of {MAX_WORK} \
+                 (no machine finishes it)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A material.
+pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
+    match b {
+        BsdfDesc::Diffuse { reflectance } => colour("reflectance", *reflectance),
+        BsdfDesc::Conductor {
+            fresnel,
+            specular_reflectance,
+        } => {
+            conductor_fresnel(fresnel)?;
+            colour("specular_reflectance", *specular_reflectance)
+        }
+        BsdfDesc::RoughConductor {
+            alpha,
+            fresnel,
+            specular_reflectance,
+            ..
+        } => {
+            roughness(*alpha)?;
+            conductor_fresnel(fresnel)?;
+            colour("specular_reflectance", *specular_reflectance)
+        }
+        BsdfDesc::Dielectric {
+            int_ior,
+            ext_ior,
+            specular_reflectance,
+            specular_transmittance,
+        }
+        | BsdfDesc::ThinDielectric {
+            int_ior,
+            ext_ior,
+            specular_reflectance,
+            specular_transmittance,
+        } => dielectric(
+            *int_ior,
+            *ext_ior,
+            *specular_reflectance,
+            *specular_transmittance,
+        ),
+        BsdfDesc::RoughDielectric {
+            alpha,
+            int_ior,
+            ext_ior,
+            specular_reflectance,
+            specular_transmittance,
+            ..
+        } => {
+            roughness(*alpha)?;
+            dielectric(
+                *int_ior,
+                *ext_ior,
+                *specular_reflectance,
+                *specular_transmittance,
+            )
+        }
+        BsdfDesc::Plastic {
+            int_ior,
+            ext_ior,
+            diffuse_reflectance,
+            specular_reflectance,
+            nonlinear,
+        } => plastic(
+            *int_ior,
+            *ext_ior,
+            *diffuse_reflectance,
+            *specular_reflectance,
+            *nonlinear,
+        ),
+        BsdfDesc::RoughPlastic {
+            alpha,
+            int_ior,
+            ext_ior,
+            diffuse_reflectance,
+            specular_reflectance,
+            nonlinear,
+            ..
+        } => {
+            roughness(*alpha)?;
+            plastic(
+                *int_ior,
+                *ext_ior,
+                *diffuse_reflectance,
+                *specular_reflectance,
+                *nonlinear,
+            )
+        }
+        BsdfDesc::Principled(params) => principled(params),
+        BsdfDesc::Blend {
+            weight,
+            first,
+            second,
+        } => {
+            unit_interval("weight", *weight)?;
+            bsdf(first)?;
+            bsdf(second)
+        }
+        BsdfDesc::Mask { opacity, inner } => {
+            unit_interval("opacity", *opacity)?;
+            bsdf(inner)
+        }
+        BsdfDesc::TwoSided(inner) => bsdf(inner),
+        BsdfDesc::Textured { inner, textures } => {
+            if matches!(**inner, BsdfDesc::TwoSided(_) | BsdfDesc::Textured { .. }) {
+                return Err(invalid(
+                    "textures",
+                    "must be attached to a material, not to twosided or another texture list",
+                ));
+            }
+            for (i, (param, texture)) in textures.iter().enumerate() {
+                if !inner.has_param(*param) {
+                    return Err(invalid(param.name(), "is not a parameter of this material"));
+                }
+                if textures[..i].iter().any(|(p, _)| p == param) {
+                    return Err(invalid(param.name(), "is textured twice"));
+                }
+                texture_values(param.name(), texture)?;
+            }
+            bsdf(inner)
+        }
+    }
+}
+
+/// A texture's own numbers: finite colours and a finite `to_uv`.
+fn texture_values(param: &'static str, t: &crate::texture::Texture) -> Result<(), Invalid> {
+    use crate::texture::Texture;
+    let ok = match t {
+        Texture::Bitmap(b) => b.to_uv.is_finite(),
+        Texture::Checkerboard(c) => {
+            c.to_uv.is_finite() && c.color0.is_finite() && c.color1.is_finite()
+        }
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(invalid(
+            param,
+            "has a texture with a non-finite colour or to_uv",
+        ))
+    }
+}
+
+/// A blend weight or an opacity: in [0, 1] (outside, Mitsuba's probabilities would turn
+/// negative).
+/// A principled material: [`PrincipledParams::check`](crate::bsdf::PrincipledParams::check),
+/// its error named by the parameter.
+fn principled(p: &crate::bsdf::PrincipledParams) -> Result<(), Invalid> {
+    p.check().map_err(|e| match e {
+        mcrt::sampling::SamplingError::InvalidParameter { name, expected, .. } => {
+            invalid(name, format!("must be {expected}"))
+        }
+        other => invalid("principled", other.to_string()),
+    })
+}
+
+fn unit_interval(param: &'static str, v: f32) -> Result<(), Invalid> {
+    if (0.0..=1.0).contains(&v) {
+        Ok(())
+    } else {
+        Err(invalid(param, "must lie in [0, 1]"))
+    }
+}
+
+fn roughness(alpha: f32) -> Result<(), Invalid> {
+    if (MIN_ROUGHNESS..=MAX_ROUGHNESS).contains(&alpha) {
+        Ok(())
+    } else {
+        Err(invalid(
+            "alpha",
+            format!("must lie in [{MIN_ROUGHNESS}, {MAX_ROUGHNESS}]"),
+        ))
+    }
+}
+
+/// An interface between two indices (smooth, rough or thin) and its two colours.
+fn dielectric(int_ior: f32, ext_ior: f32, reflect: Vec3, transmit: Vec3) -> Result<(), Invalid> {
+    ior("int_ior", int_ior)?;
+    ior("ext_ior", ext_ior)?;
+    colour("specular_reflectance", reflect)?;
+    colour("specular_transmittance", transmit)
+}
+
+/// A coated material. Its diffuse albedo after internal scattering, `ρ / (1 − F_dr)` (or
+/// `ρ / (1 − ρ F_dr)` when `nonlinear`), must stay finite: `F_dr` < 1 for every index
+/// the fits cover, and an albedo above 1 with `nonlinear` could reach the pole, so it is
+/// refused (Mitsuba would render infinities).
+fn plastic(
+    int_ior: f32,
+    ext_ior: f32,
+    diffuse: Vec3,
+    specular: Vec3,
+    nonlinear: bool,
+) -> Result<(), Invalid> {
+    ior("int_ior", int_ior)?;
+    ior("ext_ior", ext_ior)?;
+    colour("diffuse_reflectance", diffuse)?;
+    colour("specular_reflectance", specular)?;
+    if nonlinear && diffuse.max_element() > 1.0 {
+        return Err(invalid(
+            "diffuse_reflectance",
+            "must not exceed 1 with nonlinear (the internal scattering would diverge)",
+        ));
+    }
+    let fdr = crate::bsdf::fresnel_diffuse_reflectance(ext_ior / int_ior);
+    if !(fdr < 1.0 && fdr.is_finite()) {
+        return Err(invalid(
+            "int_ior",
+            "over ext_ior is outside the range where the coating's internal reflectance \
+             is below 1",
+        ));
+    }
+    Ok(())
+}
+
+fn conductor_fresnel(f: &ConductorFresnel) -> Result<(), Invalid> {
+    match f {
+        ConductorFresnel::Perfect => Ok(()),
+        ConductorFresnel::Complex { eta, k } => {
+            colour("eta", *eta)?;
+            colour("k", *k)
+        }
+    }
+}
+
+/// An emitter that is not attached to a shape.
+pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
+    match e {
+        EmitterDesc::Point {
+            position,
+            intensity,
+        } => {
+            if !position.is_finite() {
+                return Err(invalid("position", "must be finite"));
+            }
+            colour("intensity", *intensity)
+        }
+        EmitterDesc::Constant { radiance } => colour("radiance", *radiance),
+        EmitterDesc::EnvMap {
+            scale, to_world, ..
+        } => {
+            if !(scale.is_finite() && *scale >= 0.0) {
+                return Err(invalid("scale", "must be finite and non-negative"));
+            }
+            transform("to_world", to_world)?;
+            if !is_rotation(to_world) {
+                return Err(invalid(
+                    "to_world",
+                    "must be a rotation (with any translation): Mitsuba 3 looks an environment \
+                     map up along a scaled or sheared direction without normalising it",
+                ));
+            }
+            Ok(())
+        }
+        EmitterDesc::Spot {
+            intensity,
+            cutoff_angle,
+            beam_width,
+            to_world,
+        } => {
+            if !(cutoff_angle.is_finite() && *cutoff_angle > 0.0 && *cutoff_angle <= 180.0) {
+                return Err(invalid("cutoff_angle", "must lie in (0, 180] degrees"));
+            }
+            if !(beam_width.is_finite() && *beam_width >= 0.0) {
+                return Err(invalid("beam_width", "must be finite and non-negative"));
+            }
+            transform("to_world", to_world)?;
+            if !is_similarity(to_world) {
+                return Err(invalid(
+                    "to_world",
+                    "must be a rotation, uniform scale and translation for a spot light",
+                ));
+            }
+            colour("intensity", *intensity)
+        }
+        EmitterDesc::Directional {
+            irradiance,
+            direction,
+        } => {
+            if !(direction.is_finite() && (direction.length() - 1.0).abs() < 1e-3) {
+                return Err(invalid("direction", "must be a finite unit vector"));
+            }
+            colour("irradiance", *irradiance)
+        }
+    }
+}
+
+/// Whether the linear part of `m` is a rotation or reflection (orthonormal columns), to
+/// a relative tolerance of 10⁻⁴.
+fn is_rotation(m: &Mat4) -> bool {
+    let s = glam::Mat3::from_mat4(*m).x_axis.length_squared();
+    is_similarity(m) && (s - 1.0).abs() < 1e-4
+}
+
+/// Whether the linear part of `m` has orthogonal columns of one length (a rotation or
+/// reflection times a uniform scale), to a relative tolerance of 10⁻⁴.
+pub(crate) fn is_similarity(m: &Mat4) -> bool {
+    let r = glam::Mat3::from_mat4(*m);
+    let g = r.transpose() * r;
+    let s = g.x_axis.x;
+    s > 0.0
+        && s.is_finite()
+        && (g - glam::Mat3::from_diagonal(Vec3::splat(s)))
+            .to_cols_array()
+            .iter()
+            .all(|v| v.abs() < 1e-4 * s)
+}
+
+/// A shape: its geometry, transform, material and area emitter.
+pub fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
+    if let ShapeKind::Sphere { center, radius } = s.kind {
+        if !center.is_finite() {
+            return Err(invalid("center", "must be finite"));
+        }
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(invalid("radius", "must be finite and positive"));
+        }
+    }
+    transform("to_world", &s.to_world)?;
+    bsdf(&s.bsdf)?;
+    match &s.emitter {
+        Some(e) => colour("radiance", e.radiance),
+        None => Ok(()),
+    }
+}
+
+/// Every check above on a whole description, with `spp` samples per pixel (the file's
+/// `sample_count` unless overridden). The message names the part of the scene.
+pub fn scene(d: &SceneDescription, spp: u32) -> Result<(), String> {
+    let film = &d.sensor.film;
+    let part = |what: String| move |e: Invalid| format!("{what}: {e}");
+    self::film(film).map_err(part("film".into()))?;
+    sample_count(spp).map_err(part("sampler".into()))?;
+    integrator(&d.integrator).map_err(part("integrator".into()))?;
+    let window = film.window();
+    work(
+        window.width as u64 * window.height as u64,
+        spp,
+        &d.integrator,
+    )
+    .map_err(part("sampler".into()))?;
+    transform("to_world", &d.sensor.to_world).map_err(part("sensor".into()))?;
+    for (i, s) in d.shapes.iter().enumerate() {
+        let id =
+            s.id.as_deref()
+                .map(|x| format!(" ({x})"))
+                .unwrap_or_default();
+        shape(s).map_err(part(format!("shape {i}{id}")))?;
+    }
+    for (i, e) in d.emitters.iter().enumerate() {
+        emitter(e).map_err(part(format!("emitter {i}")))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::description::AreaEmitterDesc;
+
+    #[test]
+    fn the_shipped_defaults_pass_and_hostile_values_fail() {
+        let d = crate::cornell_box::cornell_box();
+        assert_eq!(scene(&d, 16), Ok(()));
+        for bad in [f32::NAN, f32::INFINITY, -1.0] {
+            let mut x = d.clone();
+            x.shapes[0].bsdf = BsdfDesc::Diffuse {
+                reflectance: Vec3::new(0.5, bad, 0.5),
+            };
+            let e = scene(&x, 16).unwrap_err();
+            assert!(e.contains("shape 0") && e.contains("reflectance"), "{e}");
+            let mut x = d.clone();
+            x.shapes[1].emitter = Some(AreaEmitterDesc {
+                radiance: Vec3::splat(bad),
+            });
+            assert!(scene(&x, 16).unwrap_err().contains("radiance"));
+        }
+        for bad in [0.0, f32::NAN, -1.5, f32::INFINITY] {
+            assert!(ior("int_ior", bad).is_err(), "{bad}");
+        }
+        let mut x = d.clone();
+        x.integrator = IntegratorDesc::Path {
+            max_depth: -1,
+            rr_depth: 0,
+        };
+        assert!(scene(&x, 16).unwrap_err().contains("rr_depth"));
+        let mut x = d.clone();
+        x.sensor.film.filter = FilterDesc::Gaussian { stddev: f32::NAN };
+        assert!(scene(&x, 16).unwrap_err().contains("stddev"));
+        let mut x = d.clone();
+        x.sensor.film.width = 32768;
+        x.sensor.film.height = 32768;
+        assert!(scene(&x, 16).unwrap_err().contains("pixels"));
+        assert!(scene(&d, MAX_SAMPLE_COUNT + 1).is_err());
+        let mut p = Mat4::IDENTITY;
+        p.w_axis.w = 2.0;
+        p.x_axis.w = 0.5;
+        assert!(transform("to_world", &p)
+            .unwrap_err()
+            .message
+            .contains("projective"));
+    }
+}

@@ -1,0 +1,416 @@
+//! Hostile scene files (issue 11): bounded work on any input, one validation at load time
+//! with a location, and cancellation that takes effect inside long per-pixel work.
+
+use mcrt::glam::Vec3;
+use mcrt_render::description::{BsdfDesc, FilterDesc, IntegratorDesc};
+use mcrt_render::loader::{load_scene, parse_scene, SceneError, SceneErrorKind};
+use mcrt_render::render::{RenderOptions, Renderer};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+const FILE: &str = "hostile.xml";
+
+fn parse(xml: &str) -> Result<mcrt_render::description::SceneDescription, SceneError> {
+    parse_scene(xml, Some(Path::new(FILE)), &[])
+}
+
+/// Parses `body` inside `<scene>` (its first line is line 2) and expects an error.
+fn err(body: &str) -> SceneError {
+    let xml = format!("<scene version=\"3.0.0\">\n{body}\n</scene>");
+    match parse(&xml) {
+        Ok(d) => panic!("expected an error, got {d:?}"),
+        Err(e) => e,
+    }
+}
+
+/// The error is at `line`, names the file, contains `words`, and is short.
+fn located(e: &SceneError, line: u32, words: &str) {
+    let msg = e.to_string();
+    assert_eq!(e.line, Some(line), "{msg}");
+    assert!(
+        msg.contains(FILE) && msg.contains(&format!("line {line}")),
+        "{msg}"
+    );
+    assert!(msg.contains(words), "{msg}");
+    assert!(msg.len() < 1000, "{} bytes: {}", msg.len(), &msg[..300]);
+}
+
+/// A scratch folder for this test, empty.
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("mcrt-hostile-{name}-{}", std::process::id()));
+    std::fs::remove_dir_all(&d).ok();
+    std::fs::create_dir_all(&d).expect("scratch folder");
+    d
+}
+
+#[test]
+fn substitution_bomb_is_bounded_and_located() {
+    // Each default repeats the previous one ten times: level k is 10^(k+1) bytes.
+    for levels in [7, 9] {
+        let mut xml = String::from(
+            "<scene version=\"3.0.0\">\n<default name=\"a0\" value=\"xxxxxxxxxx\"/>\n",
+        );
+        for k in 1..=levels {
+            let v = format!("$a{}", k - 1).repeat(10);
+            xml.push_str(&format!("<default name=\"a{k}\" value=\"{v}\"/>\n"));
+        }
+        xml.push_str(&format!(
+            "<shape type=\"sphere\" id=\"$a{levels}\"/>\n</scene>"
+        ));
+        let start = Instant::now();
+        let e = parse(&xml).unwrap_err();
+        // a6 = 10^7 bytes is the first default past the 1 MiB bound; it is on line 8.
+        located(&e, 8, "longer than");
+        assert!(
+            start.elapsed() < Duration::from_secs(5),
+            "{:?}",
+            start.elapsed()
+        );
+    }
+    // The total over a file is bounded too: many attributes just under the bound each.
+    let mut xml = String::from("<scene version=\"3.0.0\">\n<default name=\"big\" value=\"");
+    xml.push_str(&"y".repeat(1 << 19));
+    xml.push_str("\"/>\n");
+    for _ in 0..200 {
+        xml.push_str("<bsdf type=\"diffuse\" id=\"$big$big\"/>\n");
+    }
+    xml.push_str("</scene>");
+    let e = parse(&xml).unwrap_err();
+    assert!(e.to_string().contains("bytes of attribute text"), "{e}");
+    assert!(e.to_string().len() < 1000);
+}
+
+#[test]
+fn error_messages_quote_little_user_text() {
+    let long = "q".repeat(100_000);
+    for body in [
+        format!("<shape type=\"{long}\"/>"),
+        format!("<shape type=\"sphere\"><float name=\"radius\" value=\"{long}\"/></shape>"),
+        format!("<shape type=\"sphere\" id=\"${long}\"/>"),
+        format!("<{long}/>"),
+    ] {
+        let e = err(&body);
+        assert!(e.to_string().len() < 1000, "{} bytes", e.to_string().len());
+    }
+}
+
+/// `n` spheres, one per line, each with a BSDF and a transform.
+fn spheres(n: usize, one_line: bool) -> String {
+    let sep = if one_line { " " } else { "\n" };
+    let mut xml = String::from("<scene version=\"3.0.0\">");
+    for i in 0..n {
+        xml.push_str(sep);
+        xml.push_str(&format!(
+            "<shape type=\"sphere\"><float name=\"radius\" value=\"0.01\"/>\
+             <transform name=\"to_world\"><translate x=\"{i}\"/></transform>\
+             <bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.5\"/></bsdf></shape>"
+        ));
+    }
+    xml.push_str(sep);
+    xml.push_str("</scene>");
+    xml
+}
+
+#[test]
+fn loading_is_linear() {
+    // The issue's figures on the old loader: 11.5 s for 20,000 spheres, 47 s for 20,000
+    // defaults with 20,000 uses. Linear loading takes a fraction of a second for each.
+    for one_line in [false, true] {
+        let xml = spheres(20_000, one_line);
+        let start = Instant::now();
+        let d = parse(&xml).expect("spheres load");
+        assert_eq!(d.shapes.len(), 20_000);
+        assert!(
+            start.elapsed() < Duration::from_secs(3),
+            "{:?}",
+            start.elapsed()
+        );
+    }
+    let mut xml = String::from("<scene version=\"3.0.0\">\n");
+    for i in 0..20_000 {
+        xml.push_str(&format!("<default name=\"r{i}\" value=\"0.{i}1\"/>\n"));
+    }
+    for i in 0..20_000 {
+        xml.push_str(&format!(
+            "<shape type=\"sphere\"><float name=\"radius\" value=\"$r{i}\"/></shape>\n"
+        ));
+    }
+    xml.push_str("</scene>");
+    let start = Instant::now();
+    let d = parse(&xml).expect("defaults load");
+    assert_eq!(d.shapes.len(), 20_000);
+    assert!(
+        start.elapsed() < Duration::from_secs(3),
+        "{:?}",
+        start.elapsed()
+    );
+    // A million top-level BSDFs (the old loader took over a minute).
+    let mut xml = String::from("<scene version=\"3.0.0\">\n");
+    xml.push_str(&"<bsdf type=\"diffuse\"/>\n".repeat(1_000_000));
+    xml.push_str("</scene>");
+    let start = Instant::now();
+    parse(&xml).expect("a million BSDFs load");
+    assert!(
+        start.elapsed() < Duration::from_secs(20),
+        "{:?}",
+        start.elapsed()
+    );
+    // An error late in a large file still has the right line.
+    let mut bad = spheres(20_000, false);
+    bad = bad.replace("</scene>", "<shape type=\"teapot\"/>\n</scene>");
+    let e = parse(&bad).unwrap_err();
+    located(&e, 20_002, "teapot");
+}
+
+#[test]
+fn films_too_large_for_memory_are_refused() {
+    let e = err("<sensor type=\"perspective\">\n<film type=\"hdrfilm\">\n\
+         <integer name=\"width\" value=\"32768\"/>\n<integer name=\"height\" value=\"32768\"/>\n\
+         </film></sensor>");
+    assert!(matches!(e.kind, SceneErrorKind::InvalidValue(_)), "{e}");
+    located(&e, 4, "exceeds the limit");
+    // The largest film allowed still loads.
+    let ok = "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
+              <integer name=\"width\" value=\"8192\"/><integer name=\"height\" value=\"4096\"/>\
+              </film><sampler type=\"independent\"><integer name=\"sample_count\" value=\"1\"/>\
+              </sampler></sensor></scene>";
+    parse(ok).expect("8192 x 4096 loads");
+}
+
+#[test]
+fn sample_counts_no_machine_can_finish_are_refused() {
+    let e = err("<integrator type=\"direct\">\n<integer name=\"emitter_samples\" value=\"4294967295\"/>\n</integrator>");
+    located(&e, 3, "outside [0, 65536]");
+    let e = err("<sensor type=\"perspective\"><sampler type=\"independent\">\n<integer name=\"sample_count\" value=\"4294967295\"/>\n</sampler></sensor>");
+    located(&e, 3, "sample_count");
+    // Each bound met, the product not: 768 x 576 pixels x 2^24 spp x 2^16 shading samples.
+    let e = err(
+        "<integrator type=\"direct\"><integer name=\"emitter_samples\" value=\"65536\"/></integrator>\n\
+         <sensor type=\"perspective\"><sampler type=\"independent\">\
+         <integer name=\"sample_count\" value=\"16777216\"/></sampler></sensor>",
+    );
+    located(&e, 3, "exceeds the limit");
+}
+
+#[test]
+fn special_files_are_refused_without_blocking() {
+    let e = load_scene(Path::new("/dev/zero"), &[]).unwrap_err();
+    assert!(e.to_string().contains("not a regular file"), "{e}");
+    let dir = scratch("fifo");
+    let fifo = dir.join("fifo.xml");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success(), "mkfifo failed");
+    let e = load_scene(&fifo, &[]).unwrap_err();
+    assert!(e.to_string().contains("not a regular file"), "{e}");
+    // As an OBJ mesh or an environment map named by a scene.
+    for (body, name) in [
+        (
+            "<shape type=\"obj\">\n<string name=\"filename\" value=\"NAME\"/></shape>",
+            "fifo.xml",
+        ),
+        (
+            "<shape type=\"obj\">\n<string name=\"filename\" value=\"NAME\"/></shape>",
+            "/dev/zero",
+        ),
+        (
+            "<emitter type=\"envmap\">\n<string name=\"filename\" value=\"NAME\"/></emitter>",
+            "fifo.xml",
+        ),
+    ] {
+        let xml = format!(
+            "<scene version=\"3.0.0\">\n{}\n</scene>",
+            body.replace("NAME", name)
+        );
+        let scene = dir.join("scene.xml");
+        std::fs::write(&scene, xml).expect("scene written");
+        let e = load_scene(&scene, &[]).unwrap_err();
+        assert_eq!(e.line, Some(2), "{e}");
+        assert!(e.to_string().contains("not a regular file"), "{e}");
+    }
+    // The OBJ reader refuses them as well (the renderer reads meshes through it).
+    let e = mcrt_render::mesh_file::obj::read_obj(Path::new("/dev/zero")).unwrap_err();
+    assert!(e.to_string().contains("not a regular file"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn what_the_renderer_cannot_use_is_a_located_load_error() {
+    let cases: [(&str, &str); 9] = [
+        ("<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"0.5, -0.1, 0.5\"/></bsdf>", "reflectance"),
+        ("<bsdf type=\"conductor\">\n<rgb name=\"specular_reflectance\" value=\"-1\"/></bsdf>", "specular_reflectance"),
+        ("<bsdf type=\"dielectric\">\n<rgb name=\"specular_transmittance\" value=\"-1\"/></bsdf>", "specular_transmittance"),
+        ("<bsdf type=\"dielectric\">\n<float name=\"int_ior\" value=\"0\"/></bsdf>", "int_ior"),
+        ("<bsdf type=\"dielectric\">\n<float name=\"ext_ior\" value=\"-1.5\"/></bsdf>", "ext_ior"),
+        ("<bsdf type=\"roughconductor\">\n<float name=\"alpha\" value=\"-0.1\"/></bsdf>", "alpha"),
+        ("<shape type=\"cube\">\n<emitter type=\"area\"><rgb name=\"radiance\" value=\"-1\"/></emitter></shape>", "radiance"),
+        ("<shape type=\"cube\"><transform name=\"to_world\">\n<matrix value=\"1 0 0 0 0 1 0 0 0 0 1 0 0 0 0.5 1\"/>\n</transform></shape>", "projective"),
+        ("<integrator type=\"path\">\n<integer name=\"rr_depth\" value=\"0\"/></integrator>", "rr_depth"),
+    ];
+    for (body, words) in cases {
+        let e = err(body);
+        let line = if words == "projective" { 2 } else { 3 };
+        located(&e, line, words);
+    }
+    // NaN and infinity cannot even be written.
+    let e = err("<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"nan\"/></bsdf>");
+    assert!(matches!(e.kind, SceneErrorKind::Malformed(_)), "{e}");
+    let e = err("<shape type=\"cube\"><emitter type=\"area\">\n<rgb name=\"radiance\" value=\"1e39\"/></emitter></shape>");
+    assert!(matches!(e.kind, SceneErrorKind::Malformed(_)), "{e}");
+}
+
+#[test]
+fn roughness_below_1e_4_is_clamped_as_mitsuba_does() {
+    for (alpha, expect) in [("0", 1e-4), ("1e-6", 1e-4), ("1e-4", 1e-4), ("0.3", 0.3)] {
+        let xml = format!(
+            "<scene version=\"3.0.0\"><emitter type=\"constant\"/><shape type=\"cube\">\
+             <bsdf type=\"roughconductor\"><float name=\"alpha\" value=\"{alpha}\"/></bsdf>\
+             </shape></scene>"
+        );
+        let d = parse(&xml).expect("loads");
+        match d.shapes[0].bsdf {
+            BsdfDesc::RoughConductor { alpha: a, .. } => {
+                assert!(a.is_finite() && a == expect, "{alpha}: {a}")
+            }
+            ref other => panic!("{other:?}"),
+        }
+        Renderer::new(&d, &RenderOptions::default()).expect("renders");
+    }
+}
+
+#[test]
+fn the_renderer_refuses_what_code_built_descriptions_get_wrong() {
+    let base = mcrt_render::cornell_box::cornell_box_with(1, 8, -1);
+    let mut cases = Vec::new();
+    for bad in [f32::NAN, f32::INFINITY, -0.5] {
+        let mut d = base.clone();
+        d.shapes[0].bsdf = BsdfDesc::Diffuse {
+            reflectance: Vec3::new(0.5, bad, 0.5),
+        };
+        cases.push((d, "reflectance"));
+        let mut d = base.clone();
+        let light = d.shapes.iter_mut().find(|s| s.emitter.is_some());
+        light.expect("the box has a light").emitter =
+            Some(mcrt_render::description::AreaEmitterDesc {
+                radiance: Vec3::splat(bad),
+            });
+        cases.push((d, "radiance"));
+        let mut d = base.clone();
+        d.shapes[0].bsdf = BsdfDesc::Dielectric {
+            int_ior: bad,
+            ext_ior: 1.0,
+            specular_reflectance: Vec3::ONE,
+            specular_transmittance: Vec3::ONE,
+        };
+        cases.push((d, "int_ior"));
+    }
+    let mut d = base.clone();
+    d.shapes[0].bsdf = BsdfDesc::Dielectric {
+        int_ior: 0.0,
+        ext_ior: 1.0,
+        specular_reflectance: Vec3::ONE,
+        specular_transmittance: Vec3::ONE,
+    };
+    cases.push((d, "int_ior"));
+    let mut d = base.clone();
+    d.sensor.film.filter = FilterDesc::Gaussian { stddev: f32::NAN };
+    cases.push((d, "stddev"));
+    let mut d = base.clone();
+    d.integrator = IntegratorDesc::Path {
+        max_depth: -1,
+        rr_depth: 0,
+    };
+    cases.push((d, "rr_depth"));
+    for (d, words) in cases {
+        let e = match Renderer::new(&d, &RenderOptions::default()) {
+            Ok(_) => panic!("{words}: accepted"),
+            Err(e) => e.to_string(),
+        };
+        assert!(e.contains(words), "{words}: {e}");
+    }
+}
+
+#[test]
+fn an_envmap_with_scale_zero_is_a_black_environment() {
+    let dir = scratch("envmap");
+    let map = dir.join("sky.exr");
+    let texels = vec![Vec3::new(1.0, 2.0, 3.0); 8 * 4];
+    mcrt_render::film::write_exr(&map, 8, 4, &texels).expect("map written");
+    let black = dir.join("black.exr");
+    mcrt_render::film::write_exr(&black, 8, 4, &vec![Vec3::ZERO; 32]).expect("map written");
+    for (file, scale) in [("sky.exr", "0"), ("black.exr", "1")] {
+        let xml = format!(
+            "<scene version=\"3.0.0\"><emitter type=\"envmap\">\
+             <string name=\"filename\" value=\"{file}\"/><float name=\"scale\" value=\"{scale}\"/>\
+             </emitter><shape type=\"sphere\"/><sensor type=\"perspective\">\
+             <transform name=\"to_world\"><lookat origin=\"0,0,5\" target=\"0,0,0\"/></transform>\
+             <film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/>\
+             <integer name=\"height\" value=\"8\"/></film></sensor></scene>"
+        );
+        let scene = dir.join("scene.xml");
+        std::fs::write(&scene, xml).expect("scene written");
+        let d = load_scene(&scene, &[]).expect("loads");
+        let r = Renderer::new(&d, &RenderOptions::default()).expect("a black environment renders");
+        let out = r.render(&|_, _| {}, &AtomicBool::new(false));
+        assert_eq!(out.nonfinite_samples, 0);
+        assert!(out.samples > 0);
+        assert!(out.image().iter().all(|p| *p == Vec3::ZERO), "{file}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn cancelling_takes_effect_within_a_second_inside_long_pixel_work() {
+    // The most shading samples the loader allows: one pixel sample casts 2^17 rays.
+    let mut d = mcrt_render::cornell_box::cornell_box_with(16, 64, -1);
+    d.integrator = IntegratorDesc::Direct {
+        emitter_samples: 1 << 16,
+        bsdf_samples: 1 << 16,
+    };
+    let opts = RenderOptions {
+        threads: 2,
+        ..RenderOptions::default()
+    };
+    let r = Renderer::new(&d, &opts).expect("scene builds");
+    let cancel = AtomicBool::new(false);
+    let (out, late) = std::thread::scope(|s| {
+        let render = s.spawn(|| r.render(&|_, _| {}, &cancel));
+        std::thread::sleep(Duration::from_millis(300));
+        cancel.store(true, Ordering::Relaxed);
+        let at = Instant::now();
+        let out = render.join().expect("render thread");
+        (out, at.elapsed())
+    });
+    assert!(
+        late < Duration::from_secs(1),
+        "stopped {late:?} after the cancel"
+    );
+    assert!(out.samples < 16 * 64 * 64, "{}", out.samples);
+    assert_eq!(out.nonfinite_samples, 0);
+}
+
+#[test]
+fn crowded_elements_are_refused_before_parsing() {
+    // The XML parser checks attributes for duplicates pairwise: 10^5 attributes on one
+    // element would take minutes.
+    let attrs: String = (0..100_000).map(|i| format!(" a{i}=\"1\"")).collect();
+    let start = Instant::now();
+    let e = err(&format!("<shape type=\"cube\"{attrs}/>"));
+    assert!(matches!(e.kind, SceneErrorKind::Xml(_)), "{e}");
+    assert_eq!(e.line, Some(2), "{e}");
+    assert!(e.to_string().contains("more than 256 attributes"), "{e}");
+    assert!(
+        start.elapsed() < Duration::from_secs(5),
+        "{:?}",
+        start.elapsed()
+    );
+    // An `=` inside a quoted value is not an attribute.
+    let xml = format!(
+        "<scene version=\"3.0.0\"><bsdf type=\"diffuse\" id=\"{}\"/></scene>",
+        "=".repeat(1000)
+    );
+    parse(&xml).expect("one attribute full of '='");
+}

@@ -1,0 +1,248 @@
+//! Output that is never lost (issue 11): the output plan decided and checked before
+//! rendering, partial images under their own names, identical bytes for identical renders,
+//! and the render example's process behaviour (`--help`, exit status 130 on SIGINT and
+//! SIGTERM with `NAME.partial.exr` written).
+
+use mcrt::glam::Vec3;
+use mcrt_render::film::{read_exr, write_exr, Film, OutputPlan, PixelAccum, EXIT_INTERRUPTED};
+use mcrt_render::render::{RenderOptions, Renderer};
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::atomic::AtomicBool;
+use std::time::{Duration, Instant};
+
+/// A scratch folder for this test, empty.
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("mcrt-output-{name}-{}", std::process::id()));
+    std::fs::remove_dir_all(&d).ok();
+    std::fs::create_dir_all(&d).expect("scratch folder");
+    d
+}
+
+#[test]
+fn the_extension_chooses_the_format_and_the_other_goes_beside_it() {
+    let p = OutputPlan::new(Some(Path::new("d/x.png")), "s", None, true).expect("png");
+    assert_eq!(
+        (p.exr.as_path(), p.png.as_path()),
+        (Path::new("d/x.exr"), Path::new("d/x.png"))
+    );
+    assert_eq!(p.variance.as_deref(), Some(Path::new("d/x-variance.exr")));
+    let p = OutputPlan::new(Some(Path::new("x.EXR")), "s", None, false).expect("exr");
+    assert_eq!(
+        (p.exr.as_path(), p.png.as_path()),
+        (Path::new("x.EXR"), Path::new("x.png"))
+    );
+    let p = OutputPlan::new(None, "cornell-box", None, false).expect("default");
+    assert_eq!(p.exr, Path::new("renders/cornell-box.exr"));
+    let partial = p.partial();
+    assert_eq!(
+        (partial.exr.as_path(), partial.png.as_path()),
+        (
+            Path::new("renders/cornell-box.partial.exr"),
+            Path::new("renders/cornell-box.partial.png")
+        )
+    );
+    for bad in ["x.jpg", "x", "x.exr.tmp"] {
+        assert!(
+            OutputPlan::new(Some(Path::new(bad)), "s", None, false).is_err(),
+            "{bad}"
+        );
+    }
+}
+
+#[test]
+fn an_output_equal_to_the_scene_file_is_refused() {
+    let dir = scratch("same");
+    let scene = dir.join("scene.png");
+    std::fs::write(&scene, "<scene version=\"3.0.0\"/>").expect("scene written");
+    for out in ["scene.png", "scene.exr", "./scene.png"] {
+        let out = dir.join(out);
+        let e = OutputPlan::new(Some(&out), "scene", Some(&scene), false).unwrap_err();
+        assert!(e.to_string().contains("is the scene file"), "{e}");
+    }
+    assert!(OutputPlan::new(Some(&dir.join("other.exr")), "s", Some(&scene), false).is_ok());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_unwritable_output_is_refused_before_rendering() {
+    let p = OutputPlan::new(Some(Path::new("/nonexistent/x.exr")), "s", None, false)
+        .expect("a well-formed name");
+    let e = p.check_writable().unwrap_err();
+    assert!(e.to_string().contains("/nonexistent"), "{e}");
+    let dir = scratch("writable");
+    std::fs::create_dir_all(dir.join("x.exr")).expect("a folder named x.exr");
+    let p = OutputPlan::new(Some(&dir.join("x.exr")), "s", None, false).expect("name");
+    assert!(p
+        .check_writable()
+        .unwrap_err()
+        .to_string()
+        .contains("is a folder"));
+    let p = OutputPlan::new(Some(&dir.join("y.exr")), "s", None, true).expect("name");
+    p.check_writable().expect("a writable folder");
+    // The check leaves nothing behind.
+    let names: Vec<_> = std::fs::read_dir(&dir).expect("dir").collect();
+    assert_eq!(names.len(), 1);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_interrupted_render_never_replaces_the_complete_image() {
+    let dir = scratch("partial");
+    let plan = OutputPlan::new(Some(&dir.join("img.exr")), "s", None, true).expect("plan");
+    let mut film = Film::new(2, 1);
+    let mut a = PixelAccum::default();
+    a.add(Vec3::splat(0.25));
+    film.merge(0, &a).expect("inside");
+    film.merge(1, &a).expect("inside");
+    let complete = plan.write(&film, false).expect("complete write");
+    assert_eq!(
+        complete,
+        [
+            dir.join("img.exr"),
+            dir.join("img.png"),
+            dir.join("img-variance.exr")
+        ]
+    );
+    let before = std::fs::read(&plan.exr).expect("complete image");
+    // A second render interrupted with pixel 1 unsampled.
+    let mut film = Film::new(2, 1);
+    film.merge(0, &a).expect("inside");
+    let partial = plan.write(&film, true).expect("partial write");
+    assert_eq!(
+        partial,
+        [
+            dir.join("img.partial.exr"),
+            dir.join("img.partial.png"),
+            dir.join("img-variance.partial.exr")
+        ]
+    );
+    assert_eq!(std::fs::read(&plan.exr).expect("complete image"), before);
+    let (w, h, px) = read_exr(&dir.join("img.partial.exr")).expect("partial image");
+    assert_eq!((w, h), (2, 1));
+    assert!(px[0].is_finite() && (px[0] - Vec3::splat(0.25)).length() < 1e-6);
+    assert!(px[1].is_nan(), "an unsampled pixel is marked: {}", px[1]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn same_arguments_give_the_same_bytes() {
+    let dir = scratch("bytes");
+    let desc = mcrt_render::cornell_box::cornell_box_with(1, 256, -1);
+    let opts = RenderOptions {
+        seed: Some(7),
+        ..RenderOptions::default()
+    };
+    let mut files = Vec::new();
+    for k in 0..2 {
+        let out = Renderer::new(&desc, &opts)
+            .expect("scene builds")
+            .render(&|_, _| {}, &AtomicBool::new(false));
+        assert_eq!(out.nonfinite_samples, 0);
+        let p = dir.join(format!("r{k}.exr"));
+        out.write_exr(&p).expect("exr written");
+        files.push(std::fs::read(&p).expect("exr bytes"));
+    }
+    assert_eq!(files[0], files[1]);
+    // Writing the same pixels many times (compression runs in parallel) gives one file.
+    let px: Vec<Vec3> = (0..512 * 512)
+        .map(|i| Vec3::new((i % 97) as f32, (i % 13) as f32 * 0.1, 0.5))
+        .collect();
+    let p = dir.join("same.exr");
+    write_exr(&p, 512, 512, &px).expect("written");
+    let first = std::fs::read(&p).expect("bytes");
+    for _ in 0..4 {
+        write_exr(&p, 512, 512, &px).expect("written");
+        assert!(std::fs::read(&p).expect("bytes") == first);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The `render` program, which Cargo builds for this package's integration tests.
+fn render_example() -> PathBuf {
+    PathBuf::from(env!("CARGO_BIN_EXE_render"))
+}
+
+#[test]
+fn help_lists_every_option_with_its_default_and_exits_0() {
+    let out = Command::new(render_example())
+        .arg("--help")
+        .output()
+        .expect("render --help runs");
+    assert!(out.status.success(), "{:?}", out.status);
+    let text = String::from_utf8_lossy(&out.stdout);
+    for option in [
+        "--spp",
+        "-D",
+        "-o",
+        "--threads",
+        "--seed",
+        "--variance",
+        "--strategy",
+        "--sampler",
+        "--accel",
+        "--light-sampling",
+        "--help",
+    ] {
+        assert!(text.contains(option), "{option} missing from:\n{text}");
+    }
+    assert!(text.matches("[default:").count() >= 11, "{text}");
+}
+
+#[test]
+fn a_bad_output_fails_before_rendering() {
+    let start = Instant::now();
+    let out = Command::new(render_example())
+        .args(["-D", "spp=100000", "-o", "/nonexistent/x.exr"])
+        .output()
+        .expect("render runs");
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent"));
+    assert!(
+        start.elapsed() < Duration::from_secs(10),
+        "{:?}",
+        start.elapsed()
+    );
+}
+
+/// Starts a long render, sends `signal` once it has begun, and checks exit status 130 and
+/// the partial files.
+fn interrupted_by(signal: &str) {
+    let dir = scratch(&format!("signal-{signal}"));
+    let out = dir.join("box.png");
+    let mut child = Command::new(render_example())
+        .args(["-D", "spp=100000", "-D", "res=64", "--threads", "1", "-o"])
+        .arg(&out)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("render starts");
+    // The header line is printed once the signal handler is installed, just before
+    // rendering.
+    let mut header = String::new();
+    // Kept open until the end: the render prints more when it stops.
+    let mut stdout = BufReader::new(child.stdout.take().expect("piped stdout"));
+    stdout.read_line(&mut header).expect("header line");
+    assert!(header.contains("spp"), "{header}");
+    std::thread::sleep(Duration::from_millis(200));
+    let sent = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(sent.success());
+    let status = child.wait().expect("render ends");
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stdout, &mut rest).expect("the rest of stdout");
+    assert!(rest.contains("interrupted"), "{rest}");
+    assert_eq!(status.code(), Some(i32::from(EXIT_INTERRUPTED)), "{signal}");
+    assert!(dir.join("box.partial.exr").is_file() && dir.join("box.partial.png").is_file());
+    assert!(!dir.join("box.exr").exists() && !out.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn sigint_and_sigterm_write_partial_images_and_exit_130() {
+    interrupted_by("INT");
+    interrupted_by("TERM");
+}
