@@ -25,11 +25,12 @@
 
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::integrator::{
-    Bsdf, BsdfFlags, BsdfSample, Frame, LightSample, PathTracer, Scene, Strategy, SurfacePoint,
+    Bsdf, BsdfFlags, BsdfSample, LightSample, PathTracer, Scene, Strategy, SurfacePoint,
 };
 use mcrt::sampling::jacobian::solid_angle_pdf_from_area;
 use mcrt::sampling::sampler::{IndependentSampler, SampleSource, Sampler};
 use mcrt::sampling::warp::{CosineHemisphere, UniformSphere, Warp};
+use mcrt::sampling::Frame;
 use std::f32::consts::PI;
 
 /// A Lambertian BSDF, `f = albedo / π`, in the estimators' z-up local frame.

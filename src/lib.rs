@@ -84,3 +84,38 @@ pub mod integrator;
 pub mod sampling;
 #[cfg(feature = "stats")]
 pub mod stats;
+
+// What a renderer author reaches for first, at the crate root (as `rand_distr` does). Each
+// item's one home is its module (`sampling::warp`, `sampling::distribution`, ...); these are
+// re-exports of it, and the docs show them as such.
+#[doc(no_inline)]
+pub use integrator::{
+    Bdpt, BidirectionalScene, Bsdf, BsdfSample, DirectIntegrator, Integrator, LightSample, Mlt,
+    PathResult, PathTracer, Scene, Strategy, SurfacePoint,
+};
+#[doc(no_inline)]
+pub use sampling::distribution::{
+    AliasTable, Inversion1D, PiecewiseConstant1D, PiecewiseConstant2D, PiecewiseLinear2D,
+    SummedAreaTable, WindowedPiecewiseConstant2D,
+};
+#[doc(no_inline)]
+pub use sampling::mis::{balance_heuristic, power_heuristic};
+#[doc(no_inline)]
+pub use sampling::sampler::{
+    AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, SampleSource, Sampler,
+    StratifiedSampler,
+};
+#[cfg(feature = "sobol")]
+#[doc(no_inline)]
+pub use sampling::sampler::{Sobol4dSampler, SobolSampler};
+#[doc(no_inline)]
+pub use sampling::warp::{
+    Beckmann, BeckmannVisible, Bilinear, BilinearPatch, CosineHemisphere, CosineSphericalTriangle,
+    Exponential, Ggx, GgxVisible, HenyeyGreenstein, InvertibleWarp, LatLong, Linear, Logistic,
+    LowDistortionTriangle, MicrofacetDistribution, Normal, Normal2D, PowerCosineHemisphere,
+    Smoothstep, SphericalRectangle, SphericalTriangle, Tent, ThetaOverSinHemisphere,
+    TrimmedLogistic, TruncatedExponential, UniformCone, UniformDisk, UniformDiskConcentric,
+    UniformHemisphere, UniformSphere, UniformTriangle, VonMisesFisher, Warp, Warp1D,
+};
+#[doc(no_inline)]
+pub use sampling::{Frame, SamplingError};

@@ -20,9 +20,11 @@ mod custom_scene;
 use custom_scene::{GlowingSphere, Lambert as ExampleLambert};
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::integrator::{
-    Bsdf, BsdfFlags, BsdfSample, DirectIntegrator, Frame, LightSample, PathTracer, SampleSource,
-    Scene, Strategy, SurfacePoint,
+    Bsdf, BsdfFlags, BsdfSample, DirectIntegrator, LightSample, PathTracer, Scene, Strategy,
+    SurfacePoint,
 };
+use mcrt::sampling::sampler::SampleSource;
+use mcrt::sampling::Frame;
 use std::f32::consts::PI;
 
 struct Lambert(f32);

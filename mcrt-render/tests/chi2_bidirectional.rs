@@ -179,7 +179,7 @@ fn bare(p: Vec3) -> SurfacePoint {
     SurfacePoint {
         p,
         ng: Vec3::Z,
-        frame: mcrt::integrator::Frame::from_normal(Vec3::Z),
+        frame: mcrt::sampling::Frame::from_normal(Vec3::Z),
         t: 0.0,
         shape: 0,
         prim: 0,

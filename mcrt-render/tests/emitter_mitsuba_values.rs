@@ -11,7 +11,8 @@
 //!   ([`Camera::generate_ray_through_lens`]).
 
 use mcrt::glam::{Vec2, Vec3};
-use mcrt::integrator::{Frame, SurfacePoint};
+use mcrt::integrator::SurfacePoint;
+use mcrt::sampling::Frame;
 use mcrt_render::accel::AccelKind;
 use mcrt_render::camera::Camera;
 use mcrt_render::description::SceneDescription;

@@ -3,7 +3,7 @@
 //! traits ([`Scene`], [`Bsdf`], [`SampleSource`]) so that
 //! any renderer can use them with its own geometry, materials and lights.
 //!
-//! Conventions: BSDFs work in a z-up local [`Frame`] around the shading normal; `wo` points
+//! Conventions: BSDFs work in a z-up local [`Frame`](crate::sampling::Frame) around the shading normal; `wo` points
 //! toward the viewer and `wi` toward the light; every directional pdf is per unit solid
 //! angle. Radiance is linear RGB in [`glam::Vec3`].
 //!
@@ -22,9 +22,7 @@ mod path;
 mod strategy;
 mod traits;
 
-pub use crate::sampling::sampler::SampleSource;
-/// The z-up shading frame of a [`SurfacePoint`] (the same type as [`crate::sampling::Frame`]).
-pub use crate::sampling::Frame;
+use crate::sampling::sampler::SampleSource;
 pub use bdpt::{Bdpt, BdptBuffers, Splat, StrategyStats};
 pub use bidirectional::{BidirectionalScene, CameraConnection, EmissionSample, EmitterKind};
 pub use direct::DirectIntegrator;

@@ -13,7 +13,8 @@ use glam::{Vec2, Vec3};
 ///
 /// ```
 /// use mcrt::glam::Vec3;
-/// use mcrt::integrator::{Frame, SurfacePoint};
+/// use mcrt::integrator::SurfacePoint;
+/// use mcrt::sampling::Frame;
 ///
 /// let n = Vec3::Y;
 /// let sp = SurfacePoint { shape: 3, ..SurfacePoint::new(Vec3::ZERO, n, Frame::from_normal(n)) };

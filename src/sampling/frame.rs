@@ -7,7 +7,7 @@ use glam::Vec3;
 ///
 /// The warps of [`crate::sampling::warp`] sample about `+z`; [`Frame::to_world`] turns such a
 /// sample into a direction about any unit axis `n` (a cone toward a light, a lobe about a
-/// normal). Also [`crate::integrator::Frame`], the shading frame of a surface point.
+/// normal), and the shading frame of a surface point ([`crate::integrator::SurfacePoint::frame`]).
 ///
 /// ```
 /// use mcrt::glam::{Vec2, Vec3};

@@ -15,7 +15,7 @@
 
 use glam::{Vec3, Vec4};
 use mcrt::sampling::distribution::AliasTable;
-use mcrt::sampling::sampler::ONE_MINUS_EPSILON;
+use mcrt::sampling::ONE_MINUS_EPSILON;
 
 /// Lights up to which the choice is made per shading point (its cost is linear in them).
 pub(crate) const MAX_SPATIAL: usize = 16;

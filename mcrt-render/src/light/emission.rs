@@ -26,7 +26,7 @@ fn bare(p: Vec3, n: Vec3, shape: u32) -> SurfacePoint {
     SurfacePoint {
         p,
         ng: n,
-        frame: mcrt::integrator::Frame::from_normal(if n == Vec3::ZERO { Vec3::Z } else { n }),
+        frame: mcrt::sampling::Frame::from_normal(if n == Vec3::ZERO { Vec3::Z } else { n }),
         t: 0.0,
         shape,
         prim: 0,
@@ -80,7 +80,7 @@ impl Lights {
             &Light::Area { shape, radiance } => {
                 let s = geo.sample_area(shape, u_pick.y, u_pos)?;
                 let local = CosineHemisphere.sample(u_dir);
-                let frame = mcrt::integrator::Frame::from_normal(s.n);
+                let frame = mcrt::sampling::Frame::from_normal(s.n);
                 let dir = frame.to_world(local);
                 let pdf_dir = CosineHemisphere.pdf(local);
                 let mut point = bare(s.p, s.n, shape);
@@ -190,7 +190,7 @@ impl Lights {
 /// with its density per unit area.
 fn disk_origin((center, radius): (Vec3, f32), w: Vec3, u: Vec2) -> (Vec3, f32) {
     let radius = radius.max(1e-3);
-    let frame = mcrt::integrator::Frame::from_normal(w);
+    let frame = mcrt::sampling::Frame::from_normal(w);
     let d = UniformDiskConcentric.sample(u) * radius;
     let origin = center + radius * w + frame.s * d.x + frame.t * d.y;
     (origin, 1.0 / (PI * radius * radius))

@@ -4,7 +4,8 @@
 use super::{positive_finite, toward_area_light, Light, LightSample, Lights, SamplePlan};
 use crate::geometry::{AccelKind, Geometry, ShapeSampling};
 use glam::{Vec2, Vec3};
-use mcrt::integrator::{Frame, SurfacePoint};
+use mcrt::integrator::SurfacePoint;
+use mcrt::sampling::Frame;
 
 /// A light sample through the geometry's shape sampling (the general path).
 fn through_geometry(

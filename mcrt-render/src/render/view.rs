@@ -116,7 +116,8 @@ mod tests {
     use crate::camera::Camera;
     use crate::description::{EmitterDesc, SceneDescription};
     use crate::geometry::{AccelKind, ShapeSampling};
-    use mcrt::integrator::{PathTracer, SampleSource};
+    use mcrt::integrator::PathTracer;
+    use mcrt::sampling::sampler::SampleSource;
 
     /// Counts the values drawn (a constant value is enough here).
     struct Counting(u32);

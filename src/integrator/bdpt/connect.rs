@@ -7,7 +7,8 @@
 //! `p_{i+1}/p_i = p_fwd(x_i)/p_rev(x_i)`, so all ratios follow in one pass over the path.
 
 use super::vertex::{bare_point, Kind, Mode, Vertex};
-use crate::integrator::{is_positive, occluded, BidirectionalScene, EmitterKind, SampleSource};
+use crate::integrator::{is_positive, occluded, BidirectionalScene, EmitterKind};
+use crate::sampling::sampler::SampleSource;
 use glam::{Vec2, Vec3};
 
 /// The MIS heuristic's exponent: 1 balance, 2 power.

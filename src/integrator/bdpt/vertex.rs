@@ -2,9 +2,8 @@
 //! area (per steradian toward a light at infinity). `docs/renderer.md`, "Bidirectional path
 //! tracing", derives the conversions.
 
-use crate::integrator::{
-    BidirectionalScene, Bsdf, EmissionSample, EmitterKind, Frame, SurfacePoint,
-};
+use crate::integrator::{BidirectionalScene, Bsdf, EmissionSample, EmitterKind, SurfacePoint};
+use crate::sampling::Frame;
 use glam::{Vec2, Vec3};
 
 /// Which way a subpath carries its quantity: radiance (camera subpaths) or importance

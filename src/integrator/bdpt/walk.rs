@@ -3,7 +3,8 @@
 //! vertex's reverse density (Veach 1997, thesis, section 10.2).
 
 use super::vertex::{bare_point, shading_correction, Kind, Mode, Vertex};
-use crate::integrator::{is_positive, BidirectionalScene, Bsdf, EmitterKind, SampleSource};
+use crate::integrator::{is_positive, BidirectionalScene, Bsdf, EmitterKind};
+use crate::sampling::sampler::SampleSource;
 use glam::Vec3;
 
 /// Limits of a random walk.

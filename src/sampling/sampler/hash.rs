@@ -124,7 +124,7 @@ fn round(mut x: u32, bits: u32, key: u64) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::sampler::ONE_MINUS_EPSILON;
+    use crate::sampling::ONE_MINUS_EPSILON;
 
     #[test]
     fn unit_f32_covers_zero_to_one_minus_epsilon() {

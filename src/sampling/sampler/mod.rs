@@ -95,10 +95,6 @@ pub use sobol::{Sobol4dSampler, SobolSampler};
 pub use source::{stream_dimension, SampleSource, STREAM_DIMENSIONS};
 pub use stratified::StratifiedSampler;
 
-/// The largest `f32` below 1, `1 − 2⁻²⁴`: every sample value is at most this (the same
-/// constant as [`crate::sampling::ONE_MINUS_EPSILON`]).
-pub use super::unit::ONE_MINUS_EPSILON;
-
 /// A source of sample values in `[0,1)^d` for the pixel samples of an image.
 ///
 /// Call [`Sampler::start_pixel_sample`] before drawing the values of a pixel sample; it resets
