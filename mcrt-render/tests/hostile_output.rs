@@ -1,6 +1,6 @@
 //! Output that is never lost (issue 11): the output plan decided and checked before
 //! rendering, partial images under their own names, identical bytes for identical renders,
-//! and the render example's process behaviour (`--help`, exit status 130 on SIGINT and
+//! and the `render` program's process behaviour (`--help`, exit status 130 on SIGINT and
 //! SIGTERM with `NAME.partial.exr` written).
 
 use mcrt::glam::Vec3;
