@@ -71,6 +71,7 @@ impl AliasTable {
 
     /// Draws an index from one sample value `u ∈ [0,1)` (clamped into it; NaN acts as 0).
     #[must_use]
+    #[inline]
     pub fn sample(&self, u: f32) -> usize {
         let n = self.columns.len();
         let x = f64::from(clamp_unit(u)) * n as f64;

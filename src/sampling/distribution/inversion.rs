@@ -83,6 +83,7 @@ impl Inversion1D {
     /// (clamped into it; NaN acts as 0). Returns `a` when `cdf(b) − cdf(a)` is not a
     /// positive finite number (use [`sample_by_inversion`] to get an error instead).
     #[must_use]
+    #[inline]
     pub fn sample(&self, cdf: impl Fn(f64) -> f64, pdf: impl Fn(f64) -> f64, u: f64) -> f64 {
         let u = if u >= 0.0 { u.min(1.0) } else { 0.0 };
         let (c_a, c_b) = (cdf(self.a), cdf(self.b));

@@ -118,6 +118,7 @@ impl PiecewiseConstant1D {
     /// pdf per unit length. Never returns a bin whose value is zero; `u` outside `[0,1)`
     /// (or NaN) is clamped into it.
     #[must_use]
+    #[inline]
     pub fn sample(&self, u: f32) -> (f32, f32, usize) {
         let u = clamp_unit(u);
         let target = f64::from(u) * self.total();
@@ -136,6 +137,7 @@ impl PiecewiseConstant1D {
     /// The density of [`sample`](Self::sample) at `x`, per unit length; 0 outside
     /// `[min, max)`.
     #[must_use]
+    #[inline]
     pub fn pdf(&self, x: f32) -> f32 {
         match self.bin_of(x) {
             Some(i) => self.pdf_of_bin(i),
@@ -147,6 +149,7 @@ impl PiecewiseConstant1D {
     /// Points below `min` give 0, points at or above `max` give `1 − 2⁻²⁴`. Inside a zero
     /// bin, where no `u` maps, the CDF (constant there) is returned.
     #[must_use]
+    #[inline]
     pub fn invert(&self, x: f32) -> f32 {
         let n = self.func.len() as f64;
         let t = self.bin_coordinate(x);

@@ -118,6 +118,7 @@ impl PiecewiseConstant2D {
     /// The density of [`sample_cell`](Self::sample_cell) at `p`, per unit area of `[0,1)²`; 0 outside
     /// the square.
     #[must_use]
+    #[inline]
     pub fn pdf(&self, p: Vec2) -> f32 {
         match self.cell_of(p) {
             Some([x, y]) => self.pdf_of_cell(x, y),
@@ -129,6 +130,7 @@ impl PiecewiseConstant2D {
     /// conditional CDF of that row at `p.x`. In an all-zero row (never sampled) `u.x` is
     /// `p.x` clamped into `[0,1)`.
     #[must_use]
+    #[inline]
     pub fn invert(&self, p: Vec2) -> Vec2 {
         let uy = self.marginal.invert(p.y);
         let row = self
@@ -208,14 +210,17 @@ impl PiecewiseConstant2D {
 impl Warp for PiecewiseConstant2D {
     type Point = Vec2;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec2 {
         self.sample_cell(u).0
     }
 
+    #[inline]
     fn pdf(&self, p: Vec2) -> f32 {
         PiecewiseConstant2D::pdf(self, p)
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec2, f32) {
         let (p, pdf, _) = self.sample_cell(u);
         (p, pdf)
@@ -223,6 +228,7 @@ impl Warp for PiecewiseConstant2D {
 }
 
 impl InvertibleWarp for PiecewiseConstant2D {
+    #[inline]
     fn invert(&self, p: Vec2) -> Vec2 {
         PiecewiseConstant2D::invert(self, p)
     }

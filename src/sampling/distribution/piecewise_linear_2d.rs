@@ -150,6 +150,7 @@ impl PiecewiseLinear2D {
 impl Warp for PiecewiseLinear2D {
     type Point = Vec2;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec2 {
         // The row interval: the first whose upper cumulative mass exceeds the target (never an
         // interval of zero mass).
@@ -191,6 +192,7 @@ impl Warp for PiecewiseLinear2D {
 
     /// `f(x, y)/I` per unit area on `[0, 1]²` (the bilinear interpolation of the vertex
     /// values), 0 outside.
+    #[inline]
     fn pdf(&self, p: Vec2) -> f32 {
         if !((0.0..=1.0).contains(&p.x) && (0.0..=1.0).contains(&p.y)) {
             return 0.0;
@@ -203,6 +205,7 @@ impl Warp for PiecewiseLinear2D {
 }
 
 impl InvertibleWarp for PiecewiseLinear2D {
+    #[inline]
     fn invert(&self, p: Vec2) -> Vec2 {
         let (j, t) = Self::locate(p.y, self.height);
         let (ma, mb) = normalise_ends(self.row_total(j), self.row_total(j + 1));

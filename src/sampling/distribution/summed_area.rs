@@ -230,6 +230,7 @@ impl Window<'_> {
 impl Warp for Window<'_> {
     type Point = Vec2;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec2 {
         let sat = &self.dist.sat;
         let tx = f64::from(clamp_unit(u.x)) * self.mass;
@@ -244,6 +245,7 @@ impl Warp for Window<'_> {
     }
 
     /// `f(p)/∫_W f` per unit area inside the window, 0 outside.
+    #[inline]
     fn pdf(&self, p: Vec2) -> f32 {
         let (x, y) = (f64::from(p.x), f64::from(p.y));
         if !(x >= self.min[0] && x <= self.max[0] && y >= self.min[1] && y <= self.max[1]) {
@@ -257,6 +259,7 @@ impl Warp for Window<'_> {
 }
 
 impl InvertibleWarp for Window<'_> {
+    #[inline]
     fn invert(&self, p: Vec2) -> Vec2 {
         let x = f64::from(p.x).clamp(self.min[0], self.max[0]);
         let y = f64::from(p.y).clamp(self.min[1], self.max[1]);

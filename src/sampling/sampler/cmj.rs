@@ -122,6 +122,7 @@ impl Sampler for CmjSampler {
 }
 
 impl SampleSource for CmjSampler {
+    #[inline]
     fn next_1d(&mut self) -> f32 {
         let stratum = permute(
             self.keys.index_in_round,
@@ -137,6 +138,7 @@ impl SampleSource for CmjSampler {
         in_stratum(stratum, offset, self.spp)
     }
 
+    #[inline]
     fn next_2d(&mut self) -> Vec2 {
         let key = self.keys.pattern_key(TAG_2D);
         let (m, n) = self.grid;

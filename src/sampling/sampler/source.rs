@@ -23,6 +23,7 @@ pub trait SampleSource {
     fn next_1d(&mut self) -> f32;
 
     /// Two values in `[0,1)²`.
+    #[inline]
     fn next_2d(&mut self) -> Vec2 {
         let x = self.next_1d();
         Vec2::new(x, self.next_1d())

@@ -110,6 +110,7 @@ impl Sampler for StratifiedSampler {
 }
 
 impl SampleSource for StratifiedSampler {
+    #[inline]
     fn next_1d(&mut self) -> f32 {
         let stratum = permute(
             self.keys.index_in_round,
@@ -125,6 +126,7 @@ impl SampleSource for StratifiedSampler {
         in_stratum(stratum, offset, self.spp)
     }
 
+    #[inline]
     fn next_2d(&mut self) -> Vec2 {
         let stratum = permute(
             self.keys.index_in_round,

@@ -152,6 +152,7 @@ impl BilinearPatch {
 impl Warp for BilinearPatch {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let st = self.weights.map_or(u, |w| w.sample(u));
         self.position(st)
@@ -159,6 +160,7 @@ impl Warp for BilinearPatch {
 
     /// `b(s, t)/|∂p/∂s × ∂p/∂t|` per unit area at the parameters of `p` when `p` lies on the
     /// patch, else 0.
+    #[inline]
     fn pdf(&self, p: Vec3) -> f32 {
         if !p.is_finite() {
             return 0.0;
@@ -169,6 +171,7 @@ impl Warp for BilinearPatch {
         }
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec3, f32) {
         let st = self.weights.map_or(u, |w| w.sample(u));
         (self.position(st), self.area_pdf_at(st))
@@ -176,6 +179,7 @@ impl Warp for BilinearPatch {
 }
 
 impl InvertibleWarp for BilinearPatch {
+    #[inline]
     fn invert(&self, p: Vec3) -> Vec2 {
         let (st, _) = self.parameters_of(p);
         let st = st.clamp(Vec2::ZERO, Vec2::splat(crate::sampling::ONE_MINUS_EPSILON));

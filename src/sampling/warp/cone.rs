@@ -63,6 +63,7 @@ impl UniformCone {
     /// a cone narrower than about 3·10⁻⁴ rad (f32's spacing below 1): use
     /// [`UniformCone::from_angle`] for those. Errors on NaN, infinities, values outside
     /// `[−1, 1)`, or a cone too narrow for f32.
+    #[inline]
     pub fn new(cos_theta_max: f32) -> Result<Self, SamplingError> {
         let c = check_param("cos_theta_max", cos_theta_max, "finite, in [-1, 1)", |c| {
             (-1.0..1.0).contains(&c)
@@ -153,6 +154,7 @@ impl UniformCone {
 impl Warp for UniformCone {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let t = u.x * self.one_minus_cos_max;
         direction(sin_from_one_minus_cos(t), 1.0 - t, u.y)
@@ -160,6 +162,7 @@ impl Warp for UniformCone {
 
     /// `1/(2π(1 − cos θ_max))` per steradian inside the cone (see
     /// [`UniformCone::contains`]), 0 outside or for non-finite input.
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         if self.contains(w) {
             self.pdf
@@ -168,12 +171,14 @@ impl Warp for UniformCone {
         }
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec3, f32) {
         (self.sample(u), self.pdf)
     }
 }
 
 impl InvertibleWarp for UniformCone {
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         let u1 = one_minus_cos_theta(w) / self.one_minus_cos_max;
         clamp_unit2(u1, azimuth_to_unit(w.x, w.y))

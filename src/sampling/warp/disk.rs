@@ -45,6 +45,7 @@ pub struct UniformDisk;
 impl Warp for UniformDisk {
     type Point = Vec2;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec2 {
         let r = u.x.max(0.0).sqrt();
         let (c, s) = azimuth(u.y);
@@ -52,16 +53,19 @@ impl Warp for UniformDisk {
     }
 
     /// `1/π` per unit area inside the unit disk (rim included), 0 outside.
+    #[inline]
     fn pdf(&self, p: Vec2) -> f32 {
         disk_pdf(p)
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec2, f32) {
         (self.sample(u), FRAC_1_PI)
     }
 }
 
 impl InvertibleWarp for UniformDisk {
+    #[inline]
     fn invert(&self, p: Vec2) -> Vec2 {
         clamp_unit2(p.length_squared(), azimuth_to_unit(p.x, p.y))
     }
@@ -124,6 +128,7 @@ pub(in crate::sampling::warp) fn concentric_invert(p: Vec2) -> Vec2 {
 impl Warp for UniformDiskConcentric {
     type Point = Vec2;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec2 {
         let (r, phi) = concentric_polar(u);
         let (s, c) = phi.sin_cos();
@@ -131,16 +136,19 @@ impl Warp for UniformDiskConcentric {
     }
 
     /// `1/π` per unit area inside the unit disk (rim included), 0 outside.
+    #[inline]
     fn pdf(&self, p: Vec2) -> f32 {
         disk_pdf(p)
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec2, f32) {
         (self.sample(u), FRAC_1_PI)
     }
 }
 
 impl InvertibleWarp for UniformDiskConcentric {
+    #[inline]
     fn invert(&self, p: Vec2) -> Vec2 {
         concentric_invert(p)
     }

@@ -44,12 +44,14 @@ impl Exponential {
 }
 
 impl Warp1D for Exponential {
+    #[inline]
     fn sample(&self, u: f32) -> f32 {
         let u = f64::from(clamp_unit(u));
         (-(-u).ln_1p() / f64::from(self.rate)) as f32
     }
 
     /// `λ e^{−λx}` per unit length for `x ≥ 0`, 0 for `x < 0`.
+    #[inline]
     fn pdf(&self, x: f32) -> f32 {
         if x >= 0.0 {
             let l = f64::from(self.rate);
@@ -59,6 +61,7 @@ impl Warp1D for Exponential {
         }
     }
 
+    #[inline]
     fn invert(&self, x: f32) -> f32 {
         let t = f64::from(x.max(0.0)) * f64::from(self.rate);
         clamp_unit((-(-t).exp_m1()) as f32)
@@ -149,6 +152,7 @@ impl TruncatedExponential {
 }
 
 impl Warp1D for TruncatedExponential {
+    #[inline]
     fn sample(&self, u: f32) -> f32 {
         let u = f64::from(clamp_unit(u));
         // The mirrored density is sampled from its own peak with 1 − u, so x grows with u.
@@ -168,6 +172,7 @@ impl Warp1D for TruncatedExponential {
 
     /// `|λ| e^{−|λ| t} / (1 − e^{−|λ| L})` per unit length, `t` the distance from the peak
     /// end, on `[min, max]`; 0 outside.
+    #[inline]
     fn pdf(&self, x: f32) -> f32 {
         if x >= self.min && x <= self.max {
             self.density_at_distance(self.distance(f64::from(x)).max(0.0)) as f32
@@ -176,6 +181,7 @@ impl Warp1D for TruncatedExponential {
         }
     }
 
+    #[inline]
     fn invert(&self, x: f32) -> f32 {
         let t = self.distance(f64::from(x.clamp(self.min, self.max)));
         let p = if self.expm1_len == 0.0 {

@@ -39,12 +39,14 @@ const INV_TWO_PI: f32 = 0.5 / PI;
 impl Warp for UniformHemisphere {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let t = u.x;
         direction(sin_from_one_minus_cos(t), 1.0 - t, u.y)
     }
 
     /// `1/(2π)` per steradian for z ≥ 0 (horizon included), 0 below or for NaN.
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         if w.z >= 0.0 && w.is_finite() {
             INV_TWO_PI
@@ -53,12 +55,14 @@ impl Warp for UniformHemisphere {
         }
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec3, f32) {
         (self.sample(u), INV_TWO_PI)
     }
 }
 
 impl InvertibleWarp for UniformHemisphere {
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         clamp_unit2(one_minus_cos_theta(w), azimuth_to_unit(w.x, w.y))
     }
@@ -94,6 +98,7 @@ pub struct CosineHemisphere;
 impl Warp for CosineHemisphere {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let (r, phi) = concentric_polar(u);
         let (s, c) = phi.sin_cos();
@@ -111,6 +116,7 @@ impl Warp for CosineHemisphere {
     }
 
     /// `cos θ / π` per steradian for z ≥ 0 (0 on the horizon), 0 below or for NaN.
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         if w.z >= 0.0 && w.is_finite() {
             w.z.min(1.0) * FRAC_1_PI
@@ -124,6 +130,7 @@ impl InvertibleWarp for CosineHemisphere {
     /// The concentric inverse of the disk point below `w`. Its radius is taken from z near
     /// the horizon (`r = √((1 − z)(1 + z))`, where `r` from x, y would be ill-conditioned:
     /// one ulp of `r` at `r = 1` moves z by 3·10⁻⁴) and from x, y elsewhere.
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         let xy = Vec2::new(w.x, w.y);
         let r_xy = xy.length();

@@ -81,6 +81,7 @@ impl HenyeyGreenstein {
 impl Warp for HenyeyGreenstein {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let g = self.g;
         let u1 = f64::from(clamp_unit(u.x));
@@ -93,6 +94,7 @@ impl Warp for HenyeyGreenstein {
     }
 
     /// `(1 − g²)/(4π (1 + g² − 2g cos θ)^{3/2})` per steradian for unit `w`; 0 for NaN.
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         if !w.is_finite() {
             return 0.0;
@@ -104,6 +106,7 @@ impl Warp for HenyeyGreenstein {
 }
 
 impl InvertibleWarp for HenyeyGreenstein {
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         let (omc, opc) = one_minus_and_plus_cos(w);
         let big_d = self.denominator(omc, opc).sqrt();

@@ -119,6 +119,7 @@ impl Warp for LatLong {
     }
 
     /// `1 / (2π² max(sin θ, ε))` per steradian for a finite direction, 0 otherwise.
+    #[inline]
     fn pdf(&self, dir: Vec3) -> f32 {
         if dir.is_finite() {
             Self::solid_angle_pdf(1.0, Self::sin_theta(dir))

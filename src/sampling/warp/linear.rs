@@ -92,11 +92,13 @@ impl Linear {
 }
 
 impl Warp1D for Linear {
+    #[inline]
     fn sample(&self, u: f32) -> f32 {
         sample_linear_normalised(f64::from(clamp_unit(u)), self.a, self.b) as f32
     }
 
     /// `(1 − x) a' + x b'` per unit length on `[0, 1]`, 0 outside.
+    #[inline]
     fn pdf(&self, x: f32) -> f32 {
         if (0.0..=1.0).contains(&x) {
             let x = f64::from(x);
@@ -106,6 +108,7 @@ impl Warp1D for Linear {
         }
     }
 
+    #[inline]
     fn invert(&self, x: f32) -> f32 {
         let x = f64::from(x.clamp(0.0, 1.0));
         clamp_unit(linear_cdf_normalised(x, self.a, self.b) as f32)
@@ -171,6 +174,7 @@ impl Bilinear {
 impl Warp for Bilinear {
     type Point = Vec2;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec2 {
         let [(ma, mb), _] = self.ends(0.0);
         let y = sample_linear_normalised(f64::from(clamp_unit(u.y)), ma, mb);
@@ -181,6 +185,7 @@ impl Warp for Bilinear {
 
     /// The bilinear interpolation of the normalised corners per unit area on `[0, 1]²`, 0
     /// outside.
+    #[inline]
     fn pdf(&self, p: Vec2) -> f32 {
         if !((0.0..=1.0).contains(&p.x) && (0.0..=1.0).contains(&p.y)) {
             return 0.0;
@@ -194,6 +199,7 @@ impl Warp for Bilinear {
 }
 
 impl InvertibleWarp for Bilinear {
+    #[inline]
     fn invert(&self, p: Vec2) -> Vec2 {
         let (x, y) = (
             f64::from(p.x.clamp(0.0, 1.0)),

@@ -89,12 +89,14 @@ impl Logistic {
 }
 
 impl Warp1D for Logistic {
+    #[inline]
     fn sample(&self, u: f32) -> f32 {
         let z = std_logistic_quantile(f64::from(clamp_unit(u)).max(U_FLOOR));
         (f64::from(self.mean) + f64::from(self.scale) * z) as f32
     }
 
     /// `e^{−|z|}/(s (1 + e^{−|z|})²)` per unit length; 0 for NaN.
+    #[inline]
     fn pdf(&self, x: f32) -> f32 {
         let z = self.standardise(x);
         if z.is_nan() {
@@ -103,6 +105,7 @@ impl Warp1D for Logistic {
         (std_logistic_pdf(z) / f64::from(self.scale)) as f32
     }
 
+    #[inline]
     fn invert(&self, x: f32) -> f32 {
         let z = self.standardise(x);
         clamp_unit(if z.is_nan() {
@@ -198,6 +201,7 @@ impl TrimmedLogistic {
 }
 
 impl Warp1D for TrimmedLogistic {
+    #[inline]
     fn sample(&self, u: f32) -> f32 {
         // F(w) = F(start) ± δ with δ = u M, solved as an offset from the start so that a
         // narrow interval keeps its digits: logit(p + δ) − logit(p) =
@@ -226,6 +230,7 @@ impl Warp1D for TrimmedLogistic {
     }
 
     /// The logistic density over `M` per unit length on `[min, max]`, 0 outside.
+    #[inline]
     fn pdf(&self, x: f32) -> f32 {
         if !(x >= self.min && x <= self.max) {
             return 0.0;
@@ -234,6 +239,7 @@ impl Warp1D for TrimmedLogistic {
         (std_logistic_pdf(z) / (f64::from(self.scale) * self.mass)) as f32
     }
 
+    #[inline]
     fn invert(&self, x: f32) -> f32 {
         let x = x.clamp(self.min, self.max);
         let z = (f64::from(x) - f64::from(self.mean)) / f64::from(self.scale);

@@ -99,6 +99,7 @@ pub struct Beckmann {
 
 impl Beckmann {
     /// A Beckmann distribution of roughness `alpha` ∈ [1e-4, 1e4] (tested 1e-4 to 1).
+    #[inline]
     pub fn new(alpha: f32) -> Result<Self, SamplingError> {
         Ok(Self {
             alpha: check_alpha(alpha)?,
@@ -153,6 +154,7 @@ impl MicrofacetDistribution for Beckmann {
 impl Warp for Beckmann {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let u1 = u.x.clamp(0.0, ONE_MINUS_EPSILON);
         let tan2 = -self.alpha * self.alpha * (-u1).ln_1p();
@@ -160,12 +162,14 @@ impl Warp for Beckmann {
     }
 
     /// D(m) cos θ_m per steradian; 0 for m.z ≤ 0.
+    #[inline]
     fn pdf(&self, m: Vec3) -> f32 {
         self.d(m) * cos_theta(m).max(0.0)
     }
 }
 
 impl InvertibleWarp for Beckmann {
+    #[inline]
     fn invert(&self, m: Vec3) -> Vec2 {
         let (r2, z2) = radial_axial(m);
         let e = r2 / (z2 * self.alpha * self.alpha);
@@ -206,6 +210,7 @@ pub struct Ggx {
 
 impl Ggx {
     /// A GGX distribution of roughness `alpha` ∈ [1e-4, 1e4] (tested 1e-4 to 1).
+    #[inline]
     pub fn new(alpha: f32) -> Result<Self, SamplingError> {
         Ok(Self {
             alpha: check_alpha(alpha)?,
@@ -247,6 +252,7 @@ impl MicrofacetDistribution for Ggx {
 impl Warp for Ggx {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let u1 = u.x.clamp(0.0, ONE_MINUS_EPSILON);
         let tan2 = self.alpha * self.alpha * (u1 / (1.0 - u1));
@@ -254,12 +260,14 @@ impl Warp for Ggx {
     }
 
     /// D(m) cos θ_m per steradian; 0 for m.z ≤ 0.
+    #[inline]
     fn pdf(&self, m: Vec3) -> f32 {
         self.d(m) * cos_theta(m).max(0.0)
     }
 }
 
 impl InvertibleWarp for Ggx {
+    #[inline]
     fn invert(&self, m: Vec3) -> Vec2 {
         let (r2, z2) = radial_axial(m);
         let den = self.alpha * self.alpha * z2 + r2;

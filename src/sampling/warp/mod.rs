@@ -101,6 +101,7 @@ pub trait Warp {
     fn pdf(&self, p: Self::Point) -> f32;
 
     /// [`Warp::sample`] and [`Warp::pdf`] at once; override when that is cheaper.
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Self::Point, f32) {
         let p = self.sample(u);
         (p, self.pdf(p))
@@ -136,6 +137,7 @@ pub trait Warp1D {
     fn invert(&self, x: f32) -> f32;
 
     /// [`Warp1D::sample`] and [`Warp1D::pdf`] at once; override when that is cheaper.
+    #[inline]
     fn sample_with_pdf(&self, u: f32) -> (f32, f32) {
         let x = self.sample(u);
         (x, self.pdf(x))

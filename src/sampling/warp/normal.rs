@@ -78,12 +78,14 @@ impl Normal {
 }
 
 impl Warp1D for Normal {
+    #[inline]
     fn sample(&self, u: f32) -> f32 {
         let z = std_normal_quantile(f64::from(clamp_unit(u)).max(U_FLOOR));
         (f64::from(self.mean) + f64::from(self.sigma) * z) as f32
     }
 
     /// `exp(−z²/2)/(σ√(2π))` per unit length with `z = (x − μ)/σ`; 0 for NaN.
+    #[inline]
     fn pdf(&self, x: f32) -> f32 {
         let z = self.standardise(x);
         if z.is_nan() {
@@ -92,6 +94,7 @@ impl Warp1D for Normal {
         ((-0.5 * z * z).exp() / (f64::from(self.sigma) * TAU.sqrt())) as f32
     }
 
+    #[inline]
     fn invert(&self, x: f32) -> f32 {
         clamp_unit(std_normal_cdf(self.standardise(x)) as f32)
     }
@@ -165,6 +168,7 @@ impl Normal2D {
 impl Warp for Normal2D {
     type Point = Vec2;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec2 {
         let r = (-2.0 * (-f64::from(clamp_unit(u.x))).ln_1p()).sqrt() * f64::from(self.sigma);
         let (c, s) = azimuth(u.y);
@@ -175,6 +179,7 @@ impl Warp for Normal2D {
     }
 
     /// `exp(−|p − μ|²/(2σ²))/(2πσ²)` per unit area; 0 for NaN.
+    #[inline]
     fn pdf(&self, p: Vec2) -> f32 {
         let (x, y) = self.standardise(p);
         let r2 = x * x + y * y;
@@ -187,6 +192,7 @@ impl Warp for Normal2D {
 }
 
 impl InvertibleWarp for Normal2D {
+    #[inline]
     fn invert(&self, p: Vec2) -> Vec2 {
         let (x, y) = self.standardise(p);
         let u1 = -(-0.5 * (x * x + y * y)).exp_m1();

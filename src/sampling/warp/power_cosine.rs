@@ -91,6 +91,7 @@ impl PowerCosineHemisphere {
 impl Warp for PowerCosineHemisphere {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let l = u.x.max(0.0).ln() / (self.exponent + 1.0);
         let t = -l.exp_m1();
@@ -98,6 +99,7 @@ impl Warp for PowerCosineHemisphere {
     }
 
     /// `(n + 1)/(2π) cosⁿθ` per steradian for z ≥ 0, 0 below or for non-finite input.
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         if w.z >= 0.0 && w.is_finite() {
             self.norm * self.cos_pow_n(Self::ln_cos(w))
@@ -106,6 +108,7 @@ impl Warp for PowerCosineHemisphere {
         }
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec3, f32) {
         let l = u.x.max(0.0).ln() / (self.exponent + 1.0);
         let t = -l.exp_m1();
@@ -115,6 +118,7 @@ impl Warp for PowerCosineHemisphere {
 }
 
 impl InvertibleWarp for PowerCosineHemisphere {
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         let u1 = ((self.exponent + 1.0) * Self::ln_cos(w)).exp();
         clamp_unit2(u1, azimuth_to_unit(w.x, w.y))

@@ -91,12 +91,14 @@ impl Smoothstep {
 }
 
 impl Warp1D for Smoothstep {
+    #[inline]
     fn sample(&self, u: f32) -> f32 {
         let t = invert_cdf(f64::from(clamp_unit(u)));
         ((f64::from(self.min) + t * self.len()) as f32).clamp(self.min, self.max)
     }
 
     /// `2 (3t² − 2t³)/(max − min)` per unit length on `[min, max]`, 0 outside.
+    #[inline]
     fn pdf(&self, x: f32) -> f32 {
         if !(x >= self.min && x <= self.max) {
             return 0.0;
@@ -105,6 +107,7 @@ impl Warp1D for Smoothstep {
         (2.0 * t * t * (3.0 - 2.0 * t) / self.len()) as f32
     }
 
+    #[inline]
     fn invert(&self, x: f32) -> f32 {
         let t = ((f64::from(x) - f64::from(self.min)) / self.len()).clamp(0.0, 1.0);
         clamp_unit(if t.is_nan() { 0.0 } else { cdf(t) as f32 })

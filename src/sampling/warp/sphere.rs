@@ -37,6 +37,7 @@ const INV_FOUR_PI: f32 = 0.25 / PI;
 impl Warp for UniformSphere {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let z = 1.0 - 2.0 * u.x;
         let sin_theta = 2.0 * (u.x * (1.0 - u.x)).max(0.0).sqrt();
@@ -44,6 +45,7 @@ impl Warp for UniformSphere {
     }
 
     /// `1/(4π)` per steradian for every finite direction; 0 for non-finite input.
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         if w.is_finite() {
             INV_FOUR_PI
@@ -54,6 +56,7 @@ impl Warp for UniformSphere {
 }
 
 impl InvertibleWarp for UniformSphere {
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         let u1 = 0.5 * one_minus_cos_theta(w);
         clamp_unit2(u1, azimuth_to_unit(w.x, w.y))

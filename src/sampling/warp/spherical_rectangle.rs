@@ -201,6 +201,7 @@ impl RectangleFrame {
 impl Warp for SphericalRectangle {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let exact = self
             .urena
@@ -210,6 +211,7 @@ impl Warp for SphericalRectangle {
     }
 
     /// 1/Ω per steradian on directions hitting the shape (area fallback: d²/(A|cos θ′|)).
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         self.planar
             .pdf_with(w, self.urena.as_ref().map(|_| self.omega()))
@@ -221,6 +223,7 @@ impl InvertibleWarp for SphericalRectangle {
     /// the inverse of Ureña et al.'s map (the strip's solid angle over Ω, then the height's
     /// sine), or the shape coordinates of the point hit for the area fallback. Directions
     /// outside the rectangle give values clamped into `[0, 1)²`.
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         let dir = w.as_dvec3().normalize_or_zero();
         match &self.urena {

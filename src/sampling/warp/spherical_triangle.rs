@@ -159,6 +159,7 @@ impl SphericalTriangle {
 
 impl Arvo {
     /// Arvo's map in `f64`: u₁ → sub-area and vertex C′ on arc AC; u₂ → point on arc BC′.
+    #[inline]
     fn sample(&self, u: DVec2, omega: f64) -> DVec3 {
         let sub = u.x * omega;
         let (s, t) = (sub - self.alpha).sin_cos();
@@ -179,6 +180,7 @@ impl Arvo {
     /// The inverse of [`Arvo::sample`]: `C′` is where the great circle through B and the
     /// direction meets arc AC; `u₁` is the area of the sub-triangle ABC′ over Ω, and `u₂` the
     /// ratio `(1 − B·w)/(1 − B·C′)`, each `1 − cos` taken as half a squared chord.
+    #[inline]
     fn invert(&self, w: DVec3, omega: f64) -> DVec2 {
         let bw = self.b.cross(w);
         // Within f32 rounding of B (where u₂ = 0 and every u₁ maps to B), the great circle
@@ -204,12 +206,14 @@ impl Arvo {
 impl Warp for SphericalTriangle {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let exact = self.arvo.as_ref().map(|a| |u| a.sample(u, self.omega));
         self.planar.sample_with(u, exact)
     }
 
     /// 1/Ω per steradian on directions hitting the triangle (area fallback: d²/(A|cos θ′|)).
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         self.planar
             .pdf_with(w, self.arvo.as_ref().map(|_| self.omega))
@@ -221,6 +225,7 @@ impl InvertibleWarp for SphericalTriangle {
     /// the inverse of Arvo's map (see [`SphericalTriangle`]), or of the area fallback's
     /// `b₁ = 1 − √u₁, b₂ = u₂√u₁` on the point hit. Directions outside the triangle give
     /// values clamped into `[0, 1)²`.
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         let dir = w.as_dvec3().normalize_or_zero();
         match &self.arvo {

@@ -47,6 +47,7 @@ impl Tent {
 }
 
 impl Warp1D for Tent {
+    #[inline]
     fn sample(&self, u: f32) -> f32 {
         let u = f64::from(clamp_unit(u));
         let r = f64::from(self.radius);
@@ -59,6 +60,7 @@ impl Warp1D for Tent {
     }
 
     /// `(r − |x|)/r²` per unit length on `[−r, r]`, 0 outside.
+    #[inline]
     fn pdf(&self, x: f32) -> f32 {
         let r = f64::from(self.radius);
         let d = r - f64::from(x).abs();
@@ -69,6 +71,7 @@ impl Warp1D for Tent {
         }
     }
 
+    #[inline]
     fn invert(&self, x: f32) -> f32 {
         let r = f64::from(self.radius);
         let x = f64::from(x).clamp(-r, r);

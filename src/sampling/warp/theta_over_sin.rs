@@ -54,6 +54,7 @@ fn theta_over_sin(theta: f32) -> f32 {
 impl Warp for ThetaOverSinHemisphere {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let theta = FRAC_PI_2 * u.x.max(0.0).sqrt();
         let (s, c) = theta.sin_cos();
@@ -61,6 +62,7 @@ impl Warp for ThetaOverSinHemisphere {
     }
 
     /// `(4/π³) θ / sin θ` per steradian for z ≥ 0, 0 below or for non-finite input.
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         if w.z >= 0.0 && w.is_finite() {
             let theta = (w.x * w.x + w.y * w.y).sqrt().atan2(w.z);
@@ -70,6 +72,7 @@ impl Warp for ThetaOverSinHemisphere {
         }
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec3, f32) {
         let theta = FRAC_PI_2 * u.x.max(0.0).sqrt();
         let (s, c) = theta.sin_cos();
@@ -78,6 +81,7 @@ impl Warp for ThetaOverSinHemisphere {
 }
 
 impl InvertibleWarp for ThetaOverSinHemisphere {
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         let theta = (w.x * w.x + w.y * w.y).sqrt().atan2(w.z);
         let r = theta * FRAC_2_PI;

@@ -35,6 +35,7 @@ pub struct UniformTriangle;
 impl Warp for UniformTriangle {
     type Point = Vec2;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec2 {
         let s = u.x.max(0.0).sqrt();
         // b₁ = 1 − √u₁ written as (1 − u₁)/(1 + √u₁): no cancellation as u₁ → 1.
@@ -42,6 +43,7 @@ impl Warp for UniformTriangle {
     }
 
     /// `2` per unit barycentric area inside the reference triangle (edges included), else 0.
+    #[inline]
     fn pdf(&self, b: Vec2) -> f32 {
         if b.x >= -EDGE_SLACK && b.y >= -EDGE_SLACK && b.x + b.y <= 1.0 + EDGE_SLACK {
             2.0
@@ -50,12 +52,14 @@ impl Warp for UniformTriangle {
         }
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec2, f32) {
         (self.sample(u), 2.0)
     }
 }
 
 impl InvertibleWarp for UniformTriangle {
+    #[inline]
     fn invert(&self, b: Vec2) -> Vec2 {
         let s = 1.0 - b.x;
         let u2 = if s > 0.0 { b.y / s } else { 0.0 };
@@ -90,6 +94,7 @@ pub struct LowDistortionTriangle;
 impl Warp for LowDistortionTriangle {
     type Point = Vec2;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec2 {
         if u.x < u.y {
             let b1 = 0.5 * u.x;
@@ -101,16 +106,19 @@ impl Warp for LowDistortionTriangle {
     }
 
     /// `2` per unit barycentric area inside the reference triangle (edges included), else 0.
+    #[inline]
     fn pdf(&self, b: Vec2) -> f32 {
         UniformTriangle.pdf(b)
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec2, f32) {
         (self.sample(u), 2.0)
     }
 }
 
 impl InvertibleWarp for LowDistortionTriangle {
+    #[inline]
     fn invert(&self, b: Vec2) -> Vec2 {
         if b.y > b.x {
             clamp_unit2(2.0 * b.x, b.y + b.x)

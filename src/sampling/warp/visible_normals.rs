@@ -92,6 +92,7 @@ pub struct GgxVisible {
 impl GgxVisible {
     /// Visible GGX normals of roughness `alpha` ∈ [1e-4, 1e4] seen from `wi` (unit length
     /// within 1e-3, renormalised; wi.z > 0).
+    #[inline]
     pub fn new(alpha: f32, wi: Vec3) -> Result<Self, SamplingError> {
         let ggx = Ggx::new(check_alpha(alpha)?)?;
         let wi = check_wi(wi)?;
@@ -122,6 +123,7 @@ impl GgxVisible {
 impl Warp for GgxVisible {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let w = self.wi_std;
         let u1 = f64::from(u.x.clamp(0.0, ONE_MINUS_EPSILON));
@@ -138,6 +140,7 @@ impl Warp for GgxVisible {
     }
 
     /// G₁(wi) max(0, wi·m) D(m)/cos θ_i per steradian; 0 for m.z ≤ 0 or wi·m ≤ 0.
+    #[inline]
     fn pdf(&self, m: Vec3) -> f32 {
         visible_pdf(self.ggx.d(m), self.wi, m, self.scale)
     }
@@ -180,6 +183,7 @@ pub struct BeckmannVisible {
 impl BeckmannVisible {
     /// Visible Beckmann normals of roughness `alpha` ∈ [1e-4, 1e4] seen from `wi` (unit
     /// length within 1e-3, renormalised; wi.z > 0).
+    #[inline]
     pub fn new(alpha: f32, wi: Vec3) -> Result<Self, SamplingError> {
         let beckmann = Beckmann::new(check_alpha(alpha)?)?;
         let wi = check_wi(wi)?;
@@ -216,6 +220,7 @@ impl BeckmannVisible {
 impl Warp for BeckmannVisible {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let x = self.x_cdf.invert(f64::from(u.x));
         let y = self.y_cdf.invert(f64::from(u.y));
@@ -225,6 +230,7 @@ impl Warp for BeckmannVisible {
     }
 
     /// G₁(wi) max(0, wi·m) D(m)/cos θ_i per steradian (exact Λ); 0 for m.z ≤ 0 or wi·m ≤ 0.
+    #[inline]
     fn pdf(&self, m: Vec3) -> f32 {
         visible_pdf(self.beckmann.d(m), self.wi, m, self.scale)
     }

@@ -71,6 +71,7 @@ impl VonMisesFisher {
 impl Warp for VonMisesFisher {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         let u1 = f64::from(clamp_unit(u.x));
         let omc = if self.kappa > 0.0 {
@@ -83,6 +84,7 @@ impl Warp for VonMisesFisher {
     }
 
     /// `κ e^{−κ(1 − cos θ)}/(2π(1 − e^{−2κ}))` per steradian for unit `w`; 0 for NaN.
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         if !w.is_finite() {
             return 0.0;
@@ -93,6 +95,7 @@ impl Warp for VonMisesFisher {
 }
 
 impl InvertibleWarp for VonMisesFisher {
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         let (omc, _) = one_minus_and_plus_cos(w);
         let u1 = if self.kappa > 0.0 {

@@ -93,6 +93,7 @@ impl CosineSphericalTriangle {
 impl Warp for CosineSphericalTriangle {
     type Point = Vec3;
 
+    #[inline]
     fn sample(&self, u: Vec2) -> Vec3 {
         self.triangle.sample(self.bilinear.sample(u))
     }
@@ -100,6 +101,7 @@ impl Warp for CosineSphericalTriangle {
     /// `bilinear(T⁻¹(ω))/Ω` per steradian on directions hitting the triangle (the area
     /// fallback's density in place of `1/Ω` when [`SphericalTriangle::is_area_sampled`]), 0
     /// elsewhere.
+    #[inline]
     fn pdf(&self, w: Vec3) -> f32 {
         let base = self.triangle.pdf(w);
         if base > 0.0 {
@@ -109,6 +111,7 @@ impl Warp for CosineSphericalTriangle {
         }
     }
 
+    #[inline]
     fn sample_with_pdf(&self, u: Vec2) -> (Vec3, f32) {
         let (v, b) = self.bilinear.sample_with_pdf(u);
         let (w, base) = self.triangle.sample_with_pdf(v);
@@ -117,6 +120,7 @@ impl Warp for CosineSphericalTriangle {
 }
 
 impl InvertibleWarp for CosineSphericalTriangle {
+    #[inline]
     fn invert(&self, w: Vec3) -> Vec2 {
         self.bilinear.invert(self.triangle.invert(w))
     }
