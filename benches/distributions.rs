@@ -4,7 +4,9 @@
 //! iteration on pre-generated sample values (time per iteration / `BATCH` = ns per call); build
 //! benchmarks time one construction per iteration. The alias table is timed at 10³ and 10⁶
 //! entries to show that its cost per sample does not grow with the table (O(1)), while the
-//! binary search of the 1D table grows as log n (plus cache misses on large tables).
+//! binary search of the 1D table grows as log n (plus cache misses on large tables). The light
+//! BVH is timed on 10⁴ lights (`distribution/light_bvh`: build, and `sample` and `pmf` at
+//! shading points, O(log n) each).
 
 use std::hint::black_box;
 
@@ -238,9 +240,74 @@ fn streaming(c: &mut Criterion) {
     group.finish();
 }
 
+/// `LightBvh` over 10⁴ lights (points and one-sided panels in `[-10, 10]³`, powers from
+/// [`weights`]): build, then `sample` and `pmf` at `BATCH` shading points with normals.
+fn light_bvh(c: &mut Criterion) {
+    use mcrt::glam::Vec3;
+    use mcrt::sampling::light_bvh::{LightBounds, LightBvh};
+    let n = 10_000usize;
+    let power = weights(n, 11);
+    let pos = uniforms_1d(6 * n, 12);
+    let lights: Vec<LightBounds> = (0..n)
+        .map(|i| {
+            let r = &pos[6 * i..6 * i + 6];
+            let c = Vec3::new(r[0], r[1], r[2]) * 20.0 - 10.0;
+            let normal = Vec3::new(r[3] - 0.5, r[4] - 0.5, r[5] - 0.5);
+            if i % 2 == 0 {
+                LightBounds::point(c, power[i])
+            } else {
+                LightBounds::planar(
+                    c,
+                    c + 0.3 * Vec3::new(r[3], r[4], 0.0),
+                    normal,
+                    false,
+                    power[i],
+                )
+            }
+        })
+        .collect();
+    let qs = uniforms_1d(7 * BATCH, 13);
+    let queries: Vec<(Vec3, Vec3, f32)> = qs
+        .chunks_exact(7)
+        .map(|q| {
+            let p = Vec3::new(q[0], q[1], q[2]) * 24.0 - 12.0;
+            let n = Vec3::new(q[3] - 0.5, q[4] - 0.5, q[5] - 0.5);
+            (p, n, q[6])
+        })
+        .collect();
+    let mut group = c.benchmark_group("distribution/light_bvh");
+    group.throughput(Throughput::Elements(1));
+    group.bench_with_input(BenchmarkId::new("build", n), &lights, |b, l| {
+        b.iter(|| LightBvh::new(black_box(l)).unwrap())
+    });
+    let bvh = LightBvh::new(&lights).unwrap();
+    let picks: Vec<(Vec3, Vec3, usize)> = queries
+        .iter()
+        .map(|&(p, nrm, u)| (p, nrm, bvh.sample(p, nrm, u).map_or(0, |s| s.0)))
+        .collect();
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_with_input(BenchmarkId::new("sample", n), &queries, |b, qs| {
+        b.iter(|| {
+            qs.iter()
+                .map(|&(p, nrm, u)| {
+                    black_box(bvh.sample(black_box(p), nrm, u)).map_or(0.0, |s| s.1)
+                })
+                .sum::<f32>()
+        })
+    });
+    group.bench_with_input(BenchmarkId::new("pmf", n), &picks, |b, ps| {
+        b.iter(|| {
+            ps.iter()
+                .map(|&(p, nrm, i)| black_box(bvh.pmf(black_box(p), nrm, i)))
+                .sum::<f32>()
+        })
+    });
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     config = config();
-    targets = piecewise_1d, alias, piecewise_2d, piecewise_linear_2d, windowed_2d, streaming
+    targets = piecewise_1d, alias, piecewise_2d, piecewise_linear_2d, windowed_2d, streaming, light_bvh
 }
 criterion_main!(benches);

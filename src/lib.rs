@@ -11,6 +11,7 @@
 //! | [`sampling::distribution`] | piecewise-constant 1D and 2D distributions, piecewise-linear (bilinear) 2D, summed-area tables and windowed 2D sampling, the alias table, the inversion method | always |
 //! | [`sampling::jacobian`] | change of variables between measures, numerical Jacobians of any warp | always |
 //! | [`sampling::mis`] | balance and power heuristics | always |
+//! | [`sampling::light_bvh`] | the light BVH: one light among many, chosen by a conservative bound on its contribution at a point | always |
 //! | [`sampling::sampler`] | independent, stratified and low-discrepancy (Sobol, Halton, R2) sample generators | always (Sobol needs `sobol`) |
 #![cfg_attr(
     feature = "stats",

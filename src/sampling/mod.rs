@@ -1,6 +1,7 @@
 //! The sampling core: warps, distributions, change of variables, MIS weights and samplers,
 //! the [`Frame`] that turns directions sampled about `+z` toward any axis, and two streaming
-//! utilities ([`WeightedReservoir`], [`VarianceEstimator`]).
+//! utilities ([`WeightedReservoir`], [`VarianceEstimator`]), and the light BVH that picks one of
+//! many lights ([`light_bvh::LightBvh`]).
 //!
 //! Needs only [`glam`] (and `rand_core` with `rand_pcg` for the independent sampler).
 
@@ -8,6 +9,7 @@ pub mod distribution;
 mod error;
 mod frame;
 pub mod jacobian;
+pub mod light_bvh;
 pub mod mis;
 mod reservoir;
 pub mod sampler;
