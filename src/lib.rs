@@ -91,14 +91,16 @@ pub mod stats;
 // re-exports of it, and the docs show them as such.
 #[doc(no_inline)]
 pub use integrator::{
-    Bdpt, BidirectionalScene, Bsdf, BsdfSample, DirectIntegrator, Integrator, LightSample, Mlt,
-    PathResult, PathTracer, Scene, Strategy, SurfacePoint,
+    Bdpt, BidirectionalScene, Bsdf, BsdfFlags, BsdfSample, DirectIntegrator, Integrator,
+    LightSample, Mlt, PathResult, PathTracer, Scene, Strategy, SurfacePoint,
 };
 #[doc(no_inline)]
 pub use sampling::distribution::{
     AliasTable, Inversion1D, PiecewiseConstant1D, PiecewiseConstant2D, PiecewiseLinear2D,
     SummedAreaTable, WindowedPiecewiseConstant2D,
 };
+#[doc(no_inline)]
+pub use sampling::light_bvh::{LightBounds, LightBvh};
 #[doc(no_inline)]
 pub use sampling::mis::{balance_heuristic, power_heuristic};
 #[doc(no_inline)]
