@@ -179,7 +179,7 @@ fn failure_report_and_images() {
         &observed,
         &expected,
     ] {
-        assert!(report.contains(&needle), "missing {needle}: {report}");
+        assert!(report.contains(needle), "missing {needle}: {report}");
     }
     assert_eq!(o.images.len(), 3);
     for p in &o.images {

@@ -53,7 +53,7 @@ pub fn in_stratum(stratum: u32, offset: f32, count: u32) -> f32 {
 
 /// Element `i` of a random permutation of `0..n` chosen by `key`, without storing it.
 ///
-/// A seeded bijection of the `b`-bit integers (`2^b ≥ n`): [`ROUNDS`] rounds of invertible
+/// A seeded bijection of the `b`-bit integers (`2^b ≥ n`): three rounds of invertible
 /// steps (xor with a round key, multiplication by an odd round key, xorshifts both ways, a
 /// keyed rotation), applied repeatedly until the value falls below `n` ("cycle walking"; the
 /// idea of Kensler 2013, "Correlated Multi-Jittered Sampling", Pixar Technical Memo 13-01),
