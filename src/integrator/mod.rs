@@ -7,6 +7,11 @@
 //! toward the viewer and `wi` toward the light; every directional pdf is per unit solid
 //! angle. Radiance is linear RGB in [`glam::Vec3`].
 //!
+//! A renderer tests its scene's densities, as the bidirectional estimators' weights see
+//! them, with [`Bdpt::check_mis_weights`]: on random paths the weights of all strategies must
+//! sum to 1 and the estimator's own weights must equal those recomputed from the `pdf`
+//! methods alone (a `pdf` that disagrees with its sampling routine fails).
+//!
 //! ```
 //! use mcrt::integrator::{PathTracer, Strategy};
 //!
@@ -23,7 +28,9 @@ mod strategy;
 mod traits;
 
 use crate::sampling::sampler::SampleSource;
-pub use bdpt::{Bdpt, BdptBuffers, Splat, StrategyStats};
+pub use bdpt::{
+    Bdpt, BdptBuffers, MisWeightCheck, MisWeightOutcome, MisWeightStrategy, Splat, StrategyStats,
+};
 pub use bidirectional::{BidirectionalScene, CameraConnection, EmissionSample, EmitterKind};
 pub use direct::DirectIntegrator;
 pub use mlt::{brightness as mlt_brightness, Mlt, MltChain, MltPath, PrimarySamples};

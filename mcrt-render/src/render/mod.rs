@@ -46,7 +46,9 @@ use crate::geometry::Geometry;
 use crate::light::Lights;
 use glam::{Vec3, Vec4Swizzles};
 use material::Material;
-use mcrt::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
+use mcrt::integrator::{
+    Bdpt, DirectIntegrator, Integrator, MisWeightCheck, MisWeightOutcome, Mlt, PathTracer, Strategy,
+};
 use mcrt::sampling::sampler::{
     AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, Sobol4dSampler,
     SobolSampler, StratifiedSampler,
@@ -410,6 +412,31 @@ impl Renderer {
     /// The integrator (with the strategy in use).
     pub fn integrator(&self) -> &Integrator {
         &self.integrator
+    }
+
+    /// Checks the multiple-importance weights of `bdpt` on this scene as the bidirectional
+    /// estimators see it (materials, lights, the camera and the pixel filter's coverage):
+    /// [`Bdpt::check_mis_weights`], a test of the scene's densities. The scene is the
+    /// general render loop's (every material type, point lights and the environment handled
+    /// at run time).
+    ///
+    /// ```
+    /// use mcrt::integrator::{Bdpt, MisWeightCheck};
+    /// use mcrt_render::render::{RenderOptions, Renderer};
+    ///
+    /// let desc = mcrt_render::cornell_box::cornell_box_with(1, 16, -1);
+    /// let r = Renderer::new(&desc, &RenderOptions::default())?;
+    /// let check = MisWeightCheck { paths: 50, ..MisWeightCheck::default() };
+    /// r.check_mis_weights(&Bdpt::default(), &check).assert_passed();
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn check_mis_weights(&self, bdpt: &Bdpt, check: &MisWeightCheck) -> MisWeightOutcome {
+        match &self.textured {
+            Some(textured) => {
+                bdpt.check_mis_weights(&self.view::<_, true, true>(textured.clone()), check)
+            }
+            None => bdpt.check_mis_weights(&self.view::<_, true, true>(self.bsdfs.clone()), check),
+        }
     }
 
     /// Renders the sample range and crop; `progress(done, total)` is called with sample

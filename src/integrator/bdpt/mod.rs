@@ -5,20 +5,18 @@
 //! Rendering Workshop; Veach 1997, thesis, chapter 10. `docs/renderer.md`, "Bidirectional
 //! path tracing", has the measures and the weight recurrence.
 
+mod check;
 mod connect;
 mod stats;
 mod vertex;
 mod walk;
 
+pub use check::{MisWeightCheck, MisWeightOutcome, MisWeightStrategy};
 pub use stats::StrategyStats;
 
 use super::{BidirectionalScene, PathResult, SampleSource, Strategy};
-#[cfg(any())] // TODO(helper): the BDPT weight check
-pub(crate) use connect::mis_weight;
 pub(crate) use connect::{connect, Heuristic};
 use glam::{Vec2, Vec3};
-#[cfg(any())] // TODO(helper): the BDPT weight check
-pub(crate) use vertex::Kind;
 pub(crate) use vertex::Vertex;
 pub(crate) use walk::{camera_subpath, light_subpath, WalkLimits};
 

@@ -232,8 +232,8 @@ impl Vertex {
 
     /// Density per unit area with which this vertex, reached from `prev`, samples `next`;
     /// an emitting surface with no `prev` (the end of a camera subpath) samples by emission.
-    /// (The estimators use `pdf_along` with known directions; the tests use this.)
-    #[cfg(any())] // TODO(helper): the BDPT weight check
+    /// (The estimators use `pdf_along` with known directions; `Bdpt::check_mis_weights`
+    /// recomputes every density of a path from scratch with this.)
     pub(crate) fn pdf<S: BidirectionalScene>(
         &self,
         scene: &S,
@@ -272,7 +272,6 @@ impl Vertex {
 
     /// Density per unit area at `next` of the emission direction of this light (or
     /// emitting surface) toward it.
-    #[cfg(any())] // TODO(helper): the BDPT weight check
     pub(crate) fn pdf_light<S: BidirectionalScene>(&self, scene: &S, next: &Vertex) -> f32 {
         let (w, d2) = self.dir_to(next);
         self.pdf_light_along(scene, next, w, d2)
