@@ -40,6 +40,7 @@ pub mod cornell_box;
 pub mod description;
 pub mod film;
 pub mod geometry;
+pub mod io;
 pub mod light;
 pub mod loader;
 pub mod mesh_file;

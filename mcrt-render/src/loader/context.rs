@@ -112,7 +112,7 @@ impl<'a> Ctx<'a> {
         if name.is_empty() {
             return Err(io_err("empty file name".into()));
         }
-        let mut f = super::file::open_regular(&path).map_err(|x| io_err(x.to_string()))?;
+        let mut f = crate::io::open_regular(&path).map_err(|x| io_err(x.to_string()))?;
         if let Some(magic) = magic {
             let mut head = vec![0u8; magic.len()];
             f.read_exact(&mut head)

@@ -39,7 +39,7 @@ impl Reader<'_> {
         if name.is_empty() {
             return Err(self.err(e, io("empty file name".into())));
         }
-        let bytes = super::file::read_capped(&path, super::MAX_SCENE_BYTES)
+        let bytes = crate::io::read_capped(&path, crate::io::MAX_SCENE_BYTES)
             .map_err(|x| self.err(e, io(x.to_string())))?;
         let key = canonical(&path);
         if self.stack.contains(&key) {

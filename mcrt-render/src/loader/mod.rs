@@ -33,7 +33,6 @@ mod cie_tables;
 mod context;
 mod emitter;
 mod error;
-mod file;
 mod include;
 mod integrator;
 mod params;
@@ -48,9 +47,9 @@ mod transform;
 mod tree;
 mod values;
 
+use crate::io::read_capped;
+pub use crate::io::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};
 pub use error::{SceneError, SceneErrorKind};
-pub(crate) use file::read_capped;
-pub use file::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};
 pub use transform::look_at;
 
 use crate::description::SceneDescription;

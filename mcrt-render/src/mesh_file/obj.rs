@@ -15,10 +15,10 @@ use std::collections::HashMap;
 use std::path::Path;
 
 /// Reads the OBJ file at `path`, a regular file of at most
-/// [`MAX_OBJ_BYTES`](crate::loader::MAX_OBJ_BYTES). Errors name the file and the
+/// [`MAX_OBJ_BYTES`](crate::io::MAX_OBJ_BYTES). Errors name the file and the
 /// line. Normals (or texture coordinates) are empty when some face corner has none.
 pub fn read_obj(path: &Path) -> Result<ObjMesh, SceneError> {
-    let text = crate::loader::read_capped(path, crate::loader::MAX_OBJ_BYTES)
+    let text = crate::io::read_capped(path, crate::io::MAX_OBJ_BYTES)
         .map_err(|e| SceneError::io(path, &e))?;
     parse_obj(&String::from_utf8_lossy(&text), Some(path))
 }
