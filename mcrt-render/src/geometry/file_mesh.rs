@@ -20,7 +20,7 @@ pub(super) fn build(
     base_dir: Option<&Path>,
 ) -> Option<Result<MeshData, GeometryError>> {
     let path = |f: &PathBuf| base_dir.map_or_else(|| f.clone(), |b| b.join(f));
-    let failed = |e: crate::loader::SceneError| GeometryError::MeshFile {
+    let failed = |e: crate::scene_error::SceneError| GeometryError::MeshFile {
         shape: i,
         message: e.to_string(),
     };

@@ -1,8 +1,8 @@
 //! Shared state of one load: the file name for messages, the folder relative paths are
 //! resolved against, and the objects that carry an `id`.
 
-use super::error::{SceneError, SceneErrorKind};
 use super::tree::Elem;
+use crate::scene_error::{SceneError, SceneErrorKind};
 use crate::texture::Image;
 use std::cell::RefCell;
 use std::collections::HashMap;

@@ -1,10 +1,10 @@
 //! `<include filename="…"/>`: the children of another scene file's `<scene>` in place of
 //! the element, read with the parameters known so far, as Mitsuba 3 does.
 
-use super::error::{SceneError, SceneErrorKind};
 use super::params::Params;
 use super::position::Positions;
 use super::tree::{check_version, prescan, Elem, Reader};
+use crate::scene_error::{SceneError, SceneErrorKind};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 

@@ -32,7 +32,6 @@ mod bsdf;
 mod cie_tables;
 mod context;
 mod emitter;
-mod error;
 mod include;
 mod integrator;
 mod params;
@@ -49,8 +48,8 @@ mod values;
 
 use crate::io::read_capped;
 pub use crate::io::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};
-pub use error::{SceneError, SceneErrorKind};
-pub use transform::look_at;
+pub use crate::scene_error::{SceneError, SceneErrorKind};
+pub use crate::transform::look_at;
 
 use crate::description::SceneDescription;
 use context::{Ctx, Res};

@@ -3,9 +3,9 @@
 //! value in document order, and putting the contents of each `<include filename>`d scene
 //! in its place, as Mitsuba 3 does.
 
-use super::error::{clip, SceneError, SceneErrorKind};
 use super::params::{Params, SubstError};
 use super::position::Positions;
+use crate::scene_error::{clip, SceneError, SceneErrorKind};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 

@@ -14,7 +14,7 @@ mod ply_binary;
 mod ply_binary_tests;
 pub mod serialized;
 
-use crate::loader::{SceneError, SceneErrorKind};
+use crate::scene_error::{SceneError, SceneErrorKind};
 use glam::{Vec2, Vec3};
 use std::path::Path;
 

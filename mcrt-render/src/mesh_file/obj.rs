@@ -8,8 +8,8 @@
 //! Texture coordinates are kept as the file gives them; the `obj` shape flips `v` to
 //! `1 − v` unless `flip_tex_coords` is false, as Mitsuba does.
 
-use crate::loader::{SceneError, SceneErrorKind};
 pub use crate::mesh_file::TriangleMesh as ObjMesh;
+use crate::scene_error::{SceneError, SceneErrorKind};
 use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::Path;
