@@ -8,5 +8,5 @@ mod file;
 
 pub(crate) use exr::err;
 pub use exr::{read_exr, read_exr_at_most, ImageError};
-pub(crate) use file::{open_regular, read_capped};
+pub(crate) use file::{canonical, open_regular, read_capped};
 pub use file::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};

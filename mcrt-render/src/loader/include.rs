@@ -4,17 +4,13 @@
 use super::params::Params;
 use super::position::Positions;
 use super::tree::{check_version, prescan, Elem, Reader};
+use crate::io::canonical;
 use crate::scene_error::{SceneError, SceneErrorKind};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 /// Deepest chain of `<include>`s (a file that includes itself is refused before this).
 const MAX_INCLUDE_DEPTH: usize = 16;
-
-/// A path made absolute and free of `..` where the file system allows, for cycle checks.
-pub(super) fn canonical(p: &Path) -> PathBuf {
-    std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf())
-}
 
 impl Reader<'_> {
     /// `<include filename>`: the children of the named file's `<scene>`, read with the

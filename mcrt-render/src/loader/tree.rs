@@ -95,7 +95,7 @@ pub(crate) fn read_tree(
             .and_then(Path::parent)
             .map(Path::to_path_buf)
             .unwrap_or_default(),
-        stack: file.map(super::include::canonical).into_iter().collect(),
+        stack: file.map(crate::io::canonical).into_iter().collect(),
         params: Params::new(defines),
     };
     let root = reader.convert(doc.root_element(), 0)?;
