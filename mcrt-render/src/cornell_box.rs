@@ -5,7 +5,7 @@ use crate::description::{
     AreaEmitterDesc, BsdfDesc, FilmDesc, FilterDesc, FovAxis, IntegratorDesc, SamplerDesc,
     SamplerKind, SceneDescription, SensorDesc, ShapeDesc, ShapeKind,
 };
-use crate::loader::look_at;
+use crate::transform::look_at;
 use glam::{Mat4, Vec3};
 
 /// The Cornell box with the file's defaults: 64 samples per pixel, 256 × 256 pixels,

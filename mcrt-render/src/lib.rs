@@ -12,23 +12,28 @@
 //! cargo run --release --bin render -- scene.xml --spp 256
 //! ```
 //!
-//! One home per job; dependencies run down this list (lights use the geometry, the renderer
-//! uses both; the library `mcrt` knows nothing of this crate):
+//! One home per job; dependencies run down this list: a module imports only modules above
+//! it (lights use the geometry, the renderer uses both; the library `mcrt` knows nothing of
+//! this crate):
 //!
 //! | module | its job |
 //! |---|---|
+//! | [`io`] | reading files from users: regular files only, at most so many bytes; EXR images with a bound on their pixels |
+//! | [`scene_error`] | the scene error type, located by file, line, column and element ([`scene_error::SceneError`]) |
+//! | [`transform`] | matrices that place things: Mitsuba 3's [`transform::look_at`] |
+//! | [`texture`] | `bitmap` and `checkerboard` textures: image decoding, filtering, wrapping |
 //! | [`description`] | what a scene file says, as plain data ([`description::SceneDescription`]) |
-//! | [`loader`] | Mitsuba 3 XML → description, with located errors; [`validate`] its limits |
+//! | [`cornell_box`] | the built-in scene, as a description |
+//! | [`bsdf`] | materials, built from their descriptions |
+//! | [`validate`] | the limits a description must keep, shared by the loader and the renderer |
+//! | [`loader`] | Mitsuba 3 XML → description, with located errors |
 //! | [`mesh_file`] | OBJ, PLY and `serialized` meshes → one triangle-mesh type |
 //! | [`accel`] | acceleration structures over bounding boxes, knowing nothing of primitives |
-//! | [`geometry`] | shapes in world space: ray queries (`geometry/query/`: the one switch over backends), shape sampling (`geometry/sample/`: one sampler per shape), ray offsets |
-//! | [`bsdf`] | materials |
-//! | [`texture`] | `bitmap` and `checkerboard` textures: image decoding, filtering, wrapping |
+//! | [`geometry`] | shapes in world space: their data (`geometry/data.rs`), ray queries (`geometry/query/`: the one switch over backends), shape sampling (`geometry/sample/`: one sampler per shape), ray offsets |
 //! | [`light`] | emitters, the choice among them, and next-event and emission sampling through the geometry's shape samplers |
-//! | [`camera`] | the pinhole camera |
-//! | [`film`] | pixel filters, accumulation, image files, comparison with references |
+//! | [`camera`] | the pinhole and thin-lens cameras |
+//! | [`film`] | pixel filters, accumulation, image files written, comparison with references |
 //! | [`render`] | the tiled render loop that runs the integrators on a scene |
-//! | [`cornell_box`] | the built-in scene |
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 #![deny(rustdoc::broken_intra_doc_links)]
@@ -40,9 +45,12 @@ pub mod cornell_box;
 pub mod description;
 pub mod film;
 pub mod geometry;
+pub mod io;
 pub mod light;
 pub mod loader;
 pub mod mesh_file;
 pub mod render;
+pub mod scene_error;
 pub mod texture;
+pub mod transform;
 pub mod validate;

@@ -1,36 +1,17 @@
 //! A bounding volume hierarchy built with the binned surface area heuristic, flattened in
 //! depth-first order.
 //!
-//! Build: at every node the centroids are binned into [`BINS`] bins along each of the three
+//! Build: at every node the centroids are binned into [`BINS`](super::bvh_node::BINS) bins along each of the three
 //! axes and the split with the least SAH cost (traversal cost 1, intersection cost 1 per
 //! primitive) is taken (Wald 2007, "On fast Construction of SAH-based Bounding Volume
 //! Hierarchies", IEEE Symposium on Interactive Ray Tracing). A node with at most
-//! [`MAX_LEAF`] primitives becomes a leaf when that is no costlier than its best split.
+//! [`MAX_LEAF`](super::bvh_node::MAX_LEAF) primitives becomes a leaf when that is no costlier than its best split.
 //! Nodes store their boxes padded by a relative 2⁻²⁰ ([`Aabb::padded`]). Rays traverse the
 //! 4-wide tree collapsed from this one ([`super::Bvh4`]), not this binary tree.
 
 use super::aabb::Aabb;
+use super::bvh_node::Node;
 use glam::Vec3A;
-
-/// Number of SAH bins per axis.
-pub(crate) const BINS: usize = 16;
-/// Largest number of primitives in a leaf.
-pub(crate) const MAX_LEAF: usize = 4;
-/// Depth beyond which the build splits at the median, so the traversal stack stays bounded.
-pub(super) const MEDIAN_DEPTH: u32 = 36;
-
-/// A flattened node: 48 bytes (bounds in SIMD lanes).
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Node {
-    pub(super) min: Vec3A,
-    pub(super) max: Vec3A,
-    /// Leaf: first primitive. Interior: index of the second child (the first is `self + 1`).
-    pub(super) offset: u32,
-    /// Number of primitives (0 for an interior node).
-    pub(super) count: u16,
-    /// Split axis of an interior node (kept for diagnostics).
-    pub(super) axis: u16,
-}
 
 /// A BVH over primitives given by their bounds. The primitives must be stored in the order
 /// [`Bvh::order`] reports, so that a leaf covers a contiguous range of them.
@@ -106,6 +87,7 @@ impl Bvh {
 
 #[cfg(test)]
 mod tests {
+    use super::super::bvh_node::MAX_LEAF;
     use super::*;
     use glam::Vec3;
 

@@ -14,7 +14,7 @@
 //! same tree as folding them per node.
 
 use super::aabb::Aabb;
-use super::bvh::{Node, BINS, MAX_LEAF, MEDIAN_DEPTH};
+use super::bvh_node::{Node, BINS, MAX_LEAF, MEDIAN_DEPTH};
 use glam::Vec3A;
 
 /// Subtrees over at least this many primitives are built in parallel.

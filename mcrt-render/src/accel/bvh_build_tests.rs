@@ -3,7 +3,8 @@
 //! binning pass per axis), for any number of threads, and it is a valid hierarchy.
 
 use super::aabb::Aabb;
-use super::bvh::{Bvh, Node, BINS, MAX_LEAF, MEDIAN_DEPTH};
+use super::bvh::Bvh;
+use super::bvh_node::{Node, BINS, MAX_LEAF, MEDIAN_DEPTH};
 use glam::{Vec3, Vec3A};
 use rand_core::{RngCore, SeedableRng};
 use rand_pcg::Pcg64;

@@ -33,6 +33,7 @@ mod bvh4;
 mod bvh_build;
 #[cfg(test)]
 mod bvh_build_tests;
+mod bvh_node;
 mod grid;
 mod kdtree;
 mod traverse;

@@ -9,7 +9,7 @@ use super::principled_lobes::{
     clearcoat_alpha, gtr1_d, gtr1_sample, r0_of_eta, schlick, schlick_weight, smith_g1_isotropic,
     AnisoGgx,
 };
-use super::principled_params::PrincipledParams;
+use crate::description::PrincipledParams;
 use glam::{Vec2, Vec3};
 use mcrt::integrator::{is_positive, Bsdf, BsdfFlags, BsdfSample};
 use mcrt::sampling::warp::{CosineHemisphere, Warp};

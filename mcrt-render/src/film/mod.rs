@@ -12,19 +12,20 @@
 
 mod compare;
 mod filter;
-mod io;
 mod merge;
 mod output;
 mod part;
 mod window;
+mod write;
 
+pub use crate::io::{read_exr, read_exr_at_most, ImageError};
 pub use compare::{compare_blocks, z_two_sided, BlockReport};
 pub use filter::PixelFilter;
-pub use io::{read_exr, read_exr_at_most, write_exr, write_png, ImageError};
 pub use merge::{merge_parts, MergeError};
 pub use output::{OutputError, OutputPlan, DEFAULT_FOLDER, EXIT_INTERRUPTED};
 pub use part::{read_part, write_part, Part, PartInfo};
 pub use window::{Crop, SampleRange, WindowError};
+pub use write::{write_exr, write_png};
 
 use glam::Vec3;
 

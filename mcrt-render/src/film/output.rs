@@ -6,9 +6,10 @@
 //! written atomically (see [`write_exr`]), and an interrupted render writes
 //! `NAME.partial.exr` / `NAME.partial.png` instead of replacing a complete image.
 
-use super::io::{write_exr, write_png, ImageError};
 use super::part::{write_part, PartInfo};
+use super::write::{write_exr, write_png};
 use super::Film;
+use crate::io::ImageError;
 use glam::Vec3;
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -3,9 +3,10 @@
 //! `render --samples START..END` and `--crop x0,y0,x1,y1` write one; the `merge` example
 //! reads them back.
 
-use super::io::{err, write_atomically, ImageError};
 use super::window::{Crop, SampleRange};
+use super::write::write_atomically;
 use super::{Film, PixelAccum};
+use crate::io::{err, ImageError};
 use std::path::{Path, PathBuf};
 
 /// The version written as `mcrt.part`.

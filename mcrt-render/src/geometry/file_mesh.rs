@@ -2,7 +2,7 @@
 //! world space, and given Mitsuba's vertex normals (the file's, transformed; else smooth
 //! normals computed from the faces; none with `face_normals`).
 
-use super::build::{mesh, smooth_normals, MeshData};
+use super::data::{mesh, MeshData};
 use super::error::GeometryError;
 use crate::description::ShapeKind;
 use crate::mesh_file::obj::read_obj;
@@ -20,7 +20,7 @@ pub(super) fn build(
     base_dir: Option<&Path>,
 ) -> Option<Result<MeshData, GeometryError>> {
     let path = |f: &PathBuf| base_dir.map_or_else(|| f.clone(), |b| b.join(f));
-    let failed = |e: crate::loader::SceneError| GeometryError::MeshFile {
+    let failed = |e: crate::scene_error::SceneError| GeometryError::MeshFile {
         shape: i,
         message: e.to_string(),
     };
@@ -89,4 +89,24 @@ fn world_mesh(
         file.uvs
     };
     Ok(out)
+}
+
+/// Vertex normals as the angle-weighted mean of the adjacent face normals (what Mitsuba
+/// computes for meshes without normals unless `face_normals` is set). Vertices on no
+/// face of nonzero area get a zero normal, which hit shading replaces by `ng`.
+fn smooth_normals(pos: &[Vec3], indices: &[[u32; 3]]) -> Vec<Vec3> {
+    let mut acc = vec![Vec3::ZERO; pos.len()];
+    for t in indices {
+        let p = t.map(|v| pos.get(v as usize).copied().unwrap_or(Vec3::ZERO));
+        let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+        for k in 0..3 {
+            let e1 = (p[(k + 1) % 3] - p[k]).normalize_or_zero();
+            let e2 = (p[(k + 2) % 3] - p[k]).normalize_or_zero();
+            let angle = e1.dot(e2).clamp(-1.0, 1.0).acos();
+            if let Some(a) = acc.get_mut(t[k] as usize) {
+                *a += n * angle;
+            }
+        }
+    }
+    acc.into_iter().map(Vec3::normalize_or_zero).collect()
 }

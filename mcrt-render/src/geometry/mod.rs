@@ -49,6 +49,7 @@
 //! ```
 
 mod build;
+mod data;
 mod error;
 mod file_mesh;
 mod offset;
@@ -64,7 +65,7 @@ pub use sample::ShapeSampling;
 
 use crate::accel::Aabb;
 use crate::description::ShapeDesc;
-use build::{Prim, PrimId, ShapeData};
+use data::{Prim, PrimId, ShapeData};
 use glam::{Vec2, Vec3, Vec3A};
 use mcrt::integrator::SurfacePoint;
 use mcrt::sampling::Frame;

@@ -1,6 +1,6 @@
 //! Per-vertex attributes of mesh hits beyond the shading normal: texture coordinates.
 
-use super::build::ShapeData;
+use super::data::ShapeData;
 use super::Geometry;
 use glam::Vec2;
 use mcrt::integrator::SurfacePoint;

@@ -3,7 +3,7 @@
 //! [`PiecewiseLinear2D`] through the same interpolation vertices, so the density follows the
 //! bilinear luminance (times a per-row `sin θ`) rather than a piecewise-constant bound on it.
 
-use crate::film::read_exr_at_most;
+use crate::io::read_exr_at_most;
 use crate::texture::MAX_TEXTURE_PIXELS;
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use mcrt::integrator::is_positive;

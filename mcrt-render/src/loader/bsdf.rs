@@ -3,13 +3,13 @@
 //! declared elsewhere.
 
 use super::context::{Ctx, Res};
-use super::error::SceneErrorKind;
 use super::props::{Props, Value};
 use super::texture;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::bsdf::named_conductor;
 use crate::description::{BsdfDesc, ConductorFresnel, MicrofacetKind, TextureParam};
+use crate::scene_error::SceneErrorKind;
 use crate::validate::{self, MIN_ROUGHNESS};
 use glam::Vec3;
 

@@ -1,8 +1,8 @@
 //! Shared state of one load: the file name for messages, the folder relative paths are
 //! resolved against, and the objects that carry an `id`.
 
-use super::error::{SceneError, SceneErrorKind};
 use super::tree::Elem;
+use crate::scene_error::{SceneError, SceneErrorKind};
 use crate::texture::Image;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -112,7 +112,7 @@ impl<'a> Ctx<'a> {
         if name.is_empty() {
             return Err(io_err("empty file name".into()));
         }
-        let mut f = super::file::open_regular(&path).map_err(|x| io_err(x.to_string()))?;
+        let mut f = crate::io::open_regular(&path).map_err(|x| io_err(x.to_string()))?;
         if let Some(magic) = magic {
             let mut head = vec![0u8; magic.len()];
             f.read_exact(&mut head)

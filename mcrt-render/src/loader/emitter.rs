@@ -2,12 +2,12 @@
 //! `envmap`.
 
 use super::context::{Ctx, Res};
-use super::error::SceneErrorKind;
 use super::props::Props;
 use super::spectrum::SpectrumUse;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::description::{AreaEmitterDesc, EmitterDesc};
+use crate::scene_error::SceneErrorKind;
 use crate::validate;
 use glam::{Mat4, Vec3};
 

@@ -1,20 +1,16 @@
 //! `<include filename="…"/>`: the children of another scene file's `<scene>` in place of
 //! the element, read with the parameters known so far, as Mitsuba 3 does.
 
-use super::error::{SceneError, SceneErrorKind};
 use super::params::Params;
 use super::position::Positions;
 use super::tree::{check_version, prescan, Elem, Reader};
-use std::path::{Path, PathBuf};
+use crate::io::canonical;
+use crate::scene_error::{SceneError, SceneErrorKind};
+use std::path::Path;
 use std::sync::Arc;
 
 /// Deepest chain of `<include>`s (a file that includes itself is refused before this).
 const MAX_INCLUDE_DEPTH: usize = 16;
-
-/// A path made absolute and free of `..` where the file system allows, for cycle checks.
-pub(super) fn canonical(p: &Path) -> PathBuf {
-    std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf())
-}
 
 impl Reader<'_> {
     /// `<include filename>`: the children of the named file's `<scene>`, read with the
@@ -39,7 +35,7 @@ impl Reader<'_> {
         if name.is_empty() {
             return Err(self.err(e, io("empty file name".into())));
         }
-        let bytes = super::file::read_capped(&path, super::MAX_SCENE_BYTES)
+        let bytes = crate::io::read_capped(&path, crate::io::MAX_SCENE_BYTES)
             .map_err(|x| self.err(e, io(x.to_string())))?;
         let key = canonical(&path);
         if self.stack.contains(&key) {

@@ -1,11 +1,11 @@
 //! `<integrator>`: `path`, `direct`, `bdpt` and `mlt`.
 
 use super::context::{Ctx, Res};
-use super::error::SceneErrorKind;
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type};
 use crate::description::IntegratorDesc;
+use crate::scene_error::SceneErrorKind;
 
 /// Reads an `<integrator>` element.
 pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<IntegratorDesc> {

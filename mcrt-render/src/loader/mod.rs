@@ -32,8 +32,6 @@ mod bsdf;
 mod cie_tables;
 mod context;
 mod emitter;
-mod error;
-mod file;
 mod include;
 mod integrator;
 mod params;
@@ -48,10 +46,10 @@ mod transform;
 mod tree;
 mod values;
 
-pub use error::{SceneError, SceneErrorKind};
-pub(crate) use file::read_capped;
-pub use file::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};
-pub use transform::look_at;
+use crate::io::read_capped;
+pub use crate::io::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};
+pub use crate::scene_error::{SceneError, SceneErrorKind};
+pub use crate::transform::look_at;
 
 use crate::description::SceneDescription;
 use context::{Ctx, Res};

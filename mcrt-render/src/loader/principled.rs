@@ -3,8 +3,8 @@
 use super::context::Res;
 use super::props::Props;
 use super::tree::Elem;
-use crate::bsdf::{PrincipledParams, MAX_SPECULAR};
 use crate::description::BsdfDesc;
+use crate::description::{PrincipledParams, MAX_SPECULAR};
 
 /// Reads the parameters of a `principled` BSDF (Mitsuba 3.9's names and defaults), with
 /// `eta` or `specular` (not both) for the index; the ranges are checked by the caller's

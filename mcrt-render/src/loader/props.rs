@@ -3,11 +3,11 @@
 //! (Mitsuba 3 does the same with its "unreferenced property" check).
 
 use super::context::{Ctx, Res};
-use super::error::SceneErrorKind;
 use super::spectrum::{Spectrum, SpectrumUse};
 use super::transform::{check_attrs, read_transform, xyz};
 use super::tree::Elem;
 use super::values::{parse_bool, parse_float, parse_int, parse_triple};
+use crate::scene_error::SceneErrorKind;
 use glam::{Mat4, Vec3};
 use std::collections::HashMap;
 
@@ -106,7 +106,12 @@ impl<'c, 'a> Props<'c, 'a> {
     }
 
     /// A wrong-type error for parameter `name` given by element `e`.
-    pub fn wrong(&self, e: &Elem, name: &str, expected: &'static str) -> super::error::SceneError {
+    pub fn wrong(
+        &self,
+        e: &Elem,
+        name: &str,
+        expected: &'static str,
+    ) -> crate::scene_error::SceneError {
         self.ctx.err(
             e,
             SceneErrorKind::WrongType {
@@ -118,7 +123,7 @@ impl<'c, 'a> Props<'c, 'a> {
     }
 
     /// An error about the value of parameter `name` (or the plugin, if it is absent).
-    pub fn invalid(&self, name: &str, owner: &Elem, msg: &str) -> super::error::SceneError {
+    pub fn invalid(&self, name: &str, owner: &Elem, msg: &str) -> crate::scene_error::SceneError {
         let e = self.index.get(name).map_or(owner, |&i| self.props[i].elem);
         self.ctx
             .err(e, SceneErrorKind::InvalidValue(format!("\"{name}\" {msg}")))

@@ -2,13 +2,13 @@
 //! `<rfilter>`.
 
 use super::context::{Ctx, Res};
-use super::error::SceneErrorKind;
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::description::{
     CropWindow, FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc, ThinLensDesc,
 };
+use crate::scene_error::SceneErrorKind;
 use crate::validate::{self, MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
 
 /// Largest accepted film side, in pixels (the area is bounded by [`MAX_FILM_PIXELS`]).

@@ -4,11 +4,11 @@
 use super::bsdf::read_bsdf_or_ref;
 use super::context::{Ctx, Res};
 use super::emitter::read_area;
-use super::error::SceneErrorKind;
 use super::props::Props;
 use super::tree::Elem;
 use super::{plugin_type, unknown_plugin};
 use crate::description::{BsdfDesc, ShapeDesc, ShapeKind};
+use crate::scene_error::SceneErrorKind;
 use crate::validate;
 use glam::Vec3;
 

@@ -2,11 +2,11 @@
 //! the textures a BSDF's parameters name (nested, or `<ref name="…" id="…"/>`).
 
 use super::context::{Ctx, Res};
-use super::error::SceneErrorKind;
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::description::BsdfDesc;
+use crate::scene_error::SceneErrorKind;
 use crate::texture::{
     read_image, uv_transform, Bitmap, Checkerboard, FilterType, Texture, TextureParam, WrapMode,
 };
@@ -169,7 +169,7 @@ pub(crate) fn stand_in(t: &Texture) -> Vec3 {
 }
 
 /// The error for a texture in a place that takes none.
-pub(crate) fn not_here(ctx: &Ctx, o: &Elem) -> super::error::SceneError {
+pub(crate) fn not_here(ctx: &Ctx, o: &Elem) -> crate::scene_error::SceneError {
     let what = match o.attr("name") {
         Some(n) => format!("a texture for \"{n}\""),
         None => "a texture".into(),

@@ -3,9 +3,9 @@
 //! value in document order, and putting the contents of each `<include filename>`d scene
 //! in its place, as Mitsuba 3 does.
 
-use super::error::{clip, SceneError, SceneErrorKind};
 use super::params::{Params, SubstError};
 use super::position::Positions;
+use crate::scene_error::{clip, SceneError, SceneErrorKind};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -95,7 +95,7 @@ pub(crate) fn read_tree(
             .and_then(Path::parent)
             .map(Path::to_path_buf)
             .unwrap_or_default(),
-        stack: file.map(super::include::canonical).into_iter().collect(),
+        stack: file.map(crate::io::canonical).into_iter().collect(),
         params: Params::new(defines),
     };
     let root = reader.convert(doc.root_element(), 0)?;

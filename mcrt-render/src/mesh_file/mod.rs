@@ -14,7 +14,7 @@ mod ply_binary;
 mod ply_binary_tests;
 pub mod serialized;
 
-use crate::loader::{SceneError, SceneErrorKind};
+use crate::scene_error::{SceneError, SceneErrorKind};
 use glam::{Vec2, Vec3};
 use std::path::Path;
 
@@ -93,7 +93,7 @@ pub(crate) fn push_fan(indices: &mut Vec<[u32; 3]>, corners: &[u32]) {
 /// The contents of the mesh file at `path` (a regular file of at most
 /// [`MAX_MESH_BYTES`]), or an error naming it.
 pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, SceneError> {
-    crate::loader::read_capped(path, MAX_MESH_BYTES).map_err(|e| SceneError::io(path, &e))
+    crate::io::read_capped(path, MAX_MESH_BYTES).map_err(|e| SceneError::io(path, &e))
 }
 
 /// An error in mesh file `path` at an optional line and place (`element`), of `kind`.

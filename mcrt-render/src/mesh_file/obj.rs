@@ -8,17 +8,17 @@
 //! Texture coordinates are kept as the file gives them; the `obj` shape flips `v` to
 //! `1 − v` unless `flip_tex_coords` is false, as Mitsuba does.
 
-use crate::loader::{SceneError, SceneErrorKind};
 pub use crate::mesh_file::TriangleMesh as ObjMesh;
+use crate::scene_error::{SceneError, SceneErrorKind};
 use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::Path;
 
 /// Reads the OBJ file at `path`, a regular file of at most
-/// [`MAX_OBJ_BYTES`](crate::loader::MAX_OBJ_BYTES). Errors name the file and the
+/// [`MAX_OBJ_BYTES`](crate::io::MAX_OBJ_BYTES). Errors name the file and the
 /// line. Normals (or texture coordinates) are empty when some face corner has none.
 pub fn read_obj(path: &Path) -> Result<ObjMesh, SceneError> {
-    let text = crate::loader::read_capped(path, crate::loader::MAX_OBJ_BYTES)
+    let text = crate::io::read_capped(path, crate::io::MAX_OBJ_BYTES)
         .map_err(|e| SceneError::io(path, &e))?;
     parse_obj(&String::from_utf8_lossy(&text), Some(path))
 }

@@ -14,7 +14,7 @@
 
 use super::ply_binary::{scalar_size, ItemError, Payload};
 use super::{error, push_fan, read_file, TriangleMesh};
-use crate::loader::{SceneError, SceneErrorKind};
+use crate::scene_error::{SceneError, SceneErrorKind};
 use glam::{Vec2, Vec3};
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{

@@ -13,7 +13,7 @@
 //! `u32` count, which `shape_index` looks up.
 
 use super::{error, read_file, TriangleMesh};
-use crate::loader::{SceneError, SceneErrorKind};
+use crate::scene_error::{SceneError, SceneErrorKind};
 use flate2::read::ZlibDecoder;
 use glam::{Vec2, Vec3};
 use std::io::Read;

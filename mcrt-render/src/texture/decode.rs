@@ -27,11 +27,11 @@ pub fn srgb_to_linear(x: f32) -> f32 {
 /// Reads the image at `path`; `raw` skips the sRGB curve of PNG and JPEG files. The error
 /// says what is wrong with the file (the caller names it).
 pub fn read_image(path: &Path, raw: bool) -> Result<Image, String> {
-    let bytes = crate::loader::read_capped(path, MAX_FILE_BYTES).map_err(|e| e.to_string())?;
+    let bytes = crate::io::read_capped(path, MAX_FILE_BYTES).map_err(|e| e.to_string())?;
     if bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
         drop(bytes);
         let (w, h, px) =
-            crate::film::read_exr_at_most(path, MAX_TEXTURE_PIXELS).map_err(|e| e.to_string())?;
+            crate::io::read_exr_at_most(path, MAX_TEXTURE_PIXELS).map_err(|e| e.to_string())?;
         check_size(u64::from(w), u64::from(h))?;
         return Image::new(w, h, px).ok_or_else(|| "an empty image".to_string());
     }

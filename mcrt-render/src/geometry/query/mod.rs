@@ -12,12 +12,12 @@
 mod packed_bvh;
 mod pairing;
 mod quad4;
-mod scalar;
+pub(super) mod scalar;
 mod tri4;
 
 pub(crate) use scalar::TriSoa;
 
-use super::build::{Built, Prim, ShapeData};
+use super::data::{Built, Prim, ShapeData};
 use super::Ray;
 use crate::accel::{Aabb, Accel, AccelKind, Bvh4};
 use packed_bvh::PackedBvh;

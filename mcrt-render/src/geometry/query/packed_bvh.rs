@@ -7,7 +7,7 @@
 //! primitives ("slots", what [`HitRecord::slot`] counts) list each leaf's quads first, two
 //! triangles per quad (the one with `u + v ≤ 1` first), then its triangles, then the rest.
 
-use super::super::build::Prim;
+use super::super::data::Prim;
 use super::pairing::{Quad, Unit, WeightMaps};
 use super::quad4::{QuadPacket, QuadRay4};
 use super::tri4::{TriPacket, TriRay4};

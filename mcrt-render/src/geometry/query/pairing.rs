@@ -7,7 +7,7 @@
 //! `a c`). That also makes them coplanar. Pairing is greedy in triangle order, so it is
 //! deterministic; triangles left over stay triangles.
 
-use super::super::build::{Built, MeshData, Prim, ShapeData};
+use super::super::data::{Built, MeshData, Prim, ShapeData};
 use glam::Vec3;
 use rayon::prelude::*;
 

@@ -4,7 +4,7 @@
 //! shape's plane, non-finite input).
 
 use super::{area_to_solid_angle, ShapeSampling};
-use crate::geometry::build::MeshData;
+use crate::geometry::data::MeshData;
 use crate::geometry::ShapeSample;
 use glam::{Vec2, Vec3};
 use mcrt::sampling::warp::{SphericalTriangle, Warp};

@@ -17,13 +17,13 @@
 //! `θ'` the angle at the sampled point between its normal and the way back).
 
 mod mesh;
-mod rectangle;
+pub(super) mod rectangle;
 mod sphere;
 
 pub(crate) use mesh::front_normal;
 pub(crate) use rectangle::RectangleSampler;
 
-use super::build::ShapeData;
+use super::data::ShapeData;
 use super::{Geometry, ShapeSample};
 use mcrt::integrator::SurfacePoint;
 

@@ -1,4 +1,5 @@
-//! The loader's error type: every failure names the file, the position and the element.
+//! The scene error type, the loader's and the mesh readers': every failure names the file,
+//! the position and the element.
 
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -1,38 +1,16 @@
-//! Image files: linear float RGB EXR (read and write) and 8-bit sRGB PNG (write).
+//! Image files: linear float RGB EXR and 8-bit sRGB PNG, written (reading EXR is
+//! [`crate::io`]'s).
 //!
 //! Writes are atomic: the image goes to a temporary file in the same folder, which is
 //! flushed to disk and then renamed over the target, so a kill during the write leaves
 //! either the old file or the new one, never a truncated one. EXR chunks are written in
 //! increasing line order, so the same pixels always give the same bytes.
 
+use crate::io::{err, ImageError};
 use glam::Vec3;
 use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-
-/// An image could not be read or written.
-#[derive(Debug)]
-pub struct ImageError {
-    /// The file.
-    pub path: std::path::PathBuf,
-    /// What went wrong.
-    pub message: String,
-}
-
-impl std::fmt::Display for ImageError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}: {}", self.path.display(), self.message)
-    }
-}
-
-impl std::error::Error for ImageError {}
-
-pub(super) fn err(path: &Path, e: impl std::fmt::Display) -> ImageError {
-    ImageError {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    }
-}
 
 fn check_len(path: &Path, w: u32, h: u32, px: &[Vec3]) -> Result<(), ImageError> {
     if px.len() != w as usize * h as usize {
@@ -100,39 +78,6 @@ pub fn write_exr(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Resul
     })
 }
 
-/// Reads the first RGB(A) layer of an OpenEXR file as linear float RGB, row-major from the
-/// top-left: `(width, height, pixels)`.
-pub fn read_exr(path: &Path) -> Result<(u32, u32, Vec<Vec3>), ImageError> {
-    read_exr_at_most(path, u64::MAX)
-}
-
-/// [`read_exr`] for files from users: the headers are read first, and a layer of more than
-/// `max_pixels` pixels is an error before any pixel storage is allocated (a 40-byte header
-/// can claim 2³¹ × 2³¹ pixels).
-pub fn read_exr_at_most(path: &Path, max_pixels: u64) -> Result<(u32, u32, Vec<Vec3>), ImageError> {
-    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| err(path, e))?;
-    for header in meta.headers.iter() {
-        let (w, h) = (header.layer_size.width(), header.layer_size.height());
-        if (w as u64).saturating_mul(h as u64) > max_pixels {
-            return Err(err(
-                path,
-                format!("a layer of {w} × {h} pixels is more than the {max_pixels} allowed"),
-            ));
-        }
-    }
-    let img = exr::prelude::read_first_rgba_layer_from_file(
-        path,
-        |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),
-        |(w, px): &mut (usize, Vec<Vec3>), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
-            px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b);
-        },
-    )
-    .map_err(|e| err(path, e))?;
-    let size = img.layer_data.size;
-    let (_, px) = img.layer_data.channel_data.pixels;
-    Ok((size.width() as u32, size.height() as u32, px))
-}
-
 /// The sRGB transfer function of a linear value, clamped to `[0, 1]`.
 fn srgb(x: f32) -> u8 {
     let x = if x.is_finite() {
@@ -169,6 +114,7 @@ pub fn write_png(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Resul
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::read_exr;
 
     #[test]
     fn exr_round_trip_and_png() {

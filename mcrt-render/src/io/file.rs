@@ -3,7 +3,7 @@
 
 use std::fs::File;
 use std::io::{self, Read};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Largest scene file read, in bytes (256 MiB).
 pub const MAX_SCENE_BYTES: u64 = 1 << 28;
@@ -46,6 +46,11 @@ pub(crate) fn read_capped(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
         return Err(io::Error::other(format!("longer than {cap} bytes")));
     }
     Ok(bytes)
+}
+
+/// A path made absolute and free of `..` where the file system allows, for cycle checks (a scene that includes itself).
+pub(crate) fn canonical(p: &Path) -> PathBuf {
+    std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf())
 }
 
 #[cfg(test)]

@@ -2,9 +2,11 @@
 //! renderer. Every default is Mitsuba 3's, so a description built in code with
 //! [`Default`] values means what the same XML without those attributes means to Mitsuba.
 
-pub use crate::bsdf::PrincipledParams;
+mod principled;
+
 pub use crate::texture::{Texture, TextureParam};
 use glam::{Mat4, Vec3};
+pub use principled::{PrincipledParams, MAX_SPECULAR};
 use std::path::PathBuf;
 
 /// A whole scene: integrator, sensor, shapes with their materials and area emitters, and the

@@ -3,7 +3,7 @@
 use glam::Vec3;
 use mcrt::sampling::SamplingError;
 
-/// The parameters of [`Principled`](super::Principled), named and defaulted as in
+/// The parameters of [`Principled`](crate::bsdf::Principled), named and defaulted as in
 /// Mitsuba 3.9's `principled` plugin (the scalars are weights in \[0, 1\]).
 ///
 /// Mitsuba takes either `eta` or `specular`; [`PrincipledParams::eta_from_specular`]
