@@ -2,8 +2,8 @@
 //! 3's `cornell_box()` with a box pixel filter), so the renderer needs no file to run.
 
 use crate::description::{
-    AreaEmitterDesc, BsdfDesc, FilmDesc, FilterDesc, FovAxis, IntegratorDesc, SamplerDesc,
-    SamplerKind, SceneDescription, SensorDesc, ShapeDesc, ShapeKind,
+    AreaEmitterDesc, BsdfDesc, FilmDesc, FilterDesc, FovAxis, IntegratorDesc, SampleCount,
+    SamplerDesc, SamplerKind, SceneDescription, SensorDesc, ShapeDesc, ShapeKind,
 };
 use crate::transform::look_at;
 use glam::{Mat4, Vec3};
@@ -23,6 +23,10 @@ pub fn cornell_box() -> SceneDescription {
 /// The Cornell box with `spp` samples per pixel, a `res` × `res` film and path depth
 /// `max_depth` (−1 unlimited, 2 direct lighting only): the file loaded with
 /// `-D spp=… -D res=… -D max_depth=…`.
+///
+/// # Panics
+/// If `spp` is 0 or above [`SampleCount::MAX`] (the sample count is made by its checked
+/// constructor, as the loader makes it).
 pub fn cornell_box_with(spp: u32, res: u32, max_depth: i32) -> SceneDescription {
     let white = diffuse(0.885809, 0.698859, 0.666422);
     let red = diffuse(0.570068, 0.0430135, 0.0443706);
@@ -119,7 +123,7 @@ fn sensor(spp: u32, res: u32) -> SensorDesc {
         },
         sampler: SamplerDesc {
             kind: SamplerKind::Independent,
-            sample_count: spp,
+            sample_count: SampleCount::new(spp).unwrap_or_else(|e| panic!("cornell_box_with: {e}")),
             seed: 0,
         },
         lens: None,

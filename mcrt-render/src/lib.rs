@@ -49,6 +49,7 @@ pub mod io;
 pub mod light;
 pub mod loader;
 pub mod mesh_file;
+mod param_defs;
 pub mod render;
 pub mod scene_error;
 pub mod texture;

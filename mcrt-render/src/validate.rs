@@ -1,8 +1,10 @@
-//! What the renderer can use: the one set of checks on a [`SceneDescription`], and the
-//! bounds that keep any scene's memory and work finite. The XML loader applies them to each
-//! element as it reads it (so its errors name file, line and element), and
-//! [`Renderer::new`](crate::render::Renderer::new) applies them again to
-//! descriptions built in code.
+//! What the renderer can use: the checks on a [`SceneDescription`] that its types do not
+//! already make, and the bounds that keep any scene's memory and work finite. The XML loader
+//! applies them to each element as it reads it (so its errors name file, line and element),
+//! and [`Renderer::new`](crate::render::Renderer::new) applies them to descriptions built in
+//! code. A roughness ([`Roughness`](crate::description::Roughness)) and a sample count
+//! ([`SampleCount`]) are checked when they are made, and never again; the integrators'
+//! parameters are checked against their one definition each (`param_defs`).
 //!
 //! The bounds, also listed in `docs/scene-format.md`:
 //!
@@ -12,11 +14,11 @@
 //! | `sample_count` | [`MAX_SAMPLE_COUNT`] = 2²⁴ |
 //! | `emitter_samples`, `bsdf_samples` | [`MAX_SHADING_SAMPLES`] = 2¹⁶ each |
 //! | pixels × spp × max(1, emitter + bsdf samples) | [`MAX_WORK`] = 2⁴² |
-//! | roughness α | [[`MIN_ROUGHNESS`], 10]; the loader clamps smaller α to 10⁻⁴ as Mitsuba 3 does |
+//! | roughness α | [[`MIN_ROUGHNESS`], 10] ([`Roughness`](crate::description::Roughness)); the loader clamps smaller α to 10⁻⁴ as Mitsuba 3 does |
 
 use crate::description::{
-    BsdfDesc, ConductorFresnel, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc,
-    SceneDescription, ShapeDesc, ShapeKind,
+    BsdfDesc, ConductorFresnel, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc, Roughness,
+    SampleCount, SceneDescription, ShapeDesc, ShapeKind,
 };
 use glam::{Mat4, Vec3, Vec4};
 use std::fmt;
@@ -26,8 +28,8 @@ use std::fmt;
 /// 2 GiB.
 pub const MAX_FILM_PIXELS: u64 = 1 << 25;
 
-/// Largest `sample_count` (samples per pixel): 2²⁴.
-pub const MAX_SAMPLE_COUNT: u32 = 1 << 24;
+/// Largest `sample_count` (samples per pixel): 2²⁴ ([`SampleCount::MAX`]).
+pub const MAX_SAMPLE_COUNT: u32 = SampleCount::MAX;
 
 /// Largest `emitter_samples` and `bsdf_samples` of the direct integrator: 2¹⁶ each, so one
 /// pixel sample stays short enough to cancel within a second.
@@ -37,11 +39,12 @@ pub const MAX_SHADING_SAMPLES: u32 = 1 << 16;
 /// about a day at 50 M samples per second).
 pub const MAX_WORK: u64 = 1 << 42;
 
-/// Smallest microfacet roughness the renderer takes (Mitsuba 3 clamps to the same value).
-pub const MIN_ROUGHNESS: f32 = 1e-4;
+/// Smallest microfacet roughness the renderer takes (Mitsuba 3 clamps to the same value;
+/// [`Roughness::MIN`]).
+pub const MIN_ROUGHNESS: f32 = Roughness::MIN;
 
-/// Largest microfacet roughness the renderer takes.
-pub const MAX_ROUGHNESS: f32 = 10.0;
+/// Largest microfacet roughness the renderer takes ([`Roughness::MAX`]).
+pub const MAX_ROUGHNESS: f32 = Roughness::MAX;
 
 /// A value the renderer cannot use: the parameter and what is wrong with it.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -60,11 +63,18 @@ impl fmt::Display for Invalid {
 
 impl std::error::Error for Invalid {}
 
-fn invalid(param: &'static str, message: impl Into<String>) -> Invalid {
-    Invalid {
-        param,
-        message: message.into(),
+impl Invalid {
+    /// Parameter `param` is wrong: `message`.
+    pub fn new(param: &'static str, message: impl Into<String>) -> Self {
+        Self {
+            param,
+            message: message.into(),
+        }
     }
+}
+
+fn invalid(param: &'static str, message: impl Into<String>) -> Invalid {
+    Invalid::new(param, message)
 }
 
 /// A colour whose channels must be finite and non-negative.
@@ -151,93 +161,9 @@ pub fn film(f: &FilmDesc) -> Result<(), Invalid> {
     Ok(())
 }
 
-/// A sample count in 1..=[`MAX_SAMPLE_COUNT`].
-pub fn sample_count(n: u32) -> Result<(), Invalid> {
-    if (1..=MAX_SAMPLE_COUNT).contains(&n) {
-        Ok(())
-    } else {
-        Err(invalid(
-            "sample_count",
-            format!("= {n} is outside [1, {MAX_SAMPLE_COUNT}]"),
-        ))
-    }
-}
-
-/// The integrator's parameters.
+/// The integrator's parameters, each against its definition (`param_defs::integrator`).
 pub fn integrator(i: &IntegratorDesc) -> Result<(), Invalid> {
-    match *i {
-        IntegratorDesc::Path {
-            max_depth,
-            rr_depth,
-        }
-        | IntegratorDesc::Bdpt {
-            max_depth,
-            rr_depth,
-        } => {
-            if max_depth < -1 {
-                return Err(invalid("max_depth", "must be -1 (unlimited) or at least 0"));
-            }
-            if rr_depth == 0 {
-                return Err(invalid("rr_depth", "must be at least 1"));
-            }
-        }
-        IntegratorDesc::Direct {
-            emitter_samples,
-            bsdf_samples,
-        } => {
-            for (param, n) in [
-                ("emitter_samples", emitter_samples),
-                ("bsdf_samples", bsdf_samples),
-            ] {
-                if n > MAX_SHADING_SAMPLES {
-                    return Err(invalid(
-                        param,
-                        format!("= {n} exceeds the limit of {MAX_SHADING_SAMPLES}"),
-                    ));
-                }
-            }
-            if emitter_samples == 0 && bsdf_samples == 0 {
-                return Err(invalid(
-                    "emitter_samples",
-                    "and bsdf_samples cannot both be zero",
-                ));
-            }
-        }
-        IntegratorDesc::Mlt {
-            max_depth,
-            bootstrap_samples,
-            chains,
-            mutations_per_pixel,
-            large_step_prob,
-            sigma,
-        } => {
-            if !(1..=MAX_MLT_DEPTH).contains(&max_depth) {
-                return Err(invalid(
-                    "max_depth",
-                    format!("must lie in [1, {MAX_MLT_DEPTH}] for mlt (a chain keeps its length)"),
-                ));
-            }
-            if chains == 0 || bootstrap_samples < chains {
-                return Err(invalid(
-                    "bootstrap_samples",
-                    "must be at least the number of chains, which must be at least 1",
-                ));
-            }
-            if mutations_per_pixel == 0 || mutations_per_pixel > MAX_SAMPLE_COUNT {
-                return Err(invalid(
-                    "mutations_per_pixel",
-                    format!("= {mutations_per_pixel} is outside [1, {MAX_SAMPLE_COUNT}]"),
-                ));
-            }
-            if !(large_step_prob > 0.0 && large_step_prob <= 1.0) {
-                return Err(invalid("large_step_prob", "must lie in (0, 1]"));
-            }
-            if !(sigma > 0.0 && sigma.is_finite()) {
-                return Err(invalid("sigma", "must be positive and finite"));
-            }
-        }
-    }
-    Ok(())
+    crate::param_defs::integrator::check(i)
 }
 
 /// Longest `max_depth` of `mlt` (its image keeps one buffer per path length).
@@ -284,12 +210,10 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             colour("specular_reflectance", *specular_reflectance)
         }
         BsdfDesc::RoughConductor {
-            alpha,
             fresnel,
             specular_reflectance,
             ..
         } => {
-            roughness(*alpha)?;
             conductor_fresnel(fresnel)?;
             colour("specular_reflectance", *specular_reflectance)
         }
@@ -311,21 +235,17 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             *specular_transmittance,
         ),
         BsdfDesc::RoughDielectric {
-            alpha,
             int_ior,
             ext_ior,
             specular_reflectance,
             specular_transmittance,
             ..
-        } => {
-            roughness(*alpha)?;
-            dielectric(
-                *int_ior,
-                *ext_ior,
-                *specular_reflectance,
-                *specular_transmittance,
-            )
-        }
+        } => dielectric(
+            *int_ior,
+            *ext_ior,
+            *specular_reflectance,
+            *specular_transmittance,
+        ),
         BsdfDesc::Plastic {
             int_ior,
             ext_ior,
@@ -340,23 +260,19 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             *nonlinear,
         ),
         BsdfDesc::RoughPlastic {
-            alpha,
             int_ior,
             ext_ior,
             diffuse_reflectance,
             specular_reflectance,
             nonlinear,
             ..
-        } => {
-            roughness(*alpha)?;
-            plastic(
-                *int_ior,
-                *ext_ior,
-                *diffuse_reflectance,
-                *specular_reflectance,
-                *nonlinear,
-            )
-        }
+        } => plastic(
+            *int_ior,
+            *ext_ior,
+            *diffuse_reflectance,
+            *specular_reflectance,
+            *nonlinear,
+        ),
         BsdfDesc::Principled(params) => principled(params),
         BsdfDesc::Blend {
             weight,
@@ -430,17 +346,6 @@ fn unit_interval(param: &'static str, v: f32) -> Result<(), Invalid> {
         Ok(())
     } else {
         Err(invalid(param, "must lie in [0, 1]"))
-    }
-}
-
-fn roughness(alpha: f32) -> Result<(), Invalid> {
-    if (MIN_ROUGHNESS..=MAX_ROUGHNESS).contains(&alpha) {
-        Ok(())
-    } else {
-        Err(invalid(
-            "alpha",
-            format!("must lie in [{MIN_ROUGHNESS}, {MAX_ROUGHNESS}]"),
-        ))
     }
 }
 
@@ -595,21 +500,14 @@ pub fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
     }
 }
 
-/// Every check above on a whole description, with `spp` samples per pixel (the file's
-/// `sample_count` unless overridden). The message names the part of the scene.
-pub fn scene(d: &SceneDescription, spp: u32) -> Result<(), String> {
+/// Every check above on a whole description but the total [`work`], which depends on the
+/// render's overrides (the renderer checks it once it has resolved the sample count). The
+/// message names the part of the scene.
+pub fn scene(d: &SceneDescription) -> Result<(), String> {
     let film = &d.sensor.film;
     let part = |what: String| move |e: Invalid| format!("{what}: {e}");
     self::film(film).map_err(part("film".into()))?;
-    sample_count(spp).map_err(part("sampler".into()))?;
     integrator(&d.integrator).map_err(part("integrator".into()))?;
-    let window = film.window();
-    work(
-        window.width as u64 * window.height as u64,
-        spp,
-        &d.integrator,
-    )
-    .map_err(part("sampler".into()))?;
     transform("to_world", &d.sensor.to_world).map_err(part("sensor".into()))?;
     for (i, s) in d.shapes.iter().enumerate() {
         let id =
@@ -632,19 +530,19 @@ mod tests {
     #[test]
     fn the_shipped_defaults_pass_and_hostile_values_fail() {
         let d = crate::cornell_box::cornell_box();
-        assert_eq!(scene(&d, 16), Ok(()));
+        assert_eq!(scene(&d), Ok(()));
         for bad in [f32::NAN, f32::INFINITY, -1.0] {
             let mut x = d.clone();
             x.shapes[0].bsdf = BsdfDesc::Diffuse {
                 reflectance: Vec3::new(0.5, bad, 0.5),
             };
-            let e = scene(&x, 16).unwrap_err();
+            let e = scene(&x).unwrap_err();
             assert!(e.contains("shape 0") && e.contains("reflectance"), "{e}");
             let mut x = d.clone();
             x.shapes[1].emitter = Some(AreaEmitterDesc {
                 radiance: Vec3::splat(bad),
             });
-            assert!(scene(&x, 16).unwrap_err().contains("radiance"));
+            assert!(scene(&x).unwrap_err().contains("radiance"));
         }
         for bad in [0.0, f32::NAN, -1.5, f32::INFINITY] {
             assert!(ior("int_ior", bad).is_err(), "{bad}");
@@ -654,15 +552,16 @@ mod tests {
             max_depth: -1,
             rr_depth: 0,
         };
-        assert!(scene(&x, 16).unwrap_err().contains("rr_depth"));
+        assert!(scene(&x).unwrap_err().contains("rr_depth"));
         let mut x = d.clone();
         x.sensor.film.filter = FilterDesc::Gaussian { stddev: f32::NAN };
-        assert!(scene(&x, 16).unwrap_err().contains("stddev"));
+        assert!(scene(&x).unwrap_err().contains("stddev"));
         let mut x = d.clone();
         x.sensor.film.width = 32768;
         x.sensor.film.height = 32768;
-        assert!(scene(&x, 16).unwrap_err().contains("pixels"));
-        assert!(scene(&d, MAX_SAMPLE_COUNT + 1).is_err());
+        assert!(scene(&x).unwrap_err().contains("pixels"));
+        let spp = SampleCount::new(SampleCount::MAX).unwrap();
+        assert!(work(768 * 576, spp.get(), &d.integrator).is_err());
         let mut p = Mat4::IDENTITY;
         p.w_axis.w = 2.0;
         p.x_axis.w = 0.5;

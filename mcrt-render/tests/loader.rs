@@ -5,7 +5,7 @@ use mcrt::glam::{Mat4, Vec3};
 use mcrt_render::cornell_box::{cornell_box, cornell_box_with};
 use mcrt_render::description::{
     BsdfDesc, ConductorFresnel, EmitterDesc, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
-    SamplerKind, SceneDescription, ShapeKind, ThinLensDesc,
+    Roughness, SamplerKind, SceneDescription, ShapeKind, ThinLensDesc,
 };
 use mcrt_render::loader::{load_scene, look_at, parse_scene, SceneError, SceneErrorKind};
 use std::path::Path;
@@ -74,7 +74,7 @@ fn veach_plates_are_ggx_mirrors_of_rising_roughness() {
             s.bsdf,
             BsdfDesc::RoughConductor {
                 distribution: MicrofacetKind::Ggx,
-                alpha,
+                alpha: Roughness::new(alpha).expect("a roughness"),
                 fresnel: ConductorFresnel::Perfect,
                 specular_reflectance: Vec3::ONE,
             }
@@ -324,7 +324,7 @@ fn mitsuba3_materials_and_their_defaults() {
         d.shapes[1].bsdf,
         BsdfDesc::RoughPlastic {
             distribution: MicrofacetKind::Ggx,
-            alpha: 0.3,
+            alpha: Roughness::new(0.3).expect("a roughness"),
             int_ior: 1.49,
             ext_ior: air,
             diffuse_reflectance: half,
@@ -336,7 +336,7 @@ fn mitsuba3_materials_and_their_defaults() {
         d.shapes[2].bsdf,
         BsdfDesc::RoughDielectric {
             distribution: MicrofacetKind::Beckmann,
-            alpha: 0.1,
+            alpha: Roughness::DEFAULT,
             int_ior: 1.5046,
             ext_ior: air,
             specular_reflectance: one,

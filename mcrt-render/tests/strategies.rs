@@ -7,7 +7,7 @@
 use mcrt::glam::{Mat4, Vec3};
 use mcrt::integrator::Strategy;
 use mcrt_render::description::{
-    BsdfDesc, ConductorFresnel, IntegratorDesc, MicrofacetKind, SceneDescription,
+    BsdfDesc, ConductorFresnel, IntegratorDesc, MicrofacetKind, Roughness, SceneDescription,
 };
 use mcrt_render::film::compare_blocks;
 use mcrt_render::render::{RenderOptions, Renderer};
@@ -75,7 +75,7 @@ fn test_box(max_depth: i32) -> SceneDescription {
         .expect("the box has a large box");
     tall.bsdf = BsdfDesc::RoughConductor {
         distribution: MicrofacetKind::Ggx,
-        alpha: 0.3,
+        alpha: Roughness::new(0.3).expect("a roughness"),
         fresnel: ConductorFresnel::Perfect,
         specular_reflectance: Vec3::splat(0.8),
     };

@@ -24,7 +24,7 @@
 use clap::{Arg, ArgAction, Command};
 use indicatif::{ProgressBar, ProgressStyle};
 use mcrt::integrator::Strategy;
-use mcrt_render::description::{IntegratorKind, SamplerKind, SceneDescription};
+use mcrt_render::description::{IntegratorKind, SampleCount, SamplerKind, SceneDescription};
 use mcrt_render::film::{OutputPlan, WindowError, EXIT_INTERRUPTED};
 use mcrt_render::render::{AccelKind, RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
@@ -62,7 +62,8 @@ const OPTIONS: &[Opt] = &[
         value: Some("N"),
         help: "samples per pixel [default: the scene's sample_count]",
         apply: |a, v| {
-            a.opts.spp = Some(num("--spp", v)?);
+            let n = SampleCount::named("--spp", num("--spp", v)?).map_err(|e| e.to_string())?;
+            a.opts.spp = Some(n.get());
             Ok(())
         },
     },

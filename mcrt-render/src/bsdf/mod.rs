@@ -63,7 +63,7 @@ pub use diffuse::Diffuse;
 pub use fresnel::{fresnel_conductor, fresnel_dielectric, fresnel_diffuse_reflectance};
 pub use mask::Mask;
 pub use named_conductors::{conductor_names, named_conductor};
-pub use ndf::Ndf;
+pub use ndf::{Ndf, VisibleNdf};
 pub use plastic::Plastic;
 pub use principled::Principled;
 pub use rough_conductor::RoughConductor;
@@ -72,7 +72,7 @@ pub use rough_plastic::RoughPlastic;
 pub use textured::TexturedBsdf;
 pub use thin_dielectric::ThinDielectric;
 
-use super::description::{BsdfDesc, ConductorFresnel, MicrofacetKind};
+use super::description::{BsdfDesc, ConductorFresnel};
 use glam::{Vec2, Vec3};
 use mcrt::integrator::{Bsdf, BsdfFlags, BsdfSample};
 use mcrt::sampling::SamplingError;
@@ -247,12 +247,11 @@ impl AnyBsdf {
                 alpha,
                 fresnel,
                 specular_reflectance,
-            } => AnyBsdf::RoughConductor(RoughConductor::new(
-                *distribution == MicrofacetKind::Ggx,
-                *alpha,
+            } => AnyBsdf::RoughConductor(RoughConductor::with_ndf(
+                Ndf::of(*distribution, *alpha),
                 fresnel_of(fresnel),
                 *specular_reflectance,
-            )?),
+            )),
             BsdfDesc::Dielectric {
                 int_ior,
                 ext_ior,
@@ -270,13 +269,12 @@ impl AnyBsdf {
                 ext_ior,
                 specular_reflectance,
                 specular_transmittance,
-            } => AnyBsdf::RoughDielectric(RoughDielectric::new(
-                *distribution == MicrofacetKind::Ggx,
-                *alpha,
+            } => AnyBsdf::RoughDielectric(RoughDielectric::with_ndf(
+                Ndf::of(*distribution, *alpha),
                 int_ior / ext_ior,
                 *specular_reflectance,
                 *specular_transmittance,
-            )?),
+            )),
             BsdfDesc::ThinDielectric {
                 int_ior,
                 ext_ior,
@@ -307,14 +305,13 @@ impl AnyBsdf {
                 diffuse_reflectance,
                 specular_reflectance,
                 nonlinear,
-            } => AnyBsdf::RoughPlastic(RoughPlastic::new(
-                *distribution == MicrofacetKind::Ggx,
-                *alpha,
+            } => AnyBsdf::RoughPlastic(RoughPlastic::with_ndf(
+                Ndf::of(*distribution, *alpha),
                 *diffuse_reflectance,
                 *specular_reflectance,
                 int_ior / ext_ior,
                 *nonlinear,
-            )?),
+            )),
             BsdfDesc::Principled(params) => {
                 AnyBsdf::Principled(Box::new(Principled::new(*params)?))
             }

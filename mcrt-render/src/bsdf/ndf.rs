@@ -1,6 +1,7 @@
 //! The microfacet normal distribution shared by the rough materials: GGX or Beckmann, with
 //! Smith masking and visible-normal sampling.
 
+use crate::description::{MicrofacetKind, Roughness};
 use glam::{Vec2, Vec3};
 use mcrt::sampling::warp::{
     Beckmann, BeckmannVisible, Ggx, GgxVisible, MicrofacetDistribution, Warp,
@@ -26,6 +27,34 @@ impl Ndf {
             Ndf::Ggx(Ggx::new(alpha)?)
         } else {
             Ndf::Beckmann(Beckmann::new(alpha)?)
+        })
+    }
+
+    /// The distribution `kind` of a checked roughness: it cannot fail, and nothing checks
+    /// `alpha` again (the visible normals are built per direction from this distribution,
+    /// [`Ndf::visible`]).
+    pub fn of(kind: MicrofacetKind, alpha: Roughness) -> Self {
+        // A `Roughness` lies in [10⁻⁴, 10], inside the warps' [10⁻⁴, 10⁴].
+        let a = alpha.get();
+        match kind {
+            MicrofacetKind::Ggx => {
+                Ndf::Ggx(Ggx::new(a).unwrap_or_else(|e| unreachable!("Roughness {a}: {e}")))
+            }
+            MicrofacetKind::Beckmann => Ndf::Beckmann(
+                Beckmann::new(a).unwrap_or_else(|e| unreachable!("Roughness {a}: {e}")),
+            ),
+        }
+    }
+
+    /// The normals visible from `wo` (above the surface); `None` if `wo` is not a valid
+    /// direction for the warp. Only `wo` is checked: the roughness was, once.
+    #[inline]
+    pub fn visible(&self, wo: Vec3) -> Option<VisibleNdf> {
+        Some(match self {
+            Ndf::Ggx(g) => VisibleNdf::Ggx(GgxVisible::from_distribution(*g, wo).ok()?),
+            Ndf::Beckmann(b) => {
+                VisibleNdf::Beckmann(BeckmannVisible::from_distribution(*b, wo).ok()?)
+            }
         })
     }
 
@@ -60,19 +89,51 @@ impl Ndf {
     /// of m: G₁(wo) max(0, wo·m) D(m) / cos θ_o.
     #[inline]
     pub fn pdf_visible(&self, wo: Vec3, m: Vec3) -> f32 {
-        match self {
-            Ndf::Ggx(g) => GgxVisible::new(g.alpha(), wo).map_or(0.0, |v| v.pdf(m)),
-            Ndf::Beckmann(b) => BeckmannVisible::new(b.alpha(), wo).map_or(0.0, |v| v.pdf(m)),
-        }
+        self.visible(wo).map_or(0.0, |v| v.pdf(m))
     }
 
     /// A normal visible from `wo` (above the surface) and its density
     /// ([`Ndf::pdf_visible`]); `None` if `wo` is not a valid direction for the warp.
     #[inline]
     pub fn sample_visible(&self, wo: Vec3, u: Vec2) -> Option<(Vec3, f32)> {
-        Some(match self {
-            Ndf::Ggx(g) => GgxVisible::new(g.alpha(), wo).ok()?.sample_with_pdf(u),
-            Ndf::Beckmann(b) => BeckmannVisible::new(b.alpha(), wo).ok()?.sample_with_pdf(u),
-        })
+        Some(self.visible(wo)?.sample_with_pdf(u))
+    }
+}
+
+/// The normals of an [`Ndf`] visible from one direction ([`Ndf::visible`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum VisibleNdf {
+    /// Visible GGX normals.
+    Ggx(GgxVisible),
+    /// Visible Beckmann normals.
+    Beckmann(BeckmannVisible),
+}
+
+impl VisibleNdf {
+    /// A visible normal.
+    #[inline]
+    pub fn sample(&self, u: Vec2) -> Vec3 {
+        match self {
+            Self::Ggx(v) => v.sample(u),
+            Self::Beckmann(v) => v.sample(u),
+        }
+    }
+
+    /// The density of visible normal `m`, per steradian of m.
+    #[inline]
+    pub fn pdf(&self, m: Vec3) -> f32 {
+        match self {
+            Self::Ggx(v) => v.pdf(m),
+            Self::Beckmann(v) => v.pdf(m),
+        }
+    }
+
+    /// A visible normal and its density.
+    #[inline]
+    pub fn sample_with_pdf(&self, u: Vec2) -> (Vec3, f32) {
+        match self {
+            Self::Ggx(v) => v.sample_with_pdf(u),
+            Self::Beckmann(v) => v.sample_with_pdf(u),
+        }
     }
 }

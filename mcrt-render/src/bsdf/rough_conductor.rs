@@ -3,9 +3,9 @@
 
 use super::conductor::Fresnel;
 use super::ndf::Ndf;
+use super::ndf::VisibleNdf;
 use glam::{Vec2, Vec3};
 use mcrt::integrator::{is_positive, Bsdf, BsdfFlags, BsdfSample};
-use mcrt::sampling::warp::{BeckmannVisible, GgxVisible, MicrofacetDistribution, Warp};
 use mcrt::sampling::SamplingError;
 
 /// Microfacet reflection `f = F(wo·h) D(h) G(wo, wi, h) / (4 cos θ_o cos θ_i)` with Mitsuba's
@@ -36,11 +36,20 @@ impl RoughConductor {
         fresnel: Fresnel,
         specular_reflectance: Vec3,
     ) -> Result<Self, SamplingError> {
-        Ok(Self {
-            ndf: Ndf::new(ggx, alpha)?,
+        Ok(Self::with_ndf(
+            Ndf::new(ggx, alpha)?,
             fresnel,
             specular_reflectance,
-        })
+        ))
+    }
+
+    /// A rough conductor of normal distribution `ndf` (checked when it was made).
+    pub fn with_ndf(ndf: Ndf, fresnel: Fresnel, specular_reflectance: Vec3) -> Self {
+        Self {
+            ndf,
+            fresnel,
+            specular_reflectance,
+        }
     }
 }
 
@@ -72,12 +81,7 @@ impl Bsdf for RoughConductor {
         if wo.z <= 0.0 {
             return None;
         }
-        let (wi, f, pdf) = match self.ndf {
-            Ndf::Ggx(g) => self.sample_with(&GgxVisible::new(g.alpha(), wo).ok()?, wo, u2)?,
-            Ndf::Beckmann(b) => {
-                self.sample_with(&BeckmannVisible::new(b.alpha(), wo).ok()?, wo, u2)?
-            }
-        };
+        let (wi, f, pdf) = self.sample_with(&self.ndf.visible(wo)?, wo, u2)?;
         BsdfSample::from_value(wi, f, pdf, 1.0)
     }
 }
@@ -108,12 +112,7 @@ impl RoughConductor {
     /// normals visible from `wo`, built once and used for the density too), with
     /// `f · cos θ_i` and the pdf as [`Bsdf::eval_pdf`] gives them.
     #[inline]
-    fn sample_with<V: Warp<Point = Vec3>>(
-        &self,
-        visible: &V,
-        wo: Vec3,
-        u2: Vec2,
-    ) -> Option<(Vec3, Vec3, f32)> {
+    fn sample_with(&self, visible: &VisibleNdf, wo: Vec3, u2: Vec2) -> Option<(Vec3, Vec3, f32)> {
         let m = visible.sample(u2);
         let wi = 2.0 * wo.dot(m) * m - wo;
         if wi.z <= 0.0 {

@@ -49,12 +49,28 @@ impl RoughDielectric {
         specular_reflectance: Vec3,
         specular_transmittance: Vec3,
     ) -> Result<Self, SamplingError> {
-        Ok(Self {
-            ndf: Ndf::new(ggx, alpha)?,
+        Ok(Self::with_ndf(
+            Ndf::new(ggx, alpha)?,
             eta,
             specular_reflectance,
             specular_transmittance,
-        })
+        ))
+    }
+
+    /// A rough interface of normal distribution `ndf` (checked when it was made); `eta` is
+    /// interior over exterior.
+    pub fn with_ndf(
+        ndf: Ndf,
+        eta: f32,
+        specular_reflectance: Vec3,
+        specular_transmittance: Vec3,
+    ) -> Self {
+        Self {
+            ndf,
+            eta,
+            specular_reflectance,
+            specular_transmittance,
+        }
     }
 
     /// `f · |cos θ_i|` and the pdf of `wi`, in radiance form or (`adjoint`) importance form.

@@ -66,7 +66,18 @@ impl RoughPlastic {
         eta: f32,
         nonlinear: bool,
     ) -> Result<Self, SamplingError> {
-        let ndf = Ndf::new(ggx, alpha)?;
+        Ok(Self::with_ndf(
+            Ndf::new(ggx, alpha)?,
+            diffuse,
+            specular,
+            eta,
+            nonlinear,
+        ))
+    }
+
+    /// Rough plastic whose coating has normal distribution `ndf` (checked when it was
+    /// made); `eta` is coating over exterior. Integrates the tables.
+    pub fn with_ndf(ndf: Ndf, diffuse: Vec3, specular: Vec3, eta: f32, nonlinear: bool) -> Self {
         let mut transmittance = [0.0f32; TABLE];
         let mut internal = 0.0f64;
         for (i, t) in transmittance.iter_mut().enumerate() {
@@ -75,7 +86,7 @@ impl RoughPlastic {
             *t = interface_albedo(&ndf, w, eta, false, 8) as f32;
             internal += interface_albedo(&ndf, w, 1.0 / eta, true, 16) * f64::from(mu);
         }
-        Ok(Self {
+        Self {
             ndf,
             diffuse_reflectance: diffuse,
             specular_reflectance: specular,
@@ -85,7 +96,7 @@ impl RoughPlastic {
             // 2 ∫ R(μ) μ dμ as the mean over the table's cosines (Mitsuba's rule).
             internal_reflectance: (2.0 * internal / TABLE as f64) as f32,
             specular_sampling_weight: sampling_weight(diffuse, specular),
-        })
+        }
     }
 
     /// `T(θ)` at cosine `mu` ∈ [0, 1], interpolated linearly in the table.

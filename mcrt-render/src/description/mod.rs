@@ -2,9 +2,11 @@
 //! renderer. Every default is Mitsuba 3's, so a description built in code with
 //! [`Default`] values means what the same XML without those attributes means to Mitsuba.
 
+mod checked;
 mod principled;
 
 pub use crate::texture::{Texture, TextureParam};
+pub use checked::{Roughness, SampleCount};
 use glam::{Mat4, Vec3};
 pub use principled::{PrincipledParams, MAX_SPECULAR};
 use std::path::PathBuf;
@@ -109,15 +111,31 @@ impl IntegratorKind {
 }
 
 impl IntegratorDesc {
-    /// Default values of the `mlt` parameters other than `max_depth` (pbrt-v4's).
-    pub const MLT_DEFAULTS: IntegratorDesc = IntegratorDesc::Mlt {
-        max_depth: 5,
-        bootstrap_samples: 100_000,
-        chains: 1000,
-        mutations_per_pixel: 100,
-        large_step_prob: 0.3,
-        sigma: 0.01,
+    /// Default values of the `mlt` parameters: the library's
+    /// [`Mlt::DEFAULT`](mcrt::integrator::Mlt::DEFAULT) (pbrt-v4's).
+    pub const MLT_DEFAULTS: IntegratorDesc = {
+        let m = mcrt::integrator::Mlt::DEFAULT;
+        IntegratorDesc::Mlt {
+            max_depth: m.max_depth as i32,
+            bootstrap_samples: m.bootstrap_samples,
+            chains: m.chains,
+            mutations_per_pixel: m.mutations_per_pixel,
+            large_step_prob: m.large_step_prob,
+            sigma: m.sigma,
+        }
     };
+
+    /// The samples per pixel a render of this integrator takes when nothing overrides the
+    /// scene: `mutations_per_pixel` for `mlt`, else the sampler's `sample_count`.
+    pub fn samples_per_pixel(&self, sample_count: SampleCount) -> u32 {
+        match *self {
+            Self::Mlt {
+                mutations_per_pixel,
+                ..
+            } => mutations_per_pixel,
+            _ => sample_count.get(),
+        }
+    }
 
     /// Which integrator this is.
     pub fn kind(&self) -> IntegratorKind {
@@ -358,7 +376,7 @@ pub struct SamplerDesc {
     /// The generator.
     pub kind: SamplerKind,
     /// Samples per pixel (default 4).
-    pub sample_count: u32,
+    pub sample_count: SampleCount,
     /// Seed (default 0).
     pub seed: u64,
 }
@@ -367,7 +385,7 @@ impl Default for SamplerDesc {
     fn default() -> Self {
         Self {
             kind: SamplerKind::Independent,
-            sample_count: 4,
+            sample_count: SampleCount::DEFAULT,
             seed: 0,
         }
     }
@@ -504,7 +522,7 @@ pub enum BsdfDesc {
         /// The normal distribution.
         distribution: MicrofacetKind,
         /// Roughness α (default 0.1). Isotropic only.
-        alpha: f32,
+        alpha: Roughness,
         /// The Fresnel term.
         fresnel: ConductorFresnel,
         /// Scale on the reflectance (default 1).
@@ -527,7 +545,7 @@ pub enum BsdfDesc {
         /// The normal distribution (default Beckmann).
         distribution: MicrofacetKind,
         /// Roughness α (default 0.1). Isotropic only.
-        alpha: f32,
+        alpha: Roughness,
         /// Interior index of refraction (default 1.5046, BK7).
         int_ior: f32,
         /// Exterior index of refraction (default 1.000277, air).
@@ -567,7 +585,7 @@ pub enum BsdfDesc {
         /// The coating's normal distribution (default Beckmann).
         distribution: MicrofacetKind,
         /// Roughness α (default 0.1). Isotropic only.
-        alpha: f32,
+        alpha: Roughness,
         /// Index of refraction of the coating (default 1.49, polypropylene).
         int_ior: f32,
         /// Exterior index of refraction (default 1.000277, air).

@@ -8,9 +8,10 @@ use super::texture;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::bsdf::named_conductor;
-use crate::description::{BsdfDesc, ConductorFresnel, MicrofacetKind, TextureParam};
+use crate::description::{BsdfDesc, ConductorFresnel, MicrofacetKind, Roughness, TextureParam};
+use crate::param_defs::bsdf::{ALPHA, ALPHA_U, ALPHA_V, DISTRIBUTION, SAMPLE_VISIBLE};
 use crate::scene_error::SceneErrorKind;
-use crate::validate::{self, MIN_ROUGHNESS};
+use crate::validate;
 use glam::Vec3;
 
 /// A `<bsdf>` element, or a `<ref>` whose id names one.
@@ -258,45 +259,39 @@ const AIR: f32 = 1.000277;
 
 /// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`], and
 /// `sample_visible`, which only changes the noise, never the expected value.
-fn microfacet(e: &Elem, p: &mut Props) -> Res<(MicrofacetKind, f32)> {
-    let distribution = p.string("distribution")?.map(|d| d.to_ascii_lowercase());
-    let distribution = match distribution.as_deref() {
-        None | Some("beckmann") => MicrofacetKind::Beckmann,
-        Some("ggx") => MicrofacetKind::Ggx,
-        Some(other) => {
-            return Err(p.invalid(
-                "distribution",
-                e,
-                &format!("\"{other}\" is not beckmann or ggx"),
-            ))
-        }
+fn microfacet(e: &Elem, p: &mut Props) -> Res<(MicrofacetKind, Roughness)> {
+    let distribution = match p.get_choice(&DISTRIBUTION)? {
+        "ggx" => MicrofacetKind::Ggx,
+        _ => MicrofacetKind::Beckmann,
     };
     let alpha = roughness(e, p)?;
-    p.bool("sample_visible")?;
+    p.get_bool(&SAMPLE_VISIBLE)?;
     Ok((distribution, alpha))
 }
 
-/// The isotropic roughness: `alpha`, or `alpha_u` = `alpha_v`. Values in [0, 10⁻⁴) are
-/// raised to 10⁻⁴, as Mitsuba 3 does; negative values and values above 10 are refused.
-fn roughness(e: &Elem, p: &mut Props) -> Res<f32> {
-    let alpha = p.float("alpha")?;
-    let (au, av) = (p.float("alpha_u")?, p.float("alpha_v")?);
+/// The isotropic roughness: `alpha` ([`ALPHA`]: values in [0, 10⁻⁴) are raised to 10⁻⁴, as
+/// Mitsuba 3 does; negative values and values above 10 are refused), or `alpha_u` =
+/// `alpha_v`, checked the same way.
+fn roughness(e: &Elem, p: &mut Props) -> Res<Roughness> {
+    if !p.has(ALPHA_U.name) && !p.has(ALPHA_V.name) {
+        return p.get_float(&ALPHA);
+    }
+    let alpha = p.float(ALPHA.name)?;
+    let (au, av) = (p.float(ALPHA_U.name)?, p.float(ALPHA_V.name)?);
     let alpha = match (alpha, au, av) {
-        (a, None, None) => a.unwrap_or(0.1),
         (None, Some(u), Some(v)) if u == v => u,
         (None, Some(_), Some(_)) => {
             return Err(p.invalid(
-                "alpha_u",
+                ALPHA_U.name,
                 e,
                 "differs from alpha_v (anisotropy is unsupported)",
             ))
         }
         _ => return Err(p.invalid("alpha", e, "give either alpha or both alpha_u and alpha_v")),
     };
-    if !(0.0..=validate::MAX_ROUGHNESS).contains(&alpha) {
-        return Err(p.invalid("alpha", e, "must lie in [0, 10]"));
-    }
-    Ok(alpha.max(MIN_ROUGHNESS))
+    ALPHA
+        .check(alpha)
+        .map_err(|i| p.invalid(i.param, e, &i.message))
 }
 
 /// Mitsuba's conductor rule: `material = "none"` (the default) without `eta` or `k` is a

@@ -1,10 +1,16 @@
-//! `<integrator>`: `path`, `direct`, `bdpt` and `mlt`.
+//! `<integrator>`: `path`, `direct`, `bdpt` and `mlt`, read through their definitions
+//! (`param_defs::integrator`).
 
 use super::context::{Ctx, Res};
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type};
 use crate::description::IntegratorDesc;
+use crate::param_defs::integrator::{
+    direct_counts, mlt_counts, BOOTSTRAP_SAMPLES, BSDF_SAMPLES, CHAINS, EMITTER_SAMPLES,
+    HIDE_EMITTERS, LARGE_STEP_PROB, MAX_DEPTH, MLT_MAX_DEPTH, MUTATIONS_PER_PIXEL, RR_DEPTH,
+    SHADING_SAMPLES, SIGMA,
+};
 use crate::scene_error::SceneErrorKind;
 
 /// Reads an `<integrator>` element.
@@ -14,8 +20,8 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<IntegratorDesc> {
     no_objects(ctx, &p)?;
     let desc = match ty {
         "path" => {
-            let max_depth = p.int_in("max_depth", -1, i32::MAX as i64)?.unwrap_or(-1) as i32;
-            let rr_depth = p.int_in("rr_depth", 1, u32::MAX as i64)?.unwrap_or(5) as u32;
+            let max_depth = p.get_int(&MAX_DEPTH)? as i32;
+            let rr_depth = p.get_int(&RR_DEPTH)? as u32;
             hide_emitters(ctx, e, &mut p)?;
             IntegratorDesc::Path {
                 max_depth,
@@ -23,26 +29,20 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<IntegratorDesc> {
             }
         }
         "direct" => {
-            let max = crate::validate::MAX_SHADING_SAMPLES as i64;
-            let shading = p.int_in("shading_samples", 0, max)?.unwrap_or(1);
-            let emitter = p.int_in("emitter_samples", 0, max)?.unwrap_or(shading);
-            let bsdf = p.int_in("bsdf_samples", 0, max)?.unwrap_or(shading);
-            if emitter == 0 && bsdf == 0 {
-                return Err(p.invalid(
-                    "emitter_samples",
-                    e,
-                    "and bsdf_samples cannot both be zero",
-                ));
-            }
+            let shading = p.get_int(&SHADING_SAMPLES)?;
+            let emitter_samples = p.get_int_or(&EMITTER_SAMPLES, shading)? as u32;
+            let bsdf_samples = p.get_int_or(&BSDF_SAMPLES, shading)? as u32;
+            direct_counts(emitter_samples, bsdf_samples)
+                .map_err(|i| p.invalid(i.param, e, &i.message))?;
             hide_emitters(ctx, e, &mut p)?;
             IntegratorDesc::Direct {
-                emitter_samples: emitter as u32,
-                bsdf_samples: bsdf as u32,
+                emitter_samples,
+                bsdf_samples,
             }
         }
         "bdpt" => {
-            let max_depth = p.int_in("max_depth", -1, i32::MAX as i64)?.unwrap_or(-1) as i32;
-            let rr_depth = p.int_in("rr_depth", 1, u32::MAX as i64)?.unwrap_or(5) as u32;
+            let max_depth = p.get_int(&MAX_DEPTH)? as i32;
+            let rr_depth = p.get_int(&RR_DEPTH)? as u32;
             hide_emitters(ctx, e, &mut p)?;
             IntegratorDesc::Bdpt {
                 max_depth,
@@ -50,43 +50,13 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<IntegratorDesc> {
             }
         }
         "mlt" => {
-            let IntegratorDesc::Mlt {
-                max_depth: d_depth,
-                bootstrap_samples: d_boot,
-                chains: d_chains,
-                mutations_per_pixel: d_mpp,
-                large_step_prob: d_large,
-                sigma: d_sigma,
-            } = IntegratorDesc::MLT_DEFAULTS
-            else {
-                unreachable!("MLT_DEFAULTS is an Mlt")
-            };
-            let max = u32::MAX as i64;
-            let max_depth = p
-                .int_in("max_depth", 1, crate::validate::MAX_MLT_DEPTH as i64)?
-                .unwrap_or(d_depth as i64) as i32;
-            let bootstrap_samples = p
-                .int_in("bootstrap_samples", 1, max)?
-                .unwrap_or(d_boot as i64) as u32;
-            let chains = p.int_in("chains", 1, max)?.unwrap_or(d_chains as i64) as u32;
-            let mutations_per_pixel = p
-                .int_in("mutations_per_pixel", 1, max)?
-                .unwrap_or(d_mpp as i64) as u32;
-            let large_step_prob = p.float("large_step_prob")?.unwrap_or(d_large);
-            if !(large_step_prob > 0.0 && large_step_prob <= 1.0) {
-                return Err(p.invalid("large_step_prob", e, "must lie in (0, 1]"));
-            }
-            let sigma = p.float("sigma")?.unwrap_or(d_sigma);
-            if !(sigma > 0.0 && sigma.is_finite()) {
-                return Err(p.invalid("sigma", e, "must be positive and finite"));
-            }
-            if bootstrap_samples < chains {
-                return Err(p.invalid(
-                    "bootstrap_samples",
-                    e,
-                    "must be at least the number of chains",
-                ));
-            }
+            let max_depth = p.get_int(&MLT_MAX_DEPTH)? as i32;
+            let bootstrap_samples = p.get_int(&BOOTSTRAP_SAMPLES)? as u32;
+            let chains = p.get_int(&CHAINS)? as u32;
+            let mutations_per_pixel = p.get_int(&MUTATIONS_PER_PIXEL)? as u32;
+            let large_step_prob = p.get_float(&LARGE_STEP_PROB)?;
+            let sigma = p.get_float(&SIGMA)?;
+            mlt_counts(bootstrap_samples, chains).map_err(|i| p.invalid(i.param, e, &i.message))?;
             hide_emitters(ctx, e, &mut p)?;
             IntegratorDesc::Mlt {
                 max_depth,
@@ -113,7 +83,7 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<IntegratorDesc> {
 
 /// `hide_emitters = false` is accepted; `true` is not supported.
 fn hide_emitters(ctx: &Ctx, e: &Elem, p: &mut Props) -> Res<()> {
-    if p.bool("hide_emitters")? == Some(true) {
+    if p.get_bool(&HIDE_EMITTERS)? {
         return Err(ctx.err(
             e,
             SceneErrorKind::Unsupported("hide_emitters = true".into()),

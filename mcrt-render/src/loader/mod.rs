@@ -117,7 +117,9 @@ pub fn parse_scene(
     let film = &desc.sensor.film;
     let window = film.window();
     let pixels = window.width as u64 * window.height as u64;
-    let spp = desc.sensor.sampler.sample_count;
+    let spp = desc
+        .integrator
+        .samples_per_pixel(desc.sensor.sampler.sample_count);
     if let Err(i) = crate::validate::work(pixels, spp, &desc.integrator) {
         let at = sensor.or(integrator).unwrap_or(&root);
         return Err(ctx.err(at, SceneErrorKind::InvalidValue(i.to_string())));

@@ -7,6 +7,7 @@ use super::spectrum::{Spectrum, SpectrumUse};
 use super::transform::{check_attrs, read_transform, xyz};
 use super::tree::Elem;
 use super::values::{parse_bool, parse_float, parse_int, parse_triple};
+use crate::param_defs::{self, BoolParam, ChoiceParam, FloatParam, IntParam, PluginParams};
 use crate::scene_error::SceneErrorKind;
 use glam::{Mat4, Vec3};
 use std::collections::HashMap;
@@ -54,7 +55,12 @@ const UNSUPPORTED_TAGS: &[&str] = &["medium", "phase", "volume", "path", "alias"
 /// The parameters and nested objects of a plugin element.
 pub(crate) struct Props<'c, 'a> {
     ctx: &'c Ctx<'a>,
+    /// The plugin element.
+    elem: &'a Elem,
     plugin: String,
+    /// The plugin's parameter definitions, if it has a table (every name looked up must
+    /// be in it).
+    defs: Option<&'static PluginParams>,
     props: Vec<Prop<'a>>,
     /// Index of each parameter name in `props` (a plugin may have many parameters).
     index: HashMap<String, usize>,
@@ -66,9 +72,12 @@ impl<'c, 'a> Props<'c, 'a> {
     /// Reads the children of plugin element `e`, whose category is `e.tag`.
     pub fn new(ctx: &'c Ctx<'a>, e: &'a Elem) -> Res<Self> {
         let plugin = format!("{} \"{}\"", e.tag, e.attr("type").unwrap_or(""));
+        let defs = param_defs::plugin(&e.tag, e.attr("type").unwrap_or(""));
         let mut out = Self {
             ctx,
+            elem: e,
             plugin,
+            defs,
             props: Vec::new(),
             index: HashMap::new(),
             objects: Vec::new(),
@@ -100,6 +109,14 @@ impl<'c, 'a> Props<'c, 'a> {
 
     /// Looks up `name`, marking it used; returns its value and element.
     pub fn raw(&mut self, name: &str) -> Option<(Value, &'a Elem)> {
+        // A programming error, not a scene's: the code reads a name its table lacks (so the
+        // docs, tested against the tables, would miss it).
+        assert!(
+            self.defs
+                .is_none_or(|d| d.params.iter().any(|p| p.name() == name)),
+            "{} reads \"{name}\", which its table in param_defs does not define",
+            self.plugin
+        );
         let p = &mut self.props[*self.index.get(name)?];
         p.used = true;
         Some((p.value.clone(), p.elem))
@@ -127,6 +144,46 @@ impl<'c, 'a> Props<'c, 'a> {
         let e = self.index.get(name).map_or(owner, |&i| self.props[i].elem);
         self.ctx
             .err(e, SceneErrorKind::InvalidValue(format!("\"{name}\" {msg}")))
+    }
+
+    /// Integer parameter `d`: its value, checked, or its default.
+    pub fn get_int(&mut self, d: &IntParam) -> Res<i64> {
+        self.get_int_or(d, d.default)
+    }
+
+    /// Integer parameter `d`, checked, or `default` (a default that depends on another
+    /// parameter).
+    pub fn get_int_or(&mut self, d: &IntParam, default: i64) -> Res<i64> {
+        Ok(self.int_in(d.name, d.min, d.max)?.unwrap_or(default))
+    }
+
+    /// Float parameter `d`: its value checked into `T`, or its default.
+    pub fn get_float<T: Copy>(&mut self, d: &FloatParam<T>) -> Res<T> {
+        match self.float(d.name)? {
+            None => Ok(d.default),
+            Some(v) => (d.accept)(v).map_err(|m| self.invalid(d.name, self.elem, &m)),
+        }
+    }
+
+    /// Boolean parameter `d`: its value or its default.
+    pub fn get_bool(&mut self, d: &BoolParam) -> Res<bool> {
+        Ok(self.bool(d.name)?.unwrap_or(d.default))
+    }
+
+    /// String parameter `d`: one of its choices (given in any case), or its default.
+    pub fn get_choice(&mut self, d: &ChoiceParam) -> Res<&'static str> {
+        let Some(v) = self.string(d.name)? else {
+            return Ok(d.default);
+        };
+        let v = v.to_ascii_lowercase();
+        match d.choices.iter().find(|c| **c == v) {
+            Some(c) => Ok(c),
+            None => Err(self.invalid(
+                d.name,
+                self.elem,
+                &format!("\"{v}\" is not {}", d.choices.join(" or ")),
+            )),
+        }
     }
 
     /// A float (an `<integer>` is accepted too).

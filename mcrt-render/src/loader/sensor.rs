@@ -6,10 +6,12 @@ use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::description::{
-    CropWindow, FilmDesc, FilterDesc, FovAxis, SamplerDesc, SamplerKind, SensorDesc, ThinLensDesc,
+    CropWindow, FilmDesc, FilterDesc, FovAxis, SampleCount, SamplerDesc, SamplerKind, SensorDesc,
+    ThinLensDesc,
 };
+use crate::param_defs::sampler;
 use crate::scene_error::SceneErrorKind;
-use crate::validate::{self, MAX_FILM_PIXELS, MAX_SAMPLE_COUNT};
+use crate::validate::{self, MAX_FILM_PIXELS};
 
 /// Largest accepted film side, in pixels (the area is bounded by [`MAX_FILM_PIXELS`]).
 pub(crate) const MAX_RESOLUTION: i64 = MAX_FILM_PIXELS as i64;
@@ -165,28 +167,27 @@ fn read_sampler(ctx: &Ctx, e: &Elem) -> Res<SamplerDesc> {
     };
     let mut p = Props::new(ctx, e)?;
     no_objects(ctx, &p)?;
-    let mut s = SamplerDesc {
+    let sample_count = p.get_int(&sampler::SAMPLE_COUNT)? as u32;
+    let sample_count =
+        SampleCount::new(sample_count).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    let seed = p.get_int(&sampler::SEED)? as u64;
+    let s = SamplerDesc {
         kind,
-        ..SamplerDesc::default()
+        sample_count,
+        seed,
     };
-    if let Some(n) = p.int_in("sample_count", 1, MAX_SAMPLE_COUNT as i64)? {
-        s.sample_count = n as u32;
-    }
-    if let Some(seed) = p.int_in("seed", 0, i64::MAX)? {
-        s.seed = seed as u64;
-    }
     let jittered = matches!(
         kind,
         SamplerKind::Stratified | SamplerKind::MultiJitter | SamplerKind::Orthogonal
     );
-    if jittered && p.bool("jitter")? == Some(false) {
+    if jittered && !p.get_bool(&sampler::JITTER)? {
         return Err(ctx.err(e, SceneErrorKind::Unsupported("jitter = false".into())));
     }
     // An orthogonal array of strength t stratifies every t-dimensional projection; ours
     // stratifies each 2D dimension, which matches strength 2 (Mitsuba's default) only.
     if kind == SamplerKind::Orthogonal {
-        if let Some((t, at)) = p.int("strength")? {
-            if t != 2 {
+        if let Some((t, at)) = p.int(sampler::STRENGTH.name)? {
+            if sampler::STRENGTH.check(t).is_err() {
                 let what = format!("orthogonal sampler of strength {t} (only 2 is rendered)");
                 return Err(ctx.err(at, SceneErrorKind::Unsupported(what)));
             }

@@ -51,17 +51,24 @@ pub struct Mlt {
     pub strategy: Strategy,
 }
 
+impl Mlt {
+    /// The defaults (pbrt-v4's): `max_depth` 5, `bootstrap_samples` 100000, `chains` 1000,
+    /// `mutations_per_pixel` 100, `large_step_prob` 0.3, `sigma` 0.01, the power heuristic.
+    /// A `const`, so that a scene format can name these numbers as its own defaults.
+    pub const DEFAULT: Mlt = Mlt {
+        max_depth: 5,
+        bootstrap_samples: 100_000,
+        chains: 1000,
+        mutations_per_pixel: 100,
+        large_step_prob: 0.3,
+        sigma: 0.01,
+        strategy: Strategy::MisPower,
+    };
+}
+
 impl Default for Mlt {
     fn default() -> Self {
-        Self {
-            max_depth: 5,
-            bootstrap_samples: 100_000,
-            chains: 1000,
-            mutations_per_pixel: 100,
-            large_step_prob: 0.3,
-            sigma: 0.01,
-            strategy: Strategy::MisPower,
-        }
+        Self::DEFAULT
     }
 }
 

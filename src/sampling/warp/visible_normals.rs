@@ -94,7 +94,15 @@ impl GgxVisible {
     /// within 1e-3, renormalised; wi.z > 0).
     #[inline]
     pub fn new(alpha: f32, wi: Vec3) -> Result<Self, SamplingError> {
-        let ggx = Ggx::new(check_alpha(alpha)?)?;
+        Self::from_distribution(Ggx::new(check_alpha(alpha)?)?, wi)
+    }
+
+    /// The visible normals of `ggx` seen from `wi`, as [`GgxVisible::new`] but without
+    /// checking the roughness again: a [`Ggx`] holds a checked one. For a caller that builds
+    /// the distribution once and the visible normals per direction (only `wi` is checked).
+    #[inline]
+    pub fn from_distribution(ggx: Ggx, wi: Vec3) -> Result<Self, SamplingError> {
+        let alpha = ggx.alpha();
         let wi = check_wi(wi)?;
         let wi_std = stretch(alpha, wi);
         // 1 + Λ = (1 + √(1 + α² tan²θ))/2 = (1 + 1/cos θ′)/2 with θ′ the stretched angle,
@@ -185,7 +193,16 @@ impl BeckmannVisible {
     /// length within 1e-3, renormalised; wi.z > 0).
     #[inline]
     pub fn new(alpha: f32, wi: Vec3) -> Result<Self, SamplingError> {
-        let beckmann = Beckmann::new(check_alpha(alpha)?)?;
+        Self::from_distribution(Beckmann::new(check_alpha(alpha)?)?, wi)
+    }
+
+    /// The visible normals of `beckmann` seen from `wi`, as [`BeckmannVisible::new`] but
+    /// without checking the roughness again: a [`Beckmann`] holds a checked one. For a caller
+    /// that builds the distribution once and the visible normals per direction (only `wi` is
+    /// checked).
+    #[inline]
+    pub fn from_distribution(beckmann: Beckmann, wi: Vec3) -> Result<Self, SamplingError> {
+        let alpha = beckmann.alpha();
         let wi = check_wi(wi)?;
         let w = stretch(alpha, wi);
         let sin = (w.x * w.x + w.y * w.y).sqrt();

@@ -1,0 +1,217 @@
+//! Assembling the estimators' inputs from a [`SceneDescription`]: geometry, lights,
+//! materials, camera, the integrator with its settings, and the resolved sample count.
+
+use super::samples::resolve;
+use super::{split, Effects, RenderError, RenderOptions, Renderer};
+use crate::bsdf::{AnyBsdf, TexturedBsdf};
+use crate::camera::Camera;
+use crate::description::{IntegratorDesc, IntegratorKind, SceneDescription, ShapeKind};
+use crate::film::PixelFilter;
+use crate::geometry::{Geometry, ShapeSampling};
+use crate::light::Lights;
+use glam::{Vec3, Vec4Swizzles};
+use mcrt::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
+
+impl Renderer {
+    /// The body of [`Renderer::new`], on its thread pool.
+    pub(super) fn prepare(
+        desc: &SceneDescription,
+        opts: &RenderOptions,
+    ) -> Result<Self, RenderError> {
+        crate::validate::scene(desc).map_err(RenderError::Invalid)?;
+        let film = &desc.sensor.film;
+        let window = film.window();
+        let resolved = resolve(desc, opts, window.width as u64 * window.height as u64)?;
+        // The bidirectional estimators' s = 1 strategy samples rectangles and triangles by
+        // area: their other strategies cover what solid-angle sampling adds near a light,
+        // at a fraction of its cost (spheres keep cone sampling either way).
+        let shape_sampling = match resolved.integrator.kind() {
+            IntegratorKind::Bdpt | IntegratorKind::Mlt => ShapeSampling::Area,
+            _ => opts.light_sampling,
+        };
+        // The loader has resolved mesh file names against the scene file's folder already
+        // (a description built in code names them relative to the working directory).
+        let geo = Geometry::new(&desc.shapes, None, opts.accel)
+            .map_err(RenderError::Geometry)?
+            .with_shape_sampling(shape_sampling);
+        let lights = Lights::new(desc, &geo, scene_radius(desc)).map_err(RenderError::Lights)?;
+        let camera = Camera::new(&desc.sensor).map_err(RenderError::Camera)?;
+        let bsdfs = desc
+            .shapes
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                AnyBsdf::from_desc(&s.bsdf).map_err(|error| RenderError::Material {
+                    shape: i,
+                    id: s.id.clone(),
+                    error,
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let textured = desc.shapes.iter().any(|s| s.bsdf.is_textured()).then(|| {
+            bsdfs
+                .iter()
+                .zip(&desc.shapes)
+                .map(|(b, s)| TexturedBsdf::with_base(b.clone(), &s.bsdf))
+                .collect::<Vec<_>>()
+        });
+        let strategy = opts.strategy.unwrap_or_default();
+        let integrator = integrator(&resolved.integrator, strategy, opts.bdpt_only);
+        check_bidirectional(&integrator, &camera, strategy)?;
+        if film.width == 0 || film.height == 0 {
+            return Err(RenderError::EmptyFilm {
+                width: film.width,
+                height: film.height,
+            });
+        }
+        // The rendered window: the whole film, or its crop window (the camera maps it).
+        let (width, height) = (camera.width(), camera.height());
+        let mut effects = Effects::of(&bsdfs, &lights, &integrator);
+        if textured.is_some() {
+            effects.textures = true;
+            effects.diffuse_only = false;
+        }
+        let spp = resolved.spp.get();
+        let (samples, crop) = split::window(opts, &integrator, spp, width, height)?;
+        let mut described = desc.clone();
+        described.integrator = resolved.integrator;
+        described.sensor.sampler = crate::description::SamplerDesc {
+            kind: resolved.kind,
+            sample_count: resolved.spp,
+            seed: resolved.seed,
+        };
+        let identity = split::render_identity(
+            &described,
+            None,
+            &format!(
+                "{integrator:?} {:?} {shape_sampling:?} {}",
+                opts.accel, opts.specialize
+            ),
+        )
+        .map_err(RenderError::Invalid)?;
+        Ok(Self {
+            geometry: geo,
+            lights,
+            bsdfs,
+            textured,
+            camera,
+            integrator,
+            filter: PixelFilter::from_desc(&film.filter),
+            width,
+            height,
+            spp,
+            sampler: resolved.sampler,
+            threads: opts.threads,
+            effects,
+            specialize: opts.specialize,
+            seed: resolved.seed,
+            samples,
+            crop,
+            identity,
+        })
+    }
+}
+
+/// The library's integrator for description `d`, sampling with `strategy` (and, for `bdpt`,
+/// only strategy `only` if given).
+fn integrator(d: &IntegratorDesc, strategy: Strategy, only: Option<(u32, u32)>) -> Integrator {
+    match *d {
+        IntegratorDesc::Path {
+            max_depth,
+            rr_depth,
+        } => Integrator::Path(PathTracer {
+            max_depth,
+            rr_depth,
+            strategy,
+        }),
+        IntegratorDesc::Direct {
+            emitter_samples,
+            bsdf_samples,
+        } => Integrator::Direct(DirectIntegrator {
+            emitter_samples,
+            bsdf_samples,
+            strategy,
+        }),
+        IntegratorDesc::Bdpt {
+            max_depth,
+            rr_depth,
+        } => Integrator::Bdpt(Bdpt {
+            max_depth,
+            rr_depth,
+            strategy,
+            only,
+        }),
+        IntegratorDesc::Mlt {
+            max_depth,
+            bootstrap_samples,
+            chains,
+            mutations_per_pixel,
+            large_step_prob,
+            sigma,
+        } => Integrator::Mlt(Mlt {
+            max_depth: max_depth.max(1) as u32,
+            bootstrap_samples,
+            chains,
+            mutations_per_pixel,
+            large_step_prob,
+            sigma,
+            strategy,
+        }),
+    }
+}
+
+/// What `bdpt` and `mlt` need of the camera and the strategy.
+fn check_bidirectional(
+    integrator: &Integrator,
+    camera: &Camera,
+    strategy: Strategy,
+) -> Result<(), RenderError> {
+    if !matches!(integrator, Integrator::Bdpt(_) | Integrator::Mlt(_)) {
+        return Ok(());
+    }
+    if !camera.is_similarity() {
+        return Err(RenderError::Unsupported {
+            integrator: integrator.name(),
+            reason: "the camera's to_world must be a rotation, uniform scale and \
+                     translation (its importance is exact only then)",
+        });
+    }
+    if matches!(strategy, Strategy::BsdfOnly | Strategy::LightOnly)
+        && matches!(integrator, Integrator::Mlt(_))
+    {
+        return Err(RenderError::Unsupported {
+            integrator: "mlt",
+            reason: "it weighs its strategies by MIS: use --strategy balance or power",
+        });
+    }
+    Ok(())
+}
+
+/// Radius of a sphere about the origin that holds every shape (approximate for meshes read
+/// from files, which count as a unit cube).
+fn scene_radius(desc: &SceneDescription) -> f32 {
+    let mut r = 1.0f32;
+    for s in &desc.shapes {
+        let pts: Vec<Vec3> = match &s.kind {
+            ShapeKind::Mesh { positions, .. } => positions.clone(),
+            ShapeKind::Sphere { center, radius } => (0..8)
+                .map(|i| *center + Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)) * *radius)
+                .collect(),
+            _ => (0..8)
+                .map(|i| Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)))
+                .collect(),
+        };
+        for p in pts {
+            r = r.max((s.to_world * p.extend(1.0)).xyz().length());
+        }
+    }
+    r
+}
+
+fn bit(i: u32, b: u32) -> f32 {
+    if (i >> b) & 1 == 1 {
+        1.0
+    } else {
+        -1.0
+    }
+}
