@@ -71,6 +71,7 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
         BsdfDesc::RoughDielectric {
             distribution: MicrofacetKind::Ggx,
             alpha: Roughness::new(0.3).expect("a roughness"),
+            sample_visible: true,
             int_ior: 1.5,
             ext_ior: 1.0,
             specular_reflectance: Vec3::ONE,

@@ -278,6 +278,7 @@ fn rough_glass(alpha: f32) -> BsdfDesc {
     BsdfDesc::RoughDielectric {
         distribution: MicrofacetKind::Ggx,
         alpha: Roughness::new(alpha).expect("a roughness"),
+        sample_visible: true,
         int_ior: 1.5,
         ext_ior: 1.0,
         specular_reflectance: Vec3::ONE,
@@ -303,6 +304,7 @@ fn lossy_spheres_return_what_mitsuba_returns() {
     let rough_plastic = |distribution, alpha| BsdfDesc::RoughPlastic {
         distribution,
         alpha: Roughness::new(alpha).expect("a roughness"),
+        sample_visible: true,
         int_ior: 1.49,
         ext_ior: 1.000277,
         diffuse_reflectance: Vec3::ONE,

@@ -75,6 +75,7 @@ fn veach_plates_are_ggx_mirrors_of_rising_roughness() {
             BsdfDesc::RoughConductor {
                 distribution: MicrofacetKind::Ggx,
                 alpha: Roughness::new(alpha).expect("a roughness"),
+                sample_visible: true,
                 fresnel: ConductorFresnel::Perfect,
                 specular_reflectance: Vec3::ONE,
             }
@@ -325,6 +326,7 @@ fn mitsuba3_materials_and_their_defaults() {
         BsdfDesc::RoughPlastic {
             distribution: MicrofacetKind::Ggx,
             alpha: Roughness::new(0.3).expect("a roughness"),
+            sample_visible: false,
             int_ior: 1.49,
             ext_ior: air,
             diffuse_reflectance: half,
@@ -337,6 +339,7 @@ fn mitsuba3_materials_and_their_defaults() {
         BsdfDesc::RoughDielectric {
             distribution: MicrofacetKind::Beckmann,
             alpha: Roughness::DEFAULT,
+            sample_visible: true,
             int_ior: 1.5046,
             ext_ior: air,
             specular_reflectance: one,

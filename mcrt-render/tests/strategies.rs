@@ -76,6 +76,7 @@ fn test_box(max_depth: i32) -> SceneDescription {
     tall.bsdf = BsdfDesc::RoughConductor {
         distribution: MicrofacetKind::Ggx,
         alpha: Roughness::new(0.3).expect("a roughness"),
+        sample_visible: true,
         fresnel: ConductorFresnel::Perfect,
         specular_reflectance: Vec3::splat(0.8),
     };

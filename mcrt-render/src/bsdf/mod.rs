@@ -245,10 +245,11 @@ impl AnyBsdf {
             BsdfDesc::RoughConductor {
                 distribution,
                 alpha,
+                sample_visible,
                 fresnel,
                 specular_reflectance,
             } => AnyBsdf::RoughConductor(RoughConductor::with_ndf(
-                Ndf::of(*distribution, *alpha),
+                Ndf::of(*distribution, *alpha, *sample_visible),
                 fresnel_of(fresnel),
                 *specular_reflectance,
             )),
@@ -265,12 +266,13 @@ impl AnyBsdf {
             BsdfDesc::RoughDielectric {
                 distribution,
                 alpha,
+                sample_visible,
                 int_ior,
                 ext_ior,
                 specular_reflectance,
                 specular_transmittance,
             } => AnyBsdf::RoughDielectric(RoughDielectric::with_ndf(
-                Ndf::of(*distribution, *alpha),
+                Ndf::of(*distribution, *alpha, *sample_visible),
                 int_ior / ext_ior,
                 *specular_reflectance,
                 *specular_transmittance,
@@ -300,13 +302,14 @@ impl AnyBsdf {
             BsdfDesc::RoughPlastic {
                 distribution,
                 alpha,
+                sample_visible,
                 int_ior,
                 ext_ior,
                 diffuse_reflectance,
                 specular_reflectance,
                 nonlinear,
             } => AnyBsdf::RoughPlastic(RoughPlastic::with_ndf(
-                Ndf::of(*distribution, *alpha),
+                Ndf::of(*distribution, *alpha, *sample_visible),
                 *diffuse_reflectance,
                 *specular_reflectance,
                 int_ior / ext_ior,

@@ -1,5 +1,6 @@
 //! The microfacet normal distribution shared by the rough materials: GGX or Beckmann, with
-//! Smith masking and visible-normal sampling.
+//! Smith masking, sampled by its visible normals (Mitsuba's `sample_visible`, the default)
+//! or by the whole distribution.
 
 use crate::description::{MicrofacetKind, Roughness};
 use glam::{Vec2, Vec3};
@@ -15,6 +16,10 @@ pub enum Ndf {
     Ggx(Ggx),
     /// Beckmann.
     Beckmann(Beckmann),
+    /// GGX, sampled from the whole distribution (`sample_visible = false`).
+    GgxAll(Ggx),
+    /// Beckmann, sampled from the whole distribution (`sample_visible = false`).
+    BeckmannAll(Beckmann),
 }
 
 impl Ndf {
@@ -33,16 +38,20 @@ impl Ndf {
     /// The distribution `kind` of a checked roughness: it cannot fail, and nothing checks
     /// `alpha` again (the visible normals are built per direction from this distribution,
     /// [`Ndf::visible`]).
-    pub fn of(kind: MicrofacetKind, alpha: Roughness) -> Self {
+    ///
+    /// `sample_visible` (Mitsuba's default) samples the normals visible from the incident
+    /// direction; otherwise the whole distribution, `D(m) cos θ_m` (the same expected value,
+    /// more noise).
+    pub fn of(kind: MicrofacetKind, alpha: Roughness, sample_visible: bool) -> Self {
         // A `Roughness` lies in [10⁻⁴, 10], inside the warps' [10⁻⁴, 10⁴].
         let a = alpha.get();
-        match kind {
-            MicrofacetKind::Ggx => {
-                Ndf::Ggx(Ggx::new(a).unwrap_or_else(|e| unreachable!("Roughness {a}: {e}")))
-            }
-            MicrofacetKind::Beckmann => Ndf::Beckmann(
-                Beckmann::new(a).unwrap_or_else(|e| unreachable!("Roughness {a}: {e}")),
-            ),
+        let ggx = || Ggx::new(a).unwrap_or_else(|e| unreachable!("Roughness {a}: {e}"));
+        let beckmann = || Beckmann::new(a).unwrap_or_else(|e| unreachable!("Roughness {a}: {e}"));
+        match (kind, sample_visible) {
+            (MicrofacetKind::Ggx, true) => Ndf::Ggx(ggx()),
+            (MicrofacetKind::Beckmann, true) => Ndf::Beckmann(beckmann()),
+            (MicrofacetKind::Ggx, false) => Ndf::GgxAll(ggx()),
+            (MicrofacetKind::Beckmann, false) => Ndf::BeckmannAll(beckmann()),
         }
     }
 
@@ -55,6 +64,8 @@ impl Ndf {
             Ndf::Beckmann(b) => {
                 VisibleNdf::Beckmann(BeckmannVisible::from_distribution(*b, wo).ok()?)
             }
+            Ndf::GgxAll(g) => VisibleNdf::GgxAll(*g),
+            Ndf::BeckmannAll(b) => VisibleNdf::BeckmannAll(*b),
         })
     }
 
@@ -62,8 +73,8 @@ impl Ndf {
     #[inline]
     pub fn d(&self, m: Vec3) -> f32 {
         match self {
-            Ndf::Ggx(g) => g.d(m),
-            Ndf::Beckmann(b) => b.d(m),
+            Ndf::Ggx(g) | Ndf::GgxAll(g) => g.d(m),
+            Ndf::Beckmann(b) | Ndf::BeckmannAll(b) => b.d(m),
         }
     }
 
@@ -71,8 +82,8 @@ impl Ndf {
     #[inline]
     pub fn g1(&self, w: Vec3, m: Vec3) -> f32 {
         match self {
-            Ndf::Ggx(g) => g.g1(w, m),
-            Ndf::Beckmann(b) => b.g1(w, m),
+            Ndf::Ggx(g) | Ndf::GgxAll(g) => g.g1(w, m),
+            Ndf::Beckmann(b) | Ndf::BeckmannAll(b) => b.g1(w, m),
         }
     }
 
@@ -80,8 +91,8 @@ impl Ndf {
     #[inline]
     pub fn g(&self, wo: Vec3, wi: Vec3, m: Vec3) -> f32 {
         match self {
-            Ndf::Ggx(g) => g.g(wo, wi, m),
-            Ndf::Beckmann(b) => b.g(wo, wi, m),
+            Ndf::Ggx(g) | Ndf::GgxAll(g) => g.g(wo, wi, m),
+            Ndf::Beckmann(b) | Ndf::BeckmannAll(b) => b.g(wo, wi, m),
         }
     }
 
@@ -107,6 +118,10 @@ pub enum VisibleNdf {
     Ggx(GgxVisible),
     /// Visible Beckmann normals.
     Beckmann(BeckmannVisible),
+    /// All GGX normals, density `D(m) cos θ_m` whatever the direction.
+    GgxAll(Ggx),
+    /// All Beckmann normals, density `D(m) cos θ_m` whatever the direction.
+    BeckmannAll(Beckmann),
 }
 
 impl VisibleNdf {
@@ -116,6 +131,8 @@ impl VisibleNdf {
         match self {
             Self::Ggx(v) => v.sample(u),
             Self::Beckmann(v) => v.sample(u),
+            Self::GgxAll(v) => v.sample(u),
+            Self::BeckmannAll(v) => v.sample(u),
         }
     }
 
@@ -125,6 +142,8 @@ impl VisibleNdf {
         match self {
             Self::Ggx(v) => v.pdf(m),
             Self::Beckmann(v) => v.pdf(m),
+            Self::GgxAll(v) => v.pdf(m),
+            Self::BeckmannAll(v) => v.pdf(m),
         }
     }
 
@@ -134,6 +153,37 @@ impl VisibleNdf {
         match self {
             Self::Ggx(v) => v.sample_with_pdf(u),
             Self::Beckmann(v) => v.sample_with_pdf(u),
+            Self::GgxAll(v) => v.sample_with_pdf(u),
+            Self::BeckmannAll(v) => v.sample_with_pdf(u),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `sample_visible = false` draws from the whole distribution: density `D(m) cos θ_m`,
+    /// which `pdf_visible` reports too, whatever the direction; masking and D unchanged.
+    #[test]
+    fn sampling_all_normals_has_the_distributions_density() {
+        let alpha = Roughness::new(0.3).expect("a roughness");
+        let wo = Vec3::new(0.6, 0.0, 0.8);
+        for kind in [MicrofacetKind::Ggx, MicrofacetKind::Beckmann] {
+            let (visible, all) = (Ndf::of(kind, alpha, true), Ndf::of(kind, alpha, false));
+            for u in [
+                Vec2::new(0.1, 0.7),
+                Vec2::new(0.9, 0.2),
+                Vec2::new(0.5, 0.5),
+            ] {
+                let (m, pdf) = all.sample_visible(wo, u).expect("a normal");
+                let want = all.d(m) * m.z;
+                assert!((pdf - want).abs() <= 1e-5 * want, "{kind:?}: {pdf} {want}");
+                assert_eq!(all.pdf_visible(wo, m), pdf);
+                assert_eq!(all.d(m), visible.d(m));
+                assert_eq!(all.g(wo, wo, m), visible.g(wo, wo, m));
+                assert_ne!(visible.pdf_visible(wo, m), pdf);
+            }
         }
     }
 }

@@ -523,6 +523,10 @@ pub enum BsdfDesc {
         distribution: MicrofacetKind,
         /// Roughness α (default 0.1). Isotropic only.
         alpha: Roughness,
+        /// Sample the normals visible from the incident direction (Mitsuba's
+        /// `sample_visible`, default true), else the whole distribution: the same expected
+        /// value, more noise.
+        sample_visible: bool,
         /// The Fresnel term.
         fresnel: ConductorFresnel,
         /// Scale on the reflectance (default 1).
@@ -546,6 +550,10 @@ pub enum BsdfDesc {
         distribution: MicrofacetKind,
         /// Roughness α (default 0.1). Isotropic only.
         alpha: Roughness,
+        /// Sample the normals visible from the incident direction (Mitsuba's
+        /// `sample_visible`, default true), else the whole distribution: the same expected
+        /// value, more noise.
+        sample_visible: bool,
         /// Interior index of refraction (default 1.5046, BK7).
         int_ior: f32,
         /// Exterior index of refraction (default 1.000277, air).
@@ -586,6 +594,10 @@ pub enum BsdfDesc {
         distribution: MicrofacetKind,
         /// Roughness α (default 0.1). Isotropic only.
         alpha: Roughness,
+        /// Sample the normals visible from the incident direction (Mitsuba's
+        /// `sample_visible`, default true), else the whole distribution: the same expected
+        /// value, more noise.
+        sample_visible: bool,
         /// Index of refraction of the coating (default 1.49, polypropylene).
         int_ior: f32,
         /// Exterior index of refraction (default 1.000277, air).

@@ -119,10 +119,11 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
         },
         "roughconductor" => {
-            let (distribution, alpha) = microfacet(e, &mut p)?;
+            let (distribution, alpha, sample_visible) = microfacet(e, &mut p)?;
             BsdfDesc::RoughConductor {
                 distribution,
                 alpha,
+                sample_visible,
                 fresnel: fresnel(e, &mut p)?,
                 specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
             }
@@ -134,10 +135,11 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
         },
         "roughdielectric" => {
-            let (distribution, alpha) = microfacet(e, &mut p)?;
+            let (distribution, alpha, sample_visible) = microfacet(e, &mut p)?;
             BsdfDesc::RoughDielectric {
                 distribution,
                 alpha,
+                sample_visible,
                 int_ior: ior(e, &mut p, "int_ior", BK7)?,
                 ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
                 specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
@@ -158,10 +160,11 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             nonlinear: p.bool("nonlinear")?.unwrap_or(false),
         },
         "roughplastic" => {
-            let (distribution, alpha) = microfacet(e, &mut p)?;
+            let (distribution, alpha, sample_visible) = microfacet(e, &mut p)?;
             BsdfDesc::RoughPlastic {
                 distribution,
                 alpha,
+                sample_visible,
                 int_ior: ior(e, &mut p, "int_ior", POLYPROPYLENE)?,
                 ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
                 diffuse_reflectance: p.rgb("diffuse_reflectance")?.unwrap_or(Vec3::splat(0.5)),
@@ -259,14 +262,14 @@ const AIR: f32 = 1.000277;
 
 /// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`], and
 /// `sample_visible`, which only changes the noise, never the expected value.
-fn microfacet(e: &Elem, p: &mut Props) -> Res<(MicrofacetKind, Roughness)> {
+fn microfacet(e: &Elem, p: &mut Props) -> Res<(MicrofacetKind, Roughness, bool)> {
     let distribution = match p.get_choice(&DISTRIBUTION)? {
         "ggx" => MicrofacetKind::Ggx,
         _ => MicrofacetKind::Beckmann,
     };
     let alpha = roughness(e, p)?;
-    p.get_bool(&SAMPLE_VISIBLE)?;
-    Ok((distribution, alpha))
+    let sample_visible = p.get_bool(&SAMPLE_VISIBLE)?;
+    Ok((distribution, alpha, sample_visible))
 }
 
 /// The isotropic roughness: `alpha` ([`ALPHA`]: values in [0, 10⁻⁴) are raised to 10⁻⁴, as

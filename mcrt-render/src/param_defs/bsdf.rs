@@ -40,8 +40,8 @@ pub(crate) const ALPHA_V: OtherParam = OtherParam {
 pub(crate) const SAMPLE_VISIBLE: BoolParam = BoolParam {
     name: "sample_visible",
     default: true,
-    doc: "accepted and ignored: the normals visible from the incident direction are \
-          always sampled (the choice changes only the noise, never the expected value)",
+    doc: "draw only the normals visible from the incident direction (less noise); \
+          `false` draws from the whole distribution. The expected value is the same",
 };
 
 const fn other(name: &'static str, kind: &'static str, doc: &'static str) -> OtherParam {
