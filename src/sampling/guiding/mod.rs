@@ -3,7 +3,7 @@
 //! radiance arriving in each region of space as a directional quadtree ([`DQuadTree`]) over
 //! the equal-area square of the sphere ([`square_to_sphere`]), in training passes of doubling
 //! sample counts ([`GuidingSchedule`]), and
-//! a guided path tracer samples directions from it.
+//! [`GuidedPathTracer`](crate::integrator::GuidedPathTracer) samples directions from it.
 //!
 //! Densities: a quadtree leaf cell `C` of area `|C|` on the unit square with a share `E_C/E`
 //! of the energy has the density `p□ = E_C / (E |C|)` on the square and
@@ -19,6 +19,7 @@ mod tests;
 
 pub use map::{sphere_to_square, square_to_sphere, EqualAreaSphere, SQUARE_TO_SPHERE_JACOBIAN};
 pub use quadtree::DQuadTree;
+pub(crate) use records::PathVertex;
 pub use records::{GuidingRecord, GuidingRecords};
 pub use schedule::{GuidingPass, GuidingSchedule};
 pub use spatial::SdTree;

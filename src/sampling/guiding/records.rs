@@ -18,7 +18,8 @@ pub struct GuidingRecord {
 
 /// A buffer of [`GuidingRecord`]s that one worker (one tile) fills while it renders, so that
 /// the training tree can be shared read-only and updated afterwards in a fixed order
-/// ([`SdTree::merge`](super::SdTree::merge)): deterministic at any thread count.
+/// ([`SdTree::merge`](super::SdTree::merge)): deterministic at any thread count. It also holds
+/// the guided path tracer's scratch space for the vertices of the current path.
 ///
 /// ```
 /// use mcrt::glam::Vec3;
@@ -35,6 +36,19 @@ pub struct GuidingRecord {
 #[derive(Debug, Clone, Default)]
 pub struct GuidingRecords {
     records: Vec<GuidingRecord>,
+    pub(crate) scratch: Vec<PathVertex>,
+}
+
+/// A vertex of a guided path, while its incident radiance is being summed.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PathVertex {
+    pub p: Vec3,
+    pub dir: Vec3,
+    pub pdf: f32,
+    /// The path throughput after the vertex's sampling weight (and Russian roulette).
+    pub throughput: Vec3,
+    /// The contributions of the path after the vertex, summed.
+    pub radiance: Vec3,
 }
 
 impl GuidingRecords {
