@@ -10,8 +10,9 @@
 //!   radiance L): `ρ L sin² θ_c`. With BSDF sampling only, guiding must find the cap and
 //!   cut the standard error by a large factor.
 //!
-//! And the training is deterministic at any thread count: tiles rendered on two threads and
-//! merged in tile order give the same tree as one thread.
+//! And the training is deterministic at any thread count: tiles rendered on two or three
+//! threads and merged in tile order give the same tree (split in space) and image as one
+//! thread.
 
 #[path = "../examples/custom_scene.rs"]
 #[allow(dead_code)] // the example's `main`
@@ -68,7 +69,8 @@ fn render_tile<S: Scene>(
     out
 }
 
-/// Trains on `pixels` pixels with the schedule of `total_spp`, tiles of `tile` pixels run on
+/// Trains on `pixels` pixels with the schedule of `total_spp` (spatial threshold
+/// `spatial_c·√(2^k)`), tiles of `tile` pixels run on
 /// `threads` threads and merged in tile order; returns the final pass's mean and standard
 /// error, and the last trained tree.
 #[allow(clippy::too_many_arguments)]
@@ -81,8 +83,12 @@ fn train_and_render<S: Scene + Sync>(
     total_spp: u32,
     seed: u64,
     threads: usize,
+    spatial_c: f64,
 ) -> (f64, f64, SdTree) {
-    let schedule = GuidingSchedule::new(total_spp);
+    let schedule = GuidingSchedule {
+        spatial_c,
+        ..GuidingSchedule::new(total_spp)
+    };
     let mut guide = SdTree::new(bounds.0, bounds.1);
     let mut training = guide.clone();
     let tile = 16u32;
@@ -166,8 +172,14 @@ fn glowing_sphere_is_unbiased() {
             strategy,
             guide_probability: 0.5,
         };
-        let (m, se, tree) = train_and_render(&scene, &gpt, bounds, &centre_camera, 256, 64, 11, 1);
-        assert!(tree.sample_count() > 0);
+        let (m, se, tree) =
+            train_and_render(&scene, &gpt, bounds, &centre_camera, 256, 64, 11, 1, 200.0);
+        // A low spatial threshold: the guide is split over the wall.
+        assert!(
+            tree.sample_count() > 0 && tree.leaf_count() > 1,
+            "{}",
+            tree.leaf_count()
+        );
         assert_close(
             &format!("glowing sphere {max_depth} {strategy:?}"),
             (m, se),
@@ -288,7 +300,17 @@ fn white_furnace_is_unbiased() {
     };
     let gpt = GuidedPathTracer::default();
     let bounds = (Vec3::splat(-1.0), Vec3::splat(1.0));
-    let r = train_and_render(&scene, &gpt, bounds, &outside_camera, 256, 64, 5, 1);
+    let r = train_and_render(
+        &scene,
+        &gpt,
+        bounds,
+        &outside_camera,
+        256,
+        64,
+        5,
+        1,
+        12_000.0,
+    );
     assert_close("furnace", (r.0, r.1), 0.6);
 }
 
@@ -307,7 +329,17 @@ fn sun_is_found_by_guiding() {
             strategy,
             ..GuidedPathTracer::default()
         };
-        let guided = train_and_render(&scene, &gpt, bounds, &outside_camera, 256, 128, 3, 1);
+        let guided = train_and_render(
+            &scene,
+            &gpt,
+            bounds,
+            &outside_camera,
+            256,
+            128,
+            3,
+            1,
+            12_000.0,
+        );
         assert_close(
             &format!("sun guided {strategy:?}"),
             (guided.0, guided.1),
@@ -319,8 +351,17 @@ fn sun_is_found_by_guiding() {
                 guide_probability: 0.0,
                 ..gpt
             };
-            let plain =
-                train_and_render(&scene, &unguided, bounds, &outside_camera, 256, 128, 3, 1);
+            let plain = train_and_render(
+                &scene,
+                &unguided,
+                bounds,
+                &outside_camera,
+                256,
+                128,
+                3,
+                1,
+                12_000.0,
+            );
             assert_close("sun unguided", (plain.0, plain.1), expected);
             assert!(
                 guided.1 < 0.5 * plain.1,
@@ -340,9 +381,10 @@ fn training_is_deterministic_at_any_thread_count() {
     };
     let gpt = GuidedPathTracer::default();
     let bounds = (Vec3::splat(-1.0), Vec3::splat(1.0));
-    let one = train_and_render(&scene, &gpt, bounds, &centre_camera, 100, 16, 9, 1);
-    let two = train_and_render(&scene, &gpt, bounds, &centre_camera, 100, 16, 9, 2);
-    let three = train_and_render(&scene, &gpt, bounds, &centre_camera, 100, 16, 9, 3);
+    let one = train_and_render(&scene, &gpt, bounds, &centre_camera, 100, 16, 9, 1, 100.0);
+    let two = train_and_render(&scene, &gpt, bounds, &centre_camera, 100, 16, 9, 2, 100.0);
+    let three = train_and_render(&scene, &gpt, bounds, &centre_camera, 100, 16, 9, 3, 100.0);
+    assert!(one.2.leaf_count() > 1);
     assert_eq!(one.2, two.2);
     assert_eq!(one.2, three.2);
     assert_eq!(one.0.to_bits(), two.0.to_bits());
