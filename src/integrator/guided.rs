@@ -3,7 +3,8 @@
 
 use super::path::{depth_limit, hit_weight, nee, PrevVertex};
 use super::{is_positive, Bsdf, PathResult, PathTracer, SampleSource, Scene, Strategy};
-use crate::sampling::guiding::{GuidingRecord, GuidingRecords, PathVertex, SdTree};
+use crate::sampling::guiding::{DQuadTree, GuidingRecord, GuidingRecords, PathVertex, SdTree};
+use crate::sampling::Frame;
 use glam::{Vec2, Vec3};
 
 /// The largest selection probability of the guide, so that BSDF sampling (the only way to
@@ -56,13 +57,27 @@ impl Default for GuidedPathTracer {
     }
 }
 
-/// One sampled direction: world direction, weight `f·|cos|/pdf`, density, Dirac, η.
-struct Step {
-    wi: Vec3,
-    weight: Vec3,
-    pdf: f32,
-    delta: bool,
-    eta: f32,
+/// One direction sampled by [`GuidedPathTracer::sample_direction`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GuidedSample {
+    /// The direction, world space.
+    pub wi: Vec3,
+    /// `f·|cos θ_i| / pdf` per RGB channel (0 where the BSDF is 0, such as a guided
+    /// direction below a reflecting surface).
+    pub weight: Vec3,
+    /// The mixture density `α·p_guide + (1 − α)·p_bsdf` per steradian; for a Dirac lobe,
+    /// `(1 − α)` times the BSDF's choice probability.
+    pub pdf: f32,
+    /// A Dirac lobe of the BSDF was sampled.
+    pub delta: bool,
+    /// The relative index of refraction crossed (1 for a direction from the guide).
+    pub eta: f32,
+}
+
+/// The one-sample mixture density.
+#[inline(always)]
+fn mixture(alpha: f32, p_guide: f32, p_bsdf: f32) -> f32 {
+    alpha * p_guide + (1.0 - alpha) * p_bsdf
 }
 
 impl GuidedPathTracer {
@@ -84,6 +99,76 @@ impl GuidedPathTracer {
         } else {
             0.0
         }
+    }
+
+    /// The selection probability of the guide at a vertex whose BSDF has `flags`: 0 unless
+    /// the BSDF has a non-delta part.
+    #[inline]
+    fn alpha_for(&self, flags: super::BsdfFlags) -> f32 {
+        if flags.smooth {
+            self.alpha()
+        } else {
+            0.0
+        }
+    }
+
+    /// Samples the direction that continues a path at a vertex with BSDF `bsdf`, shading
+    /// frame `frame` and local outgoing direction `wo`, from the guide `guide` (the tree's
+    /// distribution at the vertex) with probability α, else from the BSDF: one value from
+    /// `samples` for the choice, then two for the guide or the BSDF's own. `None` when the
+    /// BSDF gives no sample or the density is not positive and finite.
+    pub fn sample_direction<B: Bsdf, R: SampleSource>(
+        &self,
+        bsdf: &B,
+        frame: &Frame,
+        wo: Vec3,
+        guide: &DQuadTree,
+        samples: &mut R,
+    ) -> Option<GuidedSample> {
+        let alpha = self.alpha_for(bsdf.flags());
+        if samples.next_1d() < alpha {
+            let (wi, p_guide) = guide.sample(samples.next_2d());
+            let (f, p_bsdf) = bsdf.eval_pdf(wo, frame.to_local(wi));
+            let pdf = mixture(alpha, p_guide, p_bsdf);
+            return (is_positive(pdf) && pdf.is_finite()).then(|| GuidedSample {
+                wi,
+                weight: f / pdf,
+                pdf,
+                delta: false,
+                eta: 1.0,
+            });
+        }
+        let bs = super::sample_bsdf(bsdf, wo, samples)?;
+        let wi = frame.to_world(bs.wi);
+        let (weight, pdf) = if bs.delta {
+            (bs.weight / (1.0 - alpha), bs.pdf * (1.0 - alpha))
+        } else {
+            let p_guide = if alpha > 0.0 { guide.pdf(wi) } else { 0.0 };
+            let pdf = mixture(alpha, p_guide, bs.pdf);
+            (bs.weight * (bs.pdf / pdf), pdf)
+        };
+        (is_positive(pdf) && pdf.is_finite()).then_some(GuidedSample {
+            wi,
+            weight,
+            pdf,
+            delta: bs.delta,
+            eta: bs.eta,
+        })
+    }
+
+    /// The density with which [`GuidedPathTracer::sample_direction`] returns the world
+    /// direction `wi` (its non-delta part): `α·guide.pdf(wi) + (1 − α)·bsdf.pdf(wo, wi)`.
+    pub fn pdf<B: Bsdf>(
+        &self,
+        bsdf: &B,
+        frame: &Frame,
+        wo: Vec3,
+        guide: &DQuadTree,
+        wi: Vec3,
+    ) -> f32 {
+        let alpha = self.alpha_for(bsdf.flags());
+        let p_guide = if alpha > 0.0 { guide.pdf(wi) } else { 0.0 };
+        mixture(alpha, p_guide, bsdf.pdf(wo, frame.to_local(wi)))
     }
 
     /// Estimates the radiance arriving at the camera along the unit direction `dir` from
@@ -142,7 +227,7 @@ impl GuidedPathTracer {
             let bsdf = &scene.bsdf(&sp);
             let wo = sp.frame.to_local(wo_world);
             let flags = bsdf.flags();
-            let alpha = if flags.smooth { self.alpha() } else { 0.0 };
+            let alpha = self.alpha_for(flags);
             let dist = guide.distribution(sp.p);
             let u_light = samples.next_2d();
             let u_pick = if scene.samples_light_choice() {
@@ -152,50 +237,13 @@ impl GuidedPathTracer {
             };
             if flags.smooth && (self.strategy.samples_lights() || scene.has_delta_lights()) {
                 if let Some(ls) = scene.sample_light(&sp, u_pick, u_light) {
-                    let mix = |pb: f32| alpha * dist.pdf(ls.wi) + (1.0 - alpha) * pb;
+                    let mix = |pb: f32| mixture(alpha, dist.pdf(ls.wi), pb);
                     let c = nee(self.strategy, scene, bsdf, &sp, wo, &ls, &mut out.rays, mix);
                     add(&mut out.radiance, &mut records, throughput * c);
                 }
             }
-            let u_select = samples.next_1d();
-            let step = if u_select < alpha {
-                let (wi, p_guide) = dist.sample(samples.next_2d());
-                let (f, p_bsdf) = bsdf.eval_pdf(wo, sp.frame.to_local(wi));
-                let pdf = alpha * p_guide + (1.0 - alpha) * p_bsdf;
-                if !(is_positive(pdf) && pdf.is_finite()) {
-                    break;
-                }
-                Step {
-                    wi,
-                    weight: f / pdf,
-                    pdf,
-                    delta: false,
-                    eta: 1.0,
-                }
-            } else {
-                let Some(bs) = super::sample_bsdf(bsdf, wo, samples) else {
-                    break;
-                };
-                let wi = sp.frame.to_world(bs.wi);
-                if bs.delta {
-                    Step {
-                        wi,
-                        weight: bs.weight / (1.0 - alpha),
-                        pdf: bs.pdf * (1.0 - alpha),
-                        delta: true,
-                        eta: bs.eta,
-                    }
-                } else {
-                    let p_guide = if alpha > 0.0 { dist.pdf(wi) } else { 0.0 };
-                    let pdf = alpha * p_guide + (1.0 - alpha) * bs.pdf;
-                    Step {
-                        wi,
-                        weight: bs.weight * (bs.pdf / pdf),
-                        pdf,
-                        delta: false,
-                        eta: bs.eta,
-                    }
-                }
+            let Some(step) = self.sample_direction(bsdf, &sp.frame, wo, dist, samples) else {
+                break;
             };
             throughput *= step.weight;
             eta *= step.eta;

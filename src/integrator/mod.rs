@@ -35,7 +35,7 @@ pub use bdpt::{
 };
 pub use bidirectional::{BidirectionalScene, CameraConnection, EmissionSample, EmitterKind};
 pub use direct::DirectIntegrator;
-pub use guided::GuidedPathTracer;
+pub use guided::{GuidedPathTracer, GuidedSample};
 pub use mlt::{brightness as mlt_brightness, Mlt, MltChain, MltPath, PrimarySamples};
 pub use path::{PathResult, PathTracer};
 pub use strategy::Strategy;
