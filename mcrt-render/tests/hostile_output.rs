@@ -246,3 +246,42 @@ fn sigint_and_sigterm_write_partial_images_and_exit_130() {
     interrupted_by("INT");
     interrupted_by("TERM");
 }
+
+/// Issue 26: `--threads` past [`MAX_THREADS`] is refused at once, not a spawning of
+/// threads until the machine gives out.
+#[test]
+fn too_many_threads_are_refused_at_once() {
+    for n in ["100000", "18446744073709551615", "1025"] {
+        let start = Instant::now();
+        let out = Command::new(render_example())
+            .args([
+                "-D",
+                "res=8",
+                "-D",
+                "spp=1",
+                "--threads",
+                n,
+                "-o",
+                "/nonexistent/x.exr",
+            ])
+            .output()
+            .expect("render runs");
+        assert_eq!(out.status.code(), Some(2), "{n}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("at most 1024"), "{err}");
+        assert!(
+            start.elapsed() < Duration::from_secs(5),
+            "{:?}",
+            start.elapsed()
+        );
+    }
+    assert_eq!(mcrt_render::render::MAX_THREADS, 1024);
+    assert!(String::from_utf8_lossy(
+        &Command::new(render_example())
+            .arg("--help")
+            .output()
+            .expect("help")
+            .stdout
+    )
+    .contains("at most 1024"));
+}

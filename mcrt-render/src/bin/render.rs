@@ -26,7 +26,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use mcrt::integrator::Strategy;
 use mcrt_render::description::{IntegratorKind, SamplerKind, SceneDescription};
 use mcrt_render::film::{OutputPlan, WindowError, EXIT_INTERRUPTED};
-use mcrt_render::render::{AccelKind, RenderOptions, Renderer, ShapeSampling};
+use mcrt_render::render::{AccelKind, RenderOptions, Renderer, ShapeSampling, MAX_THREADS};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -95,9 +95,15 @@ const OPTIONS: &[Opt] = &[
         long: "threads",
         short: None,
         value: Some("N"),
-        help: "worker threads, 0 for all cores [default: 0]",
+        help: "worker threads, 0 for all cores, at most 1024 [default: 0]",
         apply: |a, v| {
-            a.opts.threads = num("--threads", v)?;
+            let n: usize = num("--threads", v)?;
+            if n > MAX_THREADS {
+                return Err(format!(
+                    "--threads {v}: at most {MAX_THREADS} worker threads"
+                ));
+            }
+            a.opts.threads = n;
             Ok(())
         },
     },

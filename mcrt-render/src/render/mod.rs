@@ -65,7 +65,8 @@ pub struct RenderOptions {
     pub spp: Option<u32>,
     /// Seed (else the file's sampler seed).
     pub seed: Option<u64>,
-    /// Worker threads; 0 uses all cores.
+    /// Worker threads; 0 uses all cores. At most [`MAX_THREADS`]: more are clamped to it
+    /// (the `render` program refuses them).
     pub threads: usize,
     /// Sampling strategy at every vertex (else MIS with the power heuristic).
     pub strategy: Option<Strategy>,
@@ -196,11 +197,16 @@ fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, Sa
     })
 }
 
-/// Runs `f` in a pool of `threads` rayon threads (0: the global pool, all cores; also if
-/// the pool cannot be made).
+/// The most worker threads a render uses ([`RenderOptions::threads`] is clamped to it):
+/// far more than any machine has cores, and few enough that spawning them is harmless.
+pub const MAX_THREADS: usize = 1024;
+
+/// Runs `f` in a pool of `threads` rayon threads, at most [`MAX_THREADS`] (0: the global
+/// pool, all cores; also if the pool cannot be made).
 fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
     if threads > 0 {
-        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+        let n = threads.min(MAX_THREADS);
+        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(n).build() {
             return pool.install(f);
         }
     }
@@ -584,6 +590,11 @@ mod thread_tests {
     fn work_runs_on_the_requested_number_of_threads() {
         assert_eq!(on_threads(1, rayon::current_num_threads), 1);
         assert_eq!(on_threads(3, rayon::current_num_threads), 3);
+        // Issue 26: far more threads than any machine has are clamped.
+        assert_eq!(
+            on_threads(usize::MAX, rayon::current_num_threads),
+            super::MAX_THREADS
+        );
         assert_eq!(
             on_threads(0, rayon::current_num_threads),
             rayon::current_num_threads()
