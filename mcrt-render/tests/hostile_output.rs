@@ -457,3 +457,130 @@ fn a_signal_stops_an_endless_path_at_once() {
     assert!(dir.join("out.partial.exr").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The `merge` program.
+fn merge_program() -> PathBuf {
+    PathBuf::from(env!("CARGO_BIN_EXE_merge"))
+}
+
+/// Issue 26: a FIFO given to `merge` as a part is refused at once (opening it waited for a
+/// writer forever).
+#[test]
+fn merge_refuses_a_fifo_at_once() {
+    let dir = scratch("merge-fifo");
+    let fifo = dir.join("part.exr");
+    let made = Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success());
+    let mut child = Command::new(merge_program())
+        .arg(dir.join("out.exr"))
+        .arg(&fifo)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("merge starts");
+    let start = Instant::now();
+    while child.try_wait().expect("try_wait").is_none() {
+        if start.elapsed() > Duration::from_secs(10) {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("merge waits on a FIFO");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().expect("output");
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("not a regular file") && err.contains("part.exr"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 26: a part whose sums hold NaN is refused with the count of such values and the
+/// part's name (it merged into an image with non-finite pixels without a word).
+#[test]
+fn merge_refuses_a_part_with_nan_sums() {
+    let dir = scratch("merge-nan");
+    let desc = mcrt_render::cornell_box::cornell_box_with(2, 8, -1);
+    let opts = RenderOptions {
+        samples: Some("0..2".parse().expect("range")),
+        ..RenderOptions::default()
+    };
+    let r = Renderer::new(&desc, &opts).expect("renderer");
+    let mut film = r.render(&|_, _| {}, &AtomicBool::new(false)).film;
+    let nan = PixelAccum {
+        sum: [f64::NAN; 3],
+        sum_sq: [0.0; 3],
+        count: 0,
+    };
+    for i in [3, 17, 40, 41] {
+        film.merge(i, &nan).expect("inside the film");
+    }
+    let part = dir.join("bad.exr");
+    mcrt_render::film::write_part(&part, &film, &r.part_info("box")).expect("written");
+    let out = Command::new(merge_program())
+        .arg(dir.join("out.exr"))
+        .arg(&part)
+        .output()
+        .expect("merge runs");
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.exr") && err.contains("12 values") && err.contains("NaN"),
+        "{err}"
+    );
+    assert!(!dir.join("out.exr").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 26: file names need not be UTF-8: `merge` and `render` take them (`args_os`),
+/// and never panic on their arguments.
+#[test]
+fn non_utf8_arguments_do_not_panic() {
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
+    let dir = scratch("non-utf8");
+    let bad = OsStr::from_bytes(b"caf\xe9.exr");
+    // merge: a non-UTF-8 part that does not exist, and a non-UTF-8 output.
+    let out = Command::new(merge_program())
+        .arg(dir.join(bad))
+        .arg(dir.join(OsStr::from_bytes(b"p\xff.exr")))
+        .output()
+        .expect("merge runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    // render: a non-UTF-8 output is written; a non-UTF-8 scene name is read (and missing).
+    let out = Command::new(render_example())
+        .args(["-D", "res=8", "-D", "spp=1", "-o"])
+        .arg(dir.join(bad))
+        .output()
+        .expect("render runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(dir.join(bad).is_file() && dir.join(OsStr::from_bytes(b"caf\xe9.png")).is_file());
+    let out = Command::new(render_example())
+        .arg(dir.join(OsStr::from_bytes(b"sc\xe8ne.xml")))
+        .output()
+        .expect("render runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    // A non-UTF-8 value of another option is a usage error.
+    let out = Command::new(render_example())
+        .arg("--spp")
+        .arg(OsStr::from_bytes(b"4\xff"))
+        .output()
+        .expect("render runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("not UTF-8") && !err.contains("panicked"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -30,6 +30,7 @@ use mcrt::integrator::Strategy;
 use mcrt_render::description::{IntegratorKind, SamplerKind, SceneDescription};
 use mcrt_render::film::{OutputPlan, WindowError, EXIT_INTERRUPTED};
 use mcrt_render::render::{AccelKind, RenderOptions, Renderer, ShapeSampling, MAX_THREADS};
+use std::ffi::OsString;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -275,6 +276,7 @@ fn num<T: std::str::FromStr>(flag: &str, v: &str) -> Result<T, String> {
 fn command() -> Command {
     let scene = Arg::new("scene")
         .value_name("SCENE.xml")
+        .value_parser(clap::value_parser!(PathBuf))
         .help("Mitsuba 3 XML scene [default: the built-in Cornell box]");
     all_options().fold(
         Command::new("render")
@@ -295,7 +297,11 @@ fn command() -> Command {
                 arg = arg.short(s);
             }
             arg = match o.value {
-                Some(v) => arg.value_name(v).action(ArgAction::Append),
+                // Taken as `OsString`: a file name need not be UTF-8 (`parse_args`).
+                Some(v) => arg
+                    .value_name(v)
+                    .action(ArgAction::Append)
+                    .value_parser(clap::value_parser!(OsString)),
                 None => arg.action(ArgAction::SetTrue),
             };
             cmd.arg(arg)
@@ -307,7 +313,7 @@ fn command() -> Command {
 fn parse_args() -> Result<Args, clap::Error> {
     let m = command().try_get_matches()?;
     let mut a = Args {
-        scene: m.get_one::<String>("scene").map(PathBuf::from),
+        scene: m.get_one::<PathBuf>("scene").cloned(),
         ..Args::default()
     };
     let usage = |e: String| command().error(clap::error::ErrorKind::ValueValidation, e);
@@ -316,7 +322,15 @@ fn parse_args() -> Result<Args, clap::Error> {
             None if m.get_flag(o.long) => (o.apply)(&mut a, "").map_err(usage)?,
             None => {}
             Some(_) => {
-                for v in m.get_many::<String>(o.long).into_iter().flatten() {
+                for v in m.get_many::<OsString>(o.long).into_iter().flatten() {
+                    if o.long == "output" {
+                        // A file name, not necessarily UTF-8.
+                        a.out = Some(PathBuf::from(v));
+                        continue;
+                    }
+                    let v = v.to_str().ok_or_else(|| {
+                        usage(format!("--{} {}: not UTF-8", o.long, v.to_string_lossy()))
+                    })?;
                     (o.apply)(&mut a, v).map_err(usage)?;
                 }
             }
