@@ -458,3 +458,41 @@ fn lights_whose_power_overflows_f32_are_refused_not_dropped() {
         "{e}"
     );
 }
+
+/// Issue 26: an included file without `version` is refused, as Mitsuba 3 does, at its
+/// root element.
+#[test]
+fn an_included_file_needs_a_version() {
+    let dir = scratch("include-version");
+    std::fs::write(
+        dir.join("a.xml"),
+        "<scene version=\"3.0.0\">\n<include filename=\"b.xml\"/>\n</scene>",
+    )
+    .expect("a.xml");
+    std::fs::write(
+        dir.join("b.xml"),
+        "<scene>\n<shape type=\"sphere\"/>\n</scene>",
+    )
+    .expect("b");
+    let e = load_scene(&dir.join("a.xml"), &[]).expect_err("no version");
+    let msg = e.to_string();
+    assert_eq!(e.line, Some(1), "{msg}");
+    assert!(msg.contains("b.xml") && msg.contains("version"), "{msg}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 26: a second environment emitter is located at its element, and a focal length
+/// that leaves no field of view at `focal_length` (it was "sensor fov -180", unlocated).
+#[test]
+fn a_second_environment_and_a_hopeless_focal_length_are_located() {
+    let e = err("<emitter type=\"constant\"/>\n<emitter type=\"constant\"/>");
+    located(&e, 3, "more than one environment emitter");
+    assert!(e.to_string().contains("line 2"), "{e}");
+    for mm in ["1e-40mm", "1e-40"] {
+        let e = err(&format!(
+            "<sensor type=\"perspective\">\n<string name=\"focal_length\" value=\"{mm}\"/></sensor>"
+        ));
+        located(&e, 3, "focal_length");
+        assert!(!e.to_string().contains("-180"), "{e}");
+    }
+}
