@@ -11,10 +11,13 @@
 //! OUT-variance.exr with `--variance`), atomically. Parts of different renders (scene,
 //! options, seed, samples per pixel or size), parts that hold the same samples of a pixel,
 //! parts that leave samples out, and interrupted parts are refused, with the files and
-//! pixels concerned; nothing is written then. Exit status 0 on success, 1 on a refusal, 2 on
-//! a usage error.
+//! pixels concerned; nothing is written then. So are parts whose sums hold NaN or infinite
+//! values (with their count and the first pixel), and parts that are not regular files (a
+//! FIFO would block). File names need not be UTF-8. Exit status 0 on success, 1 on a
+//! refusal, 2 on a usage error.
 
 use mcrt_render::film::{merge_parts, read_part, OutputPlan};
+use std::ffi::OsString;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -52,15 +55,20 @@ fn run(out: PathBuf, parts: Vec<PathBuf>, variance: bool) -> Result<(), String> 
 }
 
 fn main() -> ExitCode {
-    let mut args: Vec<String> = std::env::args().skip(1).collect();
-    if args.iter().any(|a| a == "--help" || a == "-h") {
+    // `args_os`: a file name need not be UTF-8 (`args` would panic on it).
+    let mut args: Vec<OsString> = std::env::args_os().skip(1).collect();
+    let is = |a: &OsString, s: &str| a.as_os_str() == s;
+    if args.iter().any(|a| is(a, "--help") || is(a, "-h")) {
         println!("{USAGE}\n\nAdds the parts written by render --samples/--crop into one image.");
         return ExitCode::SUCCESS;
     }
-    let variance = args.iter().any(|a| a == "--variance");
-    args.retain(|a| a != "--variance");
-    if let Some(bad) = args.iter().find(|a| a.starts_with("--")) {
-        eprintln!("error: unknown option {bad}\n{USAGE}");
+    let variance = args.iter().any(|a| is(a, "--variance"));
+    args.retain(|a| !is(a, "--variance"));
+    if let Some(bad) = args
+        .iter()
+        .find(|a| a.as_encoded_bytes().starts_with(b"--"))
+    {
+        eprintln!("error: unknown option {}\n{USAGE}", bad.to_string_lossy());
         return ExitCode::from(2);
     }
     if args.len() < 2 {

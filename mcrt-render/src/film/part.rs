@@ -166,17 +166,20 @@ pub fn write_part(path: &Path, film: &Film, info: &PartInfo) -> Result<(), Image
 
 /// Reads a part written by [`write_part`], checking that its header is complete and
 /// consistent (the sample range within the samples per pixel, the crop within the image
-/// and within the data window) and that every channel is there.
+/// and within the data window) and that every channel is there. Only a regular file is
+/// opened (a FIFO, device or folder is refused first).
 pub fn read_part(path: &Path) -> Result<Part, ImageError> {
     use exr::prelude::traits::{read, ReadChannels, ReadLayers};
     use exr::prelude::{AttributeValue, FlatSamples, Vec2};
+    // Only a regular file: opening a FIFO would wait for a writer forever (issue 26).
+    let file = crate::io::open_regular(path).map_err(|e| err(path, e))?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
         .all_channels()
         .first_valid_layer()
         .all_attributes()
-        .from_file(path)
+        .from_buffered(std::io::BufReader::new(file))
         .map_err(|e| err(path, e))?;
     let layer = &image.layer_data;
     let get = |k: &str| {

@@ -65,7 +65,8 @@ pub struct RenderOptions {
     pub spp: Option<u32>,
     /// Seed (else the file's sampler seed).
     pub seed: Option<u64>,
-    /// Worker threads; 0 uses all cores.
+    /// Worker threads; 0 uses all cores. At most [`MAX_THREADS`]: more are clamped to it
+    /// (the `render` program refuses them).
     pub threads: usize,
     /// Sampling strategy at every vertex (else MIS with the power heuristic).
     pub strategy: Option<Strategy>,
@@ -196,11 +197,19 @@ fn make_sampler(kind: SamplerKind, spp: u32, seed: u64) -> Result<AnySampler, Sa
     })
 }
 
-/// Runs `f` in a pool of `threads` rayon threads (0: the global pool, all cores; also if
-/// the pool cannot be made).
+/// A stop flag that is never set.
+static NEVER: AtomicBool = AtomicBool::new(false);
+
+/// The most worker threads a render uses ([`RenderOptions::threads`] is clamped to it):
+/// far more than any machine has cores, and few enough that spawning them is harmless.
+pub const MAX_THREADS: usize = 1024;
+
+/// Runs `f` in a pool of `threads` rayon threads, at most [`MAX_THREADS`] (0: the global
+/// pool, all cores; also if the pool cannot be made).
 fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
     if threads > 0 {
-        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+        let n = threads.min(MAX_THREADS);
+        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(n).build() {
             return pool.install(f);
         }
     }
@@ -433,9 +442,12 @@ impl Renderer {
     pub fn check_mis_weights(&self, bdpt: &Bdpt, check: &MisWeightCheck) -> MisWeightOutcome {
         match &self.textured {
             Some(textured) => {
-                bdpt.check_mis_weights(&self.view::<_, true, true>(textured.clone()), check)
+                bdpt.check_mis_weights(&self.view::<_, true, true>(textured.clone(), &NEVER), check)
             }
-            None => bdpt.check_mis_weights(&self.view::<_, true, true>(self.bsdfs.clone()), check),
+            None => bdpt.check_mis_weights(
+                &self.view::<_, true, true>(self.bsdfs.clone(), &NEVER),
+                check,
+            ),
         }
     }
 
@@ -482,11 +494,17 @@ impl Renderer {
             return if self.specialize {
                 self.run_specialised(textured.clone(), p)
             } else {
-                self.run_loop(&self.view::<_, true, true>(textured.clone()), p)
+                self.run_loop(
+                    &self.view::<_, true, true>(textured.clone(), self.stop(p)),
+                    p,
+                )
             };
         }
         if !self.specialize {
-            return self.run_loop(&self.view::<_, true, true>(self.bsdfs.clone()), p);
+            return self.run_loop(
+                &self.view::<_, true, true>(self.bsdfs.clone(), self.stop(p)),
+                p,
+            );
         }
         if e.diffuse_only {
             let bsdfs: Vec<_> = self
@@ -511,18 +529,31 @@ impl Renderer {
         p: &tiles::LoopParams<'_>,
     ) -> (Film, tiles::LoopStats) {
         match (self.effects.delta_lights, self.effects.environment) {
-            (false, false) => self.run_loop(&self.view::<B, false, false>(bsdfs), p),
-            (true, false) => self.run_loop(&self.view::<B, true, false>(bsdfs), p),
-            (false, true) => self.run_loop(&self.view::<B, false, true>(bsdfs), p),
-            (true, true) => self.run_loop(&self.view::<B, true, true>(bsdfs), p),
+            (false, false) => self.run_loop(&self.view::<B, false, false>(bsdfs, self.stop(p)), p),
+            (true, false) => self.run_loop(&self.view::<B, true, false>(bsdfs, self.stop(p)), p),
+            (false, true) => self.run_loop(&self.view::<B, false, true>(bsdfs, self.stop(p)), p),
+            (true, true) => self.run_loop(&self.view::<B, true, true>(bsdfs, self.stop(p)), p),
         }
     }
 
-    /// The estimators' view of the scene with materials `bsdfs`.
-    fn view<B, const DELTA: bool, const ENV: bool>(
-        &self,
+    /// What stops a path of the render's integrator at its next bounce: the cancel flag
+    /// for the path tracer, whose paths have no bound on their length (`max_depth` −1 and
+    /// a huge `rr_depth`), never for the others (the bidirectional paths stop at
+    /// `MAX_VERTICES`, `mlt`'s at [`crate::validate::MAX_MLT_DEPTH`], `direct`'s at once).
+    fn stop<'a>(&self, p: &tiles::LoopParams<'a>) -> &'a AtomicBool {
+        match self.integrator {
+            Integrator::Path(_) => p.cancel,
+            _ => &NEVER,
+        }
+    }
+
+    /// The estimators' view of the scene with materials `bsdfs`, whose paths end once
+    /// `stop` is set.
+    fn view<'a, B, const DELTA: bool, const ENV: bool>(
+        &'a self,
         bsdfs: Vec<B>,
-    ) -> SceneView<'_, B, DELTA, ENV> {
+        stop: &'a AtomicBool,
+    ) -> SceneView<'a, B, DELTA, ENV> {
         SceneView {
             geometry: &self.geometry,
             bsdfs,
@@ -530,6 +561,7 @@ impl Renderer {
             camera: &self.camera,
             world: self.geometry.bounding_sphere(),
             filter: &self.filter,
+            stop,
         }
     }
 
@@ -584,6 +616,11 @@ mod thread_tests {
     fn work_runs_on_the_requested_number_of_threads() {
         assert_eq!(on_threads(1, rayon::current_num_threads), 1);
         assert_eq!(on_threads(3, rayon::current_num_threads), 3);
+        // Issue 26: far more threads than any machine has are clamped.
+        assert_eq!(
+            on_threads(usize::MAX, rayon::current_num_threads),
+            super::MAX_THREADS
+        );
         assert_eq!(
             on_threads(0, rayon::current_num_threads),
             rayon::current_num_threads()
