@@ -164,9 +164,9 @@ impl Geometry {
         self.prims.len()
     }
 
-    /// Heap bytes held by the acceleration structure (not the primitives): bounded by a
-    /// multiple of the primitive count for any input (`docs/geometry.md`, "Bounds on
-    /// degenerate input").
+    /// Heap bytes held by the acceleration structure (not the primitives): O(n) in the
+    /// primitive count for the BVH and the grid, O(n log n) at most for the kd-tree, for any
+    /// input (`docs/geometry.md`, "Bounds on degenerate input").
     pub fn accel_heap_bytes(&self) -> usize {
         self.query.heap_bytes()
     }
