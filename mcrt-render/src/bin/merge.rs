@@ -1,8 +1,11 @@
 //! Merges the parts of a render into the image a single render would have given.
 //!
 //! ```text
-//! cargo run --release --bin merge -- [--variance] OUT.exr|OUT.png PARTS.exr...
+//! cargo run --release --bin merge -- [--variance] [--max-memory SIZE] OUT.exr|OUT.png PARTS.exr...
 //! ```
+//!
+//! `--max-memory` (e.g. `4G`, default 8G) is the memory budget: a part whose image would
+//! need more to merge is refused before anything is allocated (docs/renderer.md).
 //!
 //! The parts are written by `render --samples START..END` and/or `--crop x0,y0,x1,y1` (see
 //! `docs/distributed.md`). Their per-pixel sums and sample counts are added in f64, so the
@@ -18,7 +21,7 @@ use mcrt_render::film::{merge_parts, read_part, OutputPlan};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: merge [--variance] OUT.exr|OUT.png PARTS.exr...";
+const USAGE: &str = "usage: merge [--variance] [--max-memory SIZE] OUT.exr|OUT.png PARTS.exr...";
 
 fn run(out: PathBuf, parts: Vec<PathBuf>, variance: bool) -> Result<(), String> {
     let name = out
@@ -59,6 +62,21 @@ fn main() -> ExitCode {
     }
     let variance = args.iter().any(|a| a == "--variance");
     args.retain(|a| a != "--variance");
+    if let Some(i) = args.iter().position(|a| a == "--max-memory") {
+        let size = args.get(i + 1).map(|v| mcrt_render::memory::parse_size(v));
+        match size {
+            Some(Ok(bytes)) => mcrt_render::memory::set_max_memory(bytes),
+            Some(Err(e)) => {
+                eprintln!("error: --max-memory {e}\n{USAGE}");
+                return ExitCode::from(2);
+            }
+            None => {
+                eprintln!("error: --max-memory needs a size such as 4G\n{USAGE}");
+                return ExitCode::from(2);
+            }
+        }
+        args.drain(i..i + 2);
+    }
     if let Some(bad) = args.iter().find(|a| a.starts_with("--")) {
         eprintln!("error: unknown option {bad}\n{USAGE}");
         return ExitCode::from(2);
