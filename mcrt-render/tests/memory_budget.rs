@@ -315,6 +315,15 @@ fn textures_add_up_against_the_budget() {
         "would need",
     );
     // Six 256² 8-bit textures are kept at 3 bytes a pixel: 1.2 MB in all.
-    let (code, err) = render(&[scene.to_str().unwrap(), "--max-memory", "4M", "--spp", "1"]);
+    let out = d.join("out.exr");
+    let (code, err) = render(&[
+        scene.to_str().unwrap(),
+        "--max-memory",
+        "4M",
+        "--spp",
+        "1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert_eq!(code, Some(0), "{err}");
 }
