@@ -111,6 +111,13 @@ fn read_exr_texture(
     });
     for header in meta.headers.iter() {
         let (w, h) = (header.layer_size.width(), header.layer_size.height());
+        // The text `read_exr_at_most` gives, for the same refusal.
+        if (w as u64).saturating_mul(h as u64) > MAX_TEXTURE_PIXELS {
+            return Err(format!(
+                "{}: a layer of {w} × {h} pixels is more than the {MAX_TEXTURE_PIXELS} allowed",
+                path.display()
+            ));
+        }
         check_size(w as u64, h as u64)?;
         room(w as u32, h as u32, if half { 6 } else { 12 })?;
     }
