@@ -1,8 +1,11 @@
 //! Merges the parts of a render into the image a single render would have given.
 //!
 //! ```text
-//! cargo run --release --bin merge -- [--variance] OUT.exr|OUT.png PARTS.exr...
+//! cargo run --release --bin merge -- [--variance] [--max-memory SIZE] OUT.exr|OUT.png PARTS.exr...
 //! ```
+//!
+//! `--max-memory` (e.g. `4G`, default 8G) is the memory budget: a part whose image would
+//! need more to merge is refused before anything is allocated (docs/renderer.md).
 //!
 //! The parts are written by `render --samples START..END` and/or `--crop x0,y0,x1,y1` (see
 //! `docs/distributed.md`). Their per-pixel sums and sample counts are added in f64, so the
@@ -21,7 +24,7 @@ use std::ffi::OsString;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: merge [--variance] OUT.exr|OUT.png PARTS.exr...";
+const USAGE: &str = "usage: merge [--variance] [--max-memory SIZE] OUT.exr|OUT.png PARTS.exr...";
 
 fn run(out: PathBuf, parts: Vec<PathBuf>, variance: bool) -> Result<(), String> {
     let name = out
@@ -64,6 +67,24 @@ fn main() -> ExitCode {
     }
     let variance = args.iter().any(|a| is(a, "--variance"));
     args.retain(|a| !is(a, "--variance"));
+    if let Some(i) = args.iter().position(|a| is(a, "--max-memory")) {
+        let size = args.get(i + 1).map(|v| match v.to_str() {
+            Some(v) => mcrt_render::memory::parse_size(v),
+            None => Err(format!("{}: not a size", v.to_string_lossy())),
+        });
+        match size {
+            Some(Ok(bytes)) => mcrt_render::memory::set_max_memory(bytes),
+            Some(Err(e)) => {
+                eprintln!("error: --max-memory {e}\n{USAGE}");
+                return ExitCode::from(2);
+            }
+            None => {
+                eprintln!("error: --max-memory needs a size such as 4G\n{USAGE}");
+                return ExitCode::from(2);
+            }
+        }
+        args.drain(i..i + 2);
+    }
     if let Some(bad) = args
         .iter()
         .find(|a| a.as_encoded_bytes().starts_with(b"--"))

@@ -218,6 +218,20 @@ const OPTIONS: &[Opt] = &[
         },
     },
     Opt {
+        long: "max-memory",
+        short: None,
+        value: Some("SIZE"),
+        help: "memory budget for loading and rendering, e.g. 4G or 512M: a mesh, texture, \
+               film or MLT state that would need more is refused before it is allocated \
+               (docs/renderer.md, Memory budget) [default: 8G]",
+        apply: |_a, v| {
+            let bytes =
+                mcrt_render::memory::parse_size(v).map_err(|e| format!("--max-memory {e}"))?;
+            mcrt_render::memory::set_max_memory(bytes);
+            Ok(())
+        },
+    },
+    Opt {
         long: "bdpt-strategy",
         short: None,
         value: Some("S,T"),

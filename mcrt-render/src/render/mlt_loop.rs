@@ -144,6 +144,33 @@ fn brightness_per_length<S: BidirectionalScene + Sync>(
         .collect()
 }
 
+/// The bytes the render loop of `mlt` holds at most at `width × height` pixels, beside the
+/// film (for the memory budget): the images of the chains run at once, the per-length sums
+/// of the lengths those chains span (each folded into the film once its chains are done),
+/// and the bootstrap's brightness per (sample, length).
+pub(crate) fn state_bytes(mlt: &Mlt, width: u64, height: u64) -> u64 {
+    let pixels = width.saturating_mul(height);
+    let images = crate::memory::bytes(pixels, CHAIN_BATCH * 12);
+    let sums = crate::memory::bytes(pixels, (CHAIN_BATCH + 1) * 24);
+    let boot = crate::memory::bytes(
+        u64::from(mlt.bootstrap_samples).saturating_mul(u64::from(mlt.max_depth)),
+        4 + 8,
+    );
+    images.saturating_add(sums).saturating_add(boot)
+}
+
+/// Adds length `k`'s splat sums into `film`, scaled by `b_k` over the mutations it ran,
+/// and frees them.
+fn fold_length(film: &mut Film, sums: &mut [Option<Vec<[f64; 3]>>], k: usize, scale: f64) {
+    let Some(acc) = sums[k].take() else { return };
+    for (j, a) in acc.iter().enumerate() {
+        if a.iter().any(|&x| x != 0.0) {
+            let v = Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32) * scale as f32;
+            film.add_splat(j, v);
+        }
+    }
+}
+
 /// One chain's assignment: its length, the bootstrap sample it starts from, its mutations.
 struct ChainPlan {
     segments: u32,
@@ -214,7 +241,11 @@ pub(crate) fn render_mlt<S: BidirectionalScene + Sync>(
     let mut sums: Vec<Option<Vec<[f64; 3]>>> = vec![None; mlt.max_depth as usize];
     let mut done_len = vec![0u64; mlt.max_depth as usize];
     let done = AtomicU64::new(0);
-    for batch in plans.chunks(CHAIN_BATCH) {
+    // Length k's scale once all its chains have run: b_k / (its mutations per pixel).
+    let scale = |k: usize, done_len: &[u64]| b[k] * pixels as f64 / done_len[k] as f64;
+    // Plans come in order of length: the lengths below `folded` are in the film already.
+    let mut folded = 0;
+    for (n, batch) in plans.chunks(CHAIN_BATCH).enumerate() {
         if p.cancel.load(Ordering::Relaxed) {
             break;
         }
@@ -254,20 +285,23 @@ pub(crate) fn render_mlt<S: BidirectionalScene + Sync>(
                 }
             }
         }
-    }
-    // Each mutation splats a total brightness of 1: length k's sums enter the image times
-    // b_k / (its mutations per pixel).
-    for (k, acc) in sums.iter().enumerate() {
-        let Some(acc) = acc else { continue };
-        if done_len[k] == 0 {
-            continue;
-        }
-        let scale = b[k] * pixels as f64 / done_len[k] as f64;
-        for (j, a) in acc.iter().enumerate() {
-            if a.iter().any(|&x| x != 0.0) {
-                let v = Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32) * scale as f32;
-                film.add_splat(j, v);
+        // The lengths no later chain has: their sums are final (the same additions, in
+        // the same order of lengths, as folding them all at the end).
+        let next = plans
+            .get((n + 1) * CHAIN_BATCH)
+            .map_or(sums.len(), |q| q.segments as usize - 1);
+        while folded < next {
+            if done_len[folded] != 0 {
+                fold_length(&mut film, &mut sums, folded, scale(folded, &done_len));
             }
+            sums[folded] = None;
+            folded += 1;
+        }
+    }
+    // After a cancel: the lengths not folded yet.
+    for k in folded..sums.len() {
+        if done_len[k] != 0 {
+            fold_length(&mut film, &mut sums, k, scale(k, &done_len));
         }
     }
     film.set_splat_scale(1.0);

@@ -276,6 +276,16 @@ impl Renderer {
             Some(kind) => desc.integrator.with_kind(kind),
             None => desc.integrator,
         };
+        if let IntegratorDesc::Mlt { max_depth, .. } = integrator_desc {
+            let most = crate::validate::MAX_MLT_DEPTH;
+            if !(1..=most).contains(&max_depth) {
+                return Err(RenderError::Invalid(format!(
+                    "integrator: max_depth {max_depth} (the scene's, carried over to mlt) must \
+                     lie in [1, {most}] for mlt: a chain keeps its length, and every length \
+                     has its own bootstrap samples and image; lower it in the scene or with -D"
+                )));
+            }
+        }
         let integrator = match integrator_desc {
             IntegratorDesc::Path {
                 max_depth,
@@ -345,6 +355,24 @@ impl Renderer {
         }
         // The rendered window: the whole film, or its crop window (the camera maps it).
         let (width, height) = (camera.width(), camera.height());
+        let (w64, h64) = (u64::from(width), u64::from(height));
+        crate::memory::check(
+            &format!("the film of {width} × {height} pixels"),
+            Film::bytes_for(w64, h64),
+        )
+        .map_err(RenderError::Invalid)?;
+        if let Integrator::Mlt(m) = &integrator {
+            let need = mlt_loop::state_bytes(m, w64, h64);
+            crate::memory::check(
+                &format!(
+                    "Metropolis light transport at {width} × {height} pixels and max_depth {} \
+                     (its chains' images, per-length sums and bootstrap)",
+                    m.max_depth
+                ),
+                need.saturating_add(Film::bytes_for(w64, h64)),
+            )
+            .map_err(RenderError::Invalid)?;
+        }
         let mut effects = Effects::of(&bsdfs, &lights, &integrator);
         if textured.is_some() {
             effects.textures = true;
