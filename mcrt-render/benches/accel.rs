@@ -10,6 +10,10 @@
 //!   the grid and the kd-tree on a 100 000-triangle soup (every point of space lies in the boxes of
 //!   hundreds of triangles: a hard case) and a closed 130 560-triangle tessellated sphere (256 × 256),
 //!   random rays from inside. Build throughput is reported in triangles per second.
+//! - `accel/degenerate_20k`: build time of the BVH, the grid and the kd-tree on the
+//!   degenerate 20 000-triangle soups of issue 26 (`tests/common/degenerate.rs`: copies of
+//!   one triangle on shared or separate vertices, shifted overlapping copies in one plane, a
+//!   fan on one edge, zero-area triangles) beside a random soup of the same size.
 //!
 //! Correctness of the same structures is checked in `tests/accel.rs`.
 
@@ -21,6 +25,8 @@ use mcrt_render::geometry::{AccelKind, Geometry, Ray};
 use rand::SeedableRng;
 use rand_pcg::Pcg64;
 
+#[path = "../tests/common/degenerate.rs"]
+mod degenerate;
 #[path = "../tests/common/scenes.rs"]
 mod scenes;
 use scenes::{cornell_box, random_rays, soup, tessellated_sphere};
@@ -99,9 +105,25 @@ fn large_meshes(c: &mut Criterion) {
     }
 }
 
+fn degenerate_soups(c: &mut Criterion) {
+    const N: usize = 20_000;
+    let mut group = c.benchmark_group("accel/degenerate_20k");
+    group.sampling_mode(SamplingMode::Flat);
+    group.throughput(Throughput::Elements(N as u64));
+    for (name, shape) in degenerate::all(N) {
+        let shapes = [shape];
+        for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::KdTree] {
+            group.bench_function(format!("build/{name}/{kind:?}"), |b| {
+                b.iter(|| Geometry::new(black_box(&shapes), None, kind).expect("soup builds"))
+            });
+        }
+    }
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     config = config();
-    targets = cornell, large_meshes
+    targets = cornell, large_meshes, degenerate_soups
 }
 criterion_main!(benches);

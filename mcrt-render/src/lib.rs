@@ -48,6 +48,7 @@ pub mod geometry;
 pub mod io;
 pub mod light;
 pub mod loader;
+pub mod memory;
 pub mod mesh_file;
 mod param_defs;
 pub mod render;

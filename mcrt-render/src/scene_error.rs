@@ -73,6 +73,9 @@ pub enum SceneErrorKind {
     Ply(String),
     /// A malformed Mitsuba `serialized` mesh file.
     Serialized(String),
+    /// A file would need more memory than the budget ([`crate::memory`]); the message (our
+    /// own text, not clipped) says how much and how to raise the limit.
+    Memory(String),
 }
 
 impl fmt::Display for SceneErrorKind {
@@ -113,6 +116,7 @@ impl fmt::Display for SceneErrorKind {
             Self::Obj(m) => write!(f, "malformed OBJ: {m}"),
             Self::Ply(m) => write!(f, "malformed PLY: {m}"),
             Self::Serialized(m) => write!(f, "malformed serialized mesh: {m}"),
+            Self::Memory(m) => write!(f, "over the memory budget: {m}"),
         }
     }
 }
@@ -209,6 +213,7 @@ impl SceneErrorKind {
             Self::Obj(m) => Self::Obj(c(m)),
             Self::Ply(m) => Self::Ply(c(m)),
             Self::Serialized(m) => Self::Serialized(c(m)),
+            Self::Memory(m) => Self::Memory(m),
         }
     }
 }

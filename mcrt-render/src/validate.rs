@@ -63,6 +63,9 @@ impl fmt::Display for Invalid {
 
 impl std::error::Error for Invalid {}
 
+/// π in f64, for the bounds on the lights' power.
+const PI64: f64 = std::f64::consts::PI;
+
 impl Invalid {
     /// Parameter `param` is wrong: `message`.
     pub fn new(param: &'static str, message: impl Into<String>) -> Self {
@@ -84,6 +87,26 @@ pub fn colour(param: &'static str, v: Vec3) -> Result<(), Invalid> {
     } else {
         Err(invalid(param, "must be finite and non-negative"))
     }
+}
+
+/// An emitted quantity `v` whose power, `factor` times its mean channel (for a scene of unit
+/// size), must be a finite `f32`: past that, the light's power, by which lights are
+/// chosen, overflows (issue 26: such a light was dropped without a word).
+pub fn emission_power(param: &'static str, v: Vec3, factor: f64) -> Result<(), Invalid> {
+    let mean = (f64::from(v.x) + f64::from(v.y) + f64::from(v.z)) / 3.0;
+    let max = f64::from(f32::MAX);
+    if factor * mean <= max {
+        return Ok(());
+    }
+    Err(invalid(
+        param,
+        format!(
+            "has mean {mean:e}: the light's power, {factor:.4} × that, exceeds the largest \
+             f32, {:e} (the mean may be at most {:.4e})",
+            f32::MAX,
+            max / factor
+        ),
+    ))
 }
 
 /// An index of refraction: finite and positive.
@@ -409,15 +432,20 @@ pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
             if !position.is_finite() {
                 return Err(invalid("position", "must be finite"));
             }
-            colour("intensity", *intensity)
+            colour("intensity", *intensity)?;
+            emission_power("intensity", *intensity, 4.0 * PI64)
         }
-        EmitterDesc::Constant { radiance } => colour("radiance", *radiance),
+        EmitterDesc::Constant { radiance } => {
+            colour("radiance", *radiance)?;
+            emission_power("radiance", *radiance, 4.0 * PI64 * PI64)
+        }
         EmitterDesc::EnvMap {
             scale, to_world, ..
         } => {
             if !(scale.is_finite() && *scale >= 0.0) {
                 return Err(invalid("scale", "must be finite and non-negative"));
             }
+            emission_power("scale", Vec3::splat(*scale), 4.0 * PI64 * PI64)?;
             transform("to_world", to_world)?;
             if !is_rotation(to_world) {
                 return Err(invalid(
@@ -447,7 +475,8 @@ pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
                     "must be a rotation, uniform scale and translation for a spot light",
                 ));
             }
-            colour("intensity", *intensity)
+            colour("intensity", *intensity)?;
+            emission_power("intensity", *intensity, 4.0 * PI64)
         }
         EmitterDesc::Directional {
             irradiance,
@@ -456,7 +485,8 @@ pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
             if !(direction.is_finite() && (direction.length() - 1.0).abs() < 1e-3) {
                 return Err(invalid("direction", "must be a finite unit vector"));
             }
-            colour("irradiance", *irradiance)
+            colour("irradiance", *irradiance)?;
+            emission_power("irradiance", *irradiance, PI64)
         }
     }
 }

@@ -414,3 +414,85 @@ fn crowded_elements_are_refused_before_parsing() {
     );
     parse(&xml).expect("one attribute full of '='");
 }
+
+/// Issue 26: a light whose power overflows `f32` (it was dropped without a word: the image
+/// was dark) is an error at its parameter that names the largest `f32`; where the scene's
+/// size makes the power overflow, the renderer refuses it, naming the light.
+#[test]
+fn lights_whose_power_overflows_f32_are_refused_not_dropped() {
+    let sky = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/sky.exr");
+    let envmap = format!(
+        "<emitter type=\"envmap\"><string name=\"filename\" value=\"{}\"/>\n\
+         <float name=\"scale\" value=\"3e38\"/></emitter>",
+        sky.display()
+    );
+    let cases = [
+        ("<emitter type=\"point\">\n<rgb name=\"intensity\" value=\"5e37\"/></emitter>", "intensity"),
+        ("<emitter type=\"spot\">\n<rgb name=\"intensity\" value=\"3e38\"/></emitter>", "intensity"),
+        ("<emitter type=\"directional\">\n<rgb name=\"irradiance\" value=\"3e38\"/></emitter>", "irradiance"),
+        ("<emitter type=\"constant\">\n<rgb name=\"radiance\" value=\"3e38\"/></emitter>", "radiance"),
+        (envmap.as_str(), "scale"),
+        ("<shape type=\"cube\"><emitter type=\"area\">\n<rgb name=\"radiance\" value=\"3e38\"/></emitter></shape>", "radiance"),
+    ];
+    for (body, param) in cases {
+        let e = err(body);
+        located(&e, 3, param);
+        assert!(e.to_string().contains("3.4028235e38"), "{e}");
+    }
+    // Below the bound: accepted.
+    parse("<scene version=\"3.0.0\"><emitter type=\"point\"><rgb name=\"intensity\" value=\"2e37\"/></emitter></scene>")
+        .expect("a power below the largest f32");
+    // 5·10³⁷ W/m² through the disk of a scene of radius 100: refused by the renderer.
+    let d = parse(
+        "<scene version=\"3.0.0\"><shape type=\"sphere\"><float name=\"radius\" value=\"100\"/>\
+         </shape><emitter type=\"directional\"><rgb name=\"irradiance\" value=\"5e37\"/>\
+         </emitter></scene>",
+    )
+    .expect("finite for a scene of unit size");
+    let e = match Renderer::new(&d, &RenderOptions::default()) {
+        Ok(_) => panic!("a directional light of power beyond f32 accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        e.contains("the directional light (emitter 1)") && e.contains("3.4028235e38"),
+        "{e}"
+    );
+}
+
+/// Issue 26: an included file without `version` is refused, as Mitsuba 3 does, at its
+/// root element.
+#[test]
+fn an_included_file_needs_a_version() {
+    let dir = scratch("include-version");
+    std::fs::write(
+        dir.join("a.xml"),
+        "<scene version=\"3.0.0\">\n<include filename=\"b.xml\"/>\n</scene>",
+    )
+    .expect("a.xml");
+    std::fs::write(
+        dir.join("b.xml"),
+        "<scene>\n<shape type=\"sphere\"/>\n</scene>",
+    )
+    .expect("b");
+    let e = load_scene(&dir.join("a.xml"), &[]).expect_err("no version");
+    let msg = e.to_string();
+    assert_eq!(e.line, Some(1), "{msg}");
+    assert!(msg.contains("b.xml") && msg.contains("version"), "{msg}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 26: a second environment emitter is located at its element, and a focal length
+/// that leaves no field of view at `focal_length` (it was "sensor fov -180", unlocated).
+#[test]
+fn a_second_environment_and_a_hopeless_focal_length_are_located() {
+    let e = err("<emitter type=\"constant\"/>\n<emitter type=\"constant\"/>");
+    located(&e, 3, "more than one environment emitter");
+    assert!(e.to_string().contains("line 2"), "{e}");
+    for mm in ["1e-40mm", "1e-40"] {
+        let e = err(&format!(
+            "<sensor type=\"perspective\">\n<string name=\"focal_length\" value=\"{mm}\"/></sensor>"
+        ));
+        located(&e, 3, "focal_length");
+        assert!(!e.to_string().contains("-180"), "{e}");
+    }
+}

@@ -246,3 +246,343 @@ fn sigint_and_sigterm_write_partial_images_and_exit_130() {
     interrupted_by("INT");
     interrupted_by("TERM");
 }
+
+/// Issue 26: `--threads` past [`MAX_THREADS`] is refused at once, not a spawning of
+/// threads until the machine gives out.
+#[test]
+fn too_many_threads_are_refused_at_once() {
+    for n in ["100000", "18446744073709551615", "1025"] {
+        let start = Instant::now();
+        let out = Command::new(render_example())
+            .args([
+                "-D",
+                "res=8",
+                "-D",
+                "spp=1",
+                "--threads",
+                n,
+                "-o",
+                "/nonexistent/x.exr",
+            ])
+            .output()
+            .expect("render runs");
+        assert_eq!(out.status.code(), Some(2), "{n}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains("at most 1024"), "{err}");
+        assert!(
+            start.elapsed() < Duration::from_secs(5),
+            "{:?}",
+            start.elapsed()
+        );
+    }
+    assert_eq!(mcrt_render::render::MAX_THREADS, 1024);
+    assert!(String::from_utf8_lossy(
+        &Command::new(render_example())
+            .arg("--help")
+            .output()
+            .expect("help")
+            .stdout
+    )
+    .contains("at most 1024"));
+}
+
+/// Sends `signal` (`INT`, `TERM`) to process `id`.
+fn send(signal: &str, id: u32) {
+    let sent = Command::new("kill")
+        .args([format!("-{signal}"), id.to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(sent.success());
+}
+
+/// Waits at most `limit` for `child`; kills it and fails past that.
+fn wait_at_most(child: &mut std::process::Child, limit: Duration, what: &str) -> i32 {
+    let start = Instant::now();
+    loop {
+        if let Some(s) = child.try_wait().expect("try_wait") {
+            return s
+                .code()
+                .unwrap_or_else(|| panic!("{what}: ended by a signal: {s:?}"));
+        }
+        if start.elapsed() > limit {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("{what}: still running {limit:?} after the signal");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// Runs `render scene -o dir/out.exr --threads 1 --max-memory 1T`, sends `signal` once the
+/// header line is printed (the render has begun) and `delay` later, and returns the exit
+/// status within `limit` and the rest of stdout. The budget admits the 2³² − 1 bootstrap
+/// samples of the Metropolis case, which the default budget refuses before rendering;
+/// what the bootstrap holds by the time of the signal is small.
+fn signal_while_rendering(
+    scene: &Path,
+    signal: &str,
+    delay: Duration,
+    limit: Duration,
+) -> (i32, String) {
+    let out = scene.with_file_name("out.exr");
+    let mut child = Command::new(render_example())
+        .arg(scene)
+        .args(["--threads", "1", "--max-memory", "1T", "-o"])
+        .arg(&out)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("render starts");
+    let mut stdout = BufReader::new(child.stdout.take().expect("piped stdout"));
+    let mut header = String::new();
+    stdout.read_line(&mut header).expect("header line");
+    std::thread::sleep(delay);
+    assert!(child.try_wait().expect("try_wait").is_none(), "ended early");
+    send(signal, child.id());
+    let what = format!("{} {signal}", scene.display());
+    let code = wait_at_most(&mut child, limit, &what);
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stdout, &mut rest).expect("the rest of stdout");
+    (code, rest)
+}
+
+/// Issue 26: SIGINT and SIGTERM while the scene loads (a 500×500 OBJ grid) end the process
+/// at once with status 130 (the handler is installed before loading), writing nothing.
+#[test]
+fn a_signal_while_loading_exits_130_at_once() {
+    let dir = scratch("signal-loading");
+    let n = 500;
+    let mut obj = String::new();
+    for i in 0..n {
+        for j in 0..n {
+            obj += &format!("v {} {} 0\n", i as f32 / n as f32, j as f32 / n as f32);
+        }
+    }
+    for i in 0..n - 1 {
+        for j in 0..n - 1 {
+            let a = i * n + j + 1;
+            obj += &format!("f {a} {} {} {}\n", a + 1, a + n + 1, a + n);
+        }
+    }
+    std::fs::write(dir.join("grid.obj"), obj).expect("mesh written");
+    let scene = dir.join("big.xml");
+    std::fs::write(
+        &scene,
+        r#"<scene version="3.0.0"><sensor type="perspective">
+        <transform name="to_world"><lookat origin="0.5, 0.5, 3" target="0.5, 0.5, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+        </sensor><shape type="obj"><string name="filename" value="grid.obj"/></shape>
+        <emitter type="point"><point name="position" x="0" y="3" z="3"/></emitter></scene>"#,
+    )
+    .expect("scene written");
+    for signal in ["INT", "TERM"] {
+        let mut child = Command::new(render_example())
+            .arg(&scene)
+            .args(["--threads", "1", "-o"])
+            .arg(dir.join("out.exr"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("render starts");
+        std::thread::sleep(Duration::from_millis(400));
+        assert!(
+            child.try_wait().expect("try_wait").is_none(),
+            "loaded already"
+        );
+        send(signal, child.id());
+        let code = wait_at_most(&mut child, Duration::from_secs(2), signal);
+        assert_eq!(code, i32::from(EXIT_INTERRUPTED), "{signal}");
+        for f in ["out.exr", "out.png", "out.partial.exr", "out.partial.png"] {
+            assert!(!dir.join(f).exists(), "{f}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 26: with `bootstrap_samples` 2³² − 1, Metropolis's bootstrap reads the cancel
+/// flag: SIGINT and SIGTERM there write the (empty) partial image and exit 130.
+#[test]
+fn a_signal_in_the_mlt_bootstrap_exits_130() {
+    let dir = scratch("signal-bootstrap");
+    let scene = dir.join("mlt.xml");
+    std::fs::write(
+        &scene,
+        r#"<scene version="3.0.0"><integrator type="mlt">
+        <integer name="bootstrap_samples" value="4294967295"/><integer name="max_depth" value="4"/>
+        </integrator><sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+        </sensor><shape type="sphere"><bsdf type="diffuse"/></shape>
+        <emitter type="point"><point name="position" x="0" y="3" z="3"/></emitter></scene>"#,
+    )
+    .expect("scene written");
+    for signal in ["INT", "TERM"] {
+        let (code, rest) = signal_while_rendering(
+            &scene,
+            signal,
+            Duration::from_millis(300),
+            Duration::from_secs(5),
+        );
+        assert_eq!(code, i32::from(EXIT_INTERRUPTED), "{signal}: {rest}");
+        assert!(rest.contains("interrupted"), "{rest}");
+        assert!(dir.join("out.partial.exr").is_file());
+        std::fs::remove_file(dir.join("out.partial.exr")).ok();
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 26: in a closed white sphere with `rr_depth` 2³² − 1 and no `max_depth` a path
+/// runs for millions of bounces; the path tracer's path ends at its next bounce once the
+/// render is cancelled, so SIGINT takes effect at once (it waited for the running path).
+#[test]
+fn a_signal_stops_an_endless_path_at_once() {
+    let dir = scratch("signal-endless");
+    let scene = dir.join("white.xml");
+    std::fs::write(
+        &scene,
+        r#"<scene version="3.0.0"><integrator type="path">
+        <integer name="max_depth" value="-1"/><integer name="rr_depth" value="4294967295"/>
+        </integrator><sensor type="perspective">
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+        </sensor><shape type="sphere"><float name="radius" value="5"/>
+        <bsdf type="twosided"><bsdf type="diffuse"><float name="reflectance" value="1"/></bsdf></bsdf>
+        </shape><emitter type="point"><point name="position" x="0" y="1" z="1"/></emitter></scene>"#,
+    )
+    .expect("scene written");
+    let (code, rest) = signal_while_rendering(
+        &scene,
+        "INT",
+        Duration::from_millis(500),
+        Duration::from_millis(1500),
+    );
+    assert_eq!(code, i32::from(EXIT_INTERRUPTED), "{rest}");
+    assert!(dir.join("out.partial.exr").is_file());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The `merge` program.
+fn merge_program() -> PathBuf {
+    PathBuf::from(env!("CARGO_BIN_EXE_merge"))
+}
+
+/// Issue 26: a FIFO given to `merge` as a part is refused at once (opening it waited for a
+/// writer forever).
+#[test]
+fn merge_refuses_a_fifo_at_once() {
+    let dir = scratch("merge-fifo");
+    let fifo = dir.join("part.exr");
+    let made = Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success());
+    let mut child = Command::new(merge_program())
+        .arg(dir.join("out.exr"))
+        .arg(&fifo)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("merge starts");
+    let start = Instant::now();
+    while child.try_wait().expect("try_wait").is_none() {
+        if start.elapsed() > Duration::from_secs(10) {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("merge waits on a FIFO");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().expect("output");
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("not a regular file") && err.contains("part.exr"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 26: a part whose sums hold NaN is refused with the count of such values and the
+/// part's name (it merged into an image with non-finite pixels without a word).
+#[test]
+fn merge_refuses_a_part_with_nan_sums() {
+    let dir = scratch("merge-nan");
+    let desc = mcrt_render::cornell_box::cornell_box_with(2, 8, -1);
+    let opts = RenderOptions {
+        samples: Some("0..2".parse().expect("range")),
+        ..RenderOptions::default()
+    };
+    let r = Renderer::new(&desc, &opts).expect("renderer");
+    let mut film = r.render(&|_, _| {}, &AtomicBool::new(false)).film;
+    let nan = PixelAccum {
+        sum: [f64::NAN; 3],
+        sum_sq: [0.0; 3],
+        count: 0,
+    };
+    for i in [3, 17, 40, 41] {
+        film.merge(i, &nan).expect("inside the film");
+    }
+    let part = dir.join("bad.exr");
+    mcrt_render::film::write_part(&part, &film, &r.part_info("box")).expect("written");
+    let out = Command::new(merge_program())
+        .arg(dir.join("out.exr"))
+        .arg(&part)
+        .output()
+        .expect("merge runs");
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.exr") && err.contains("12 values") && err.contains("NaN"),
+        "{err}"
+    );
+    assert!(!dir.join("out.exr").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 26: file names need not be UTF-8: `merge` and `render` take them (`args_os`),
+/// and never panic on their arguments.
+#[test]
+fn non_utf8_arguments_do_not_panic() {
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
+    let dir = scratch("non-utf8");
+    let bad = OsStr::from_bytes(b"caf\xe9.exr");
+    // merge: a non-UTF-8 part that does not exist, and a non-UTF-8 output.
+    let out = Command::new(merge_program())
+        .arg(dir.join(bad))
+        .arg(dir.join(OsStr::from_bytes(b"p\xff.exr")))
+        .output()
+        .expect("merge runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    // render: a non-UTF-8 output is written; a non-UTF-8 scene name is read (and missing).
+    let out = Command::new(render_example())
+        .args(["-D", "res=8", "-D", "spp=1", "-o"])
+        .arg(dir.join(bad))
+        .output()
+        .expect("render runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(dir.join(bad).is_file() && dir.join(OsStr::from_bytes(b"caf\xe9.png")).is_file());
+    let out = Command::new(render_example())
+        .arg(dir.join(OsStr::from_bytes(b"sc\xe8ne.xml")))
+        .output()
+        .expect("render runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    // A non-UTF-8 value of another option is a usage error.
+    let out = Command::new(render_example())
+        .arg("--spp")
+        .arg(OsStr::from_bytes(b"4\xff"))
+        .output()
+        .expect("render runs");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("not UTF-8") && !err.contains("panicked"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

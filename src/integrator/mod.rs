@@ -1,7 +1,8 @@
-//! Estimators of the light transport equation: a path tracer, a direct-lighting integrator,
-//! bidirectional path tracing and Metropolis light transport, generic over a few small
-//! traits ([`Scene`], [`Bsdf`], [`SampleSource`]) so that
-//! any renderer can use them with its own geometry, materials and lights.
+//! Estimators of the light transport equation: a path tracer (and one guided by a learned
+//! SD-tree, [`GuidedPathTracer`]), a direct-lighting integrator, bidirectional path tracing
+//! and Metropolis light transport, generic over a few small traits ([`Scene`], [`Bsdf`],
+//! [`SampleSource`]) so that any renderer can use them with its own geometry, materials and
+//! lights.
 //!
 //! Conventions: BSDFs work in a z-up local [`Frame`](crate::sampling::Frame) around the shading normal; `wo` points
 //! toward the viewer and `wi` toward the light; every directional pdf is per unit solid
@@ -22,6 +23,7 @@
 pub(crate) mod bdpt;
 mod bidirectional;
 mod direct;
+mod guided;
 mod mlt;
 mod path;
 mod strategy;
@@ -33,6 +35,7 @@ pub use bdpt::{
 };
 pub use bidirectional::{BidirectionalScene, CameraConnection, EmissionSample, EmitterKind};
 pub use direct::DirectIntegrator;
+pub use guided::{GuidedPathTracer, GuidedSample};
 pub use mlt::{brightness as mlt_brightness, Mlt, MltChain, MltPath, PrimarySamples};
 pub use path::{PathResult, PathTracer};
 pub use strategy::Strategy;

@@ -47,37 +47,78 @@ pub struct PathResult {
 /// How the previous vertex sampled the current ray: what an emitter hit needs for its MIS
 /// weight.
 #[derive(Clone, Copy)]
-struct PrevVertex {
-    sp: SurfacePoint,
-    pdf: f32,
-    delta: bool,
+pub(crate) struct PrevVertex {
+    pub(crate) sp: SurfacePoint,
+    /// The density with which the ray was sampled (a mixture's, for the guided tracer).
+    pub(crate) pdf: f32,
+    pub(crate) delta: bool,
+}
+
+/// `max_depth` as an unsigned bound (−1 and other negatives become unlimited).
+#[inline]
+pub(crate) fn depth_limit(max_depth: i32) -> u32 {
+    u32::try_from(max_depth).unwrap_or(u32::MAX)
+}
+
+/// Weight under `strategy` of an emitter reached by the ray sampled at `prev` (`None`: the
+/// camera), `light_pdf` giving the light-sampling density from the previous vertex.
+#[inline]
+pub(crate) fn hit_weight(
+    strategy: Strategy,
+    prev: &Option<PrevVertex>,
+    light_pdf: impl FnOnce(&SurfacePoint) -> f32,
+) -> f32 {
+    match prev {
+        None => 1.0,
+        Some(v) if v.delta => 1.0,
+        Some(v) => match strategy {
+            Strategy::BsdfOnly => 1.0,
+            Strategy::LightOnly => 0.0,
+            s => s.bsdf_weight(1.0, v.pdf, 1.0, light_pdf(&v.sp)),
+        },
+    }
+}
+
+/// The contribution of one light sample at a vertex (before the path throughput), weighted
+/// under `strategy` against the density with which the vertex samples directions:
+/// `sampling_pdf` of the BSDF's density toward the light (the identity for the path tracer,
+/// the guiding mixture for the guided one; world direction `ls.wi`).
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn nee<S: Scene>(
+    strategy: Strategy,
+    scene: &S,
+    bsdf: &S::Bsdf<'_>,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    ls: &super::LightSample,
+    rays: &mut u32,
+    sampling_pdf: impl FnOnce(f32) -> f32,
+) -> Vec3 {
+    if !ls.delta && !strategy.samples_lights() {
+        return Vec3::ZERO;
+    }
+    if !is_positive(ls.pdf) {
+        return Vec3::ZERO;
+    }
+    let wi = sp.frame.to_local(ls.wi);
+    let (f, pdf_b) = bsdf.eval_pdf(wo, wi);
+    if f == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    *rays += 1;
+    if occluded(scene, sp, ls.wi, ls.dist) {
+        return Vec3::ZERO;
+    }
+    let w = if ls.delta {
+        1.0
+    } else {
+        strategy.light_weight(1.0, ls.pdf, 1.0, sampling_pdf(pdf_b))
+    };
+    f * ls.radiance * (w / ls.pdf)
 }
 
 impl PathTracer {
-    /// `max_depth` as an unsigned bound (−1 and other negatives become unlimited).
-    #[inline]
-    fn depth_limit(&self) -> u32 {
-        u32::try_from(self.max_depth).unwrap_or(u32::MAX)
-    }
-
-    /// Weight of an emitter reached by the ray sampled at `prev` (`None`: the camera).
-    #[inline]
-    fn hit_weight(
-        &self,
-        prev: &Option<PrevVertex>,
-        light_pdf: impl FnOnce(&SurfacePoint) -> f32,
-    ) -> f32 {
-        match prev {
-            None => 1.0,
-            Some(v) if v.delta => 1.0,
-            Some(v) => match self.strategy {
-                Strategy::BsdfOnly => 1.0,
-                Strategy::LightOnly => 0.0,
-                s => s.bsdf_weight(1.0, v.pdf, 1.0, light_pdf(&v.sp)),
-            },
-        }
-    }
-
     /// Estimates the radiance arriving at the camera along the unit direction `dir` from
     /// `origin` (hits beyond `t_max` are ignored).
     pub fn li<S: Scene, R: SampleSource>(
@@ -88,7 +129,7 @@ impl PathTracer {
         t_max: f32,
         samples: &mut R,
     ) -> PathResult {
-        let max_depth = self.depth_limit();
+        let max_depth = depth_limit(self.max_depth);
         let mut out = PathResult::default();
         if max_depth == 0 {
             return out;
@@ -104,7 +145,9 @@ impl PathTracer {
             let Some(sp) = hit else {
                 if scene.has_environment() {
                     let le = scene.environment(ray_dir);
-                    let w = self.hit_weight(&prev, |from| scene.environment_pdf(from, ray_dir));
+                    let w = hit_weight(self.strategy, &prev, |from| {
+                        scene.environment_pdf(from, ray_dir)
+                    });
                     out.radiance += throughput * le * w;
                 }
                 break;
@@ -113,7 +156,7 @@ impl PathTracer {
             if scene.is_emitter(&sp) {
                 let le = scene.emitted(&sp, wo_world);
                 if le != Vec3::ZERO {
-                    let w = self.hit_weight(&prev, |from| scene.light_pdf(from, &sp));
+                    let w = hit_weight(self.strategy, &prev, |from| scene.light_pdf(from, &sp));
                     out.radiance += throughput * le * w;
                 }
             }
@@ -135,7 +178,17 @@ impl PathTracer {
             };
             if flags.smooth && (self.strategy.samples_lights() || scene.has_delta_lights()) {
                 if let Some(ls) = scene.sample_light(&sp, u_pick, u_light) {
-                    out.radiance += throughput * self.nee(scene, bsdf, &sp, wo, &ls, &mut out.rays);
+                    out.radiance += throughput
+                        * nee(
+                            self.strategy,
+                            scene,
+                            bsdf,
+                            &sp,
+                            wo,
+                            &ls,
+                            &mut out.rays,
+                            |p| p,
+                        );
                 }
             }
             let Some(bs) = super::sample_bsdf(bsdf, wo, samples) else {
@@ -165,39 +218,5 @@ impl PathTracer {
             });
         }
         out
-    }
-
-    /// The contribution of one light sample at a vertex (before the path throughput).
-    #[inline]
-    fn nee<S: Scene>(
-        &self,
-        scene: &S,
-        bsdf: &S::Bsdf<'_>,
-        sp: &SurfacePoint,
-        wo: Vec3,
-        ls: &super::LightSample,
-        rays: &mut u32,
-    ) -> Vec3 {
-        if !ls.delta && !self.strategy.samples_lights() {
-            return Vec3::ZERO;
-        }
-        if !is_positive(ls.pdf) {
-            return Vec3::ZERO;
-        }
-        let wi = sp.frame.to_local(ls.wi);
-        let (f, pdf_b) = bsdf.eval_pdf(wo, wi);
-        if f == Vec3::ZERO {
-            return Vec3::ZERO;
-        }
-        *rays += 1;
-        if occluded(scene, sp, ls.wi, ls.dist) {
-            return Vec3::ZERO;
-        }
-        let w = if ls.delta {
-            1.0
-        } else {
-            self.strategy.light_weight(1.0, ls.pdf, 1.0, pdf_b)
-        };
-        f * ls.radiance * (w / ls.pdf)
     }
 }

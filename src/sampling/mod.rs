@@ -8,6 +8,7 @@
 pub mod distribution;
 mod error;
 mod frame;
+pub mod guiding;
 pub mod jacobian;
 pub mod light_bvh;
 pub mod mis;

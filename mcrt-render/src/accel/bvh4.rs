@@ -63,6 +63,12 @@ impl Bvh4 {
         out
     }
 
+    /// Heap bytes held (nodes, order and leaf ranges).
+    pub(crate) fn heap_bytes(&self) -> usize {
+        use super::vec_bytes;
+        vec_bytes(&self.nodes) + vec_bytes(&self.order) + vec_bytes(&self.leaves)
+    }
+
     /// `order[i]` is the input index of the primitive to store at position `i`.
     pub(crate) fn order(&self) -> &[u32] {
         &self.order

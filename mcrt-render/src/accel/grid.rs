@@ -2,7 +2,12 @@
 //!
 //! Resolution: `res_a = extent_a · ∛(λ n / V)` cells along axis `a` (n primitives, V the
 //! volume of the scene box, λ = [`DENSITY`] cells per primitive), clamped to
-//! `[1, MAX_RES]`. A primitive is listed in every cell its box overlaps (the box grown by a
+//! `[1, MAX_RES]`. The grid's size is then bounded by the primitive count: while it has more
+//! than [`MAX_CELLS_PER_PRIM`]` · n + `[`MIN_CELLS`] cells (a flat or thin scene, whose
+//! small volume asks for many cells), or its cells would list more than
+//! [`MAX_REFS_PER_PRIM`]` · n + `[`MIN_REFS`] primitives in all (primitives that overlap, as
+//! copies of one triangle, each listed in every cell of their common box), the finest axis
+//! is halved. So a grid takes O(n) memory for any input. A primitive is listed in every cell its box overlaps (the box grown by a
 //! thousandth of a cell, so that rounding at cell faces cannot lose it). Traversal steps
 //! cell by cell in the order the ray crosses them (Amanatides & Woo 1987, "A Fast Voxel
 //! Traversal Algorithm for Ray Tracing", Eurographics; Cleary & Wyvill 1988, "Analysis of an
@@ -16,6 +21,14 @@ use glam::Vec3;
 pub(crate) const DENSITY: f32 = 3.0;
 /// Largest resolution along one axis.
 pub(crate) const MAX_RES: u32 = 128;
+/// Most cells per primitive, beyond [`MIN_CELLS`].
+pub(crate) const MAX_CELLS_PER_PRIM: u64 = 16;
+/// Cells a grid may have whatever its primitive count.
+pub(crate) const MIN_CELLS: u64 = 1 << 12;
+/// Most cell entries per primitive on average, beyond [`MIN_REFS`].
+pub(crate) const MAX_REFS_PER_PRIM: u64 = 16;
+/// Cell entries a grid may have whatever its primitive count.
+pub(crate) const MIN_REFS: u64 = 1 << 16;
 
 /// A uniform grid over primitives given by their bounds (in stored order).
 #[derive(Debug, Clone)]
@@ -45,18 +58,56 @@ impl Grid {
         bounds.max += Vec3::splat(pad);
         let ext = bounds.extent();
         let per_len = (DENSITY * prims.len().max(1) as f32 / (ext.x * ext.y * ext.z)).cbrt();
-        let res = [0, 1, 2].map(|a| ((ext[a] * per_len).round() as u32).clamp(1, MAX_RES) as i32);
-        let cell = ext / Vec3::new(res[0] as f32, res[1] as f32, res[2] as f32);
-        let mut g = Self {
+        let mut res =
+            [0, 1, 2].map(|a| ((ext[a] * per_len).round() as u32).clamp(1, MAX_RES) as i32);
+        let live = prims.iter().filter(|p| !p.is_empty()).count() as u64;
+        let cells = |r: &[i32; 3]| r.iter().map(|&r| r as u64).product::<u64>();
+        while cells(&res) > MAX_CELLS_PER_PRIM * live + MIN_CELLS {
+            halve_finest(&mut res);
+        }
+        let mut g = Self::empty(bounds, res);
+        while g.refs(prims) > MAX_REFS_PER_PRIM * live + MIN_REFS && res != [1, 1, 1] {
+            halve_finest(&mut res);
+            g = Self::empty(bounds, res);
+        }
+        g.fill(prims);
+        g
+    }
+
+    /// The grid over `bounds` with resolution `res`, its cells not yet filled.
+    fn empty(bounds: Aabb, res: [i32; 3]) -> Self {
+        let cell = bounds.extent() / Vec3::new(res[0] as f32, res[1] as f32, res[2] as f32);
+        Self {
             bounds,
             res,
             cell,
             inv_cell: cell.recip(),
             offsets: Vec::new(),
             items: Vec::new(),
-        };
-        g.fill(prims);
-        g
+        }
+    }
+
+    /// The number of cell entries [`Grid::fill`] would make: O(1) per primitive.
+    fn refs(&self, prims: &[Aabb]) -> u64 {
+        prims
+            .iter()
+            .filter(|p| !p.is_empty())
+            .map(|p| {
+                let (lo, hi) = self.cell_range(p);
+                (0..3).map(|a| (hi[a] - lo[a] + 1) as u64).product::<u64>()
+            })
+            .sum()
+    }
+
+    /// Heap bytes held (cell offsets and entries).
+    pub(crate) fn heap_bytes(&self) -> usize {
+        super::vec_bytes(&self.offsets) + super::vec_bytes(&self.items)
+    }
+
+    /// The number of cell entries (each primitive once per cell it overlaps).
+    #[cfg(test)]
+    pub(crate) fn ref_count(&self) -> usize {
+        self.items.len()
     }
 
     #[cfg(test)]
@@ -215,6 +266,12 @@ impl Grid {
     }
 }
 
+/// Halves the resolution along the axis with the most cells (the first of equals).
+fn halve_finest(res: &mut [i32; 3]) {
+    let a = (0..3).fold(0, |m, a| if res[a] > res[m] { a } else { m });
+    res[a] = (res[a] / 2).max(1);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -249,5 +306,42 @@ mod tests {
         let b = Aabb::from_points(&[Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, 1.0, 0.0)]);
         let g = Grid::build(&[b]);
         assert!(g.any(Vec3::new(0.0, 0.0, 1.0), -Vec3::Z, 2.0, |_, _| true));
+    }
+
+    /// Copies of one flat triangle's box and shifted copies overlapping in one plane: the
+    /// cells and entries stay within their bounds (the plane alone asked for 128 × 128
+    /// cells, each listing every copy), and a ray through them still meets every one.
+    #[test]
+    fn overlapping_flat_boxes_stay_bounded() {
+        let n = 20_000;
+        let flat = |d: f32| {
+            Aabb::from_points(&[Vec3::new(-0.5 + d, -0.5, 0.0), Vec3::new(0.5 + d, 0.5, 0.0)])
+        };
+        let same = vec![flat(0.0); n];
+        let shifted: Vec<Aabb> = (0..n).map(|i| flat(i as f32 * 1e-5)).collect();
+        for boxes in [same, shifted] {
+            let g = Grid::build(&boxes);
+            let cells: u64 = g.resolution().iter().map(|&r| u64::from(r)).product();
+            assert!(
+                cells <= MAX_CELLS_PER_PRIM * n as u64 + MIN_CELLS,
+                "{cells}"
+            );
+            let refs = g.ref_count() as u64;
+            assert!(refs <= MAX_REFS_PER_PRIM * n as u64 + MIN_REFS, "{refs}");
+            let mut seen = std::collections::BTreeSet::new();
+            g.any(Vec3::new(0.3, 0.1, 1.0), -Vec3::Z, 2.0, |i, _| {
+                seen.insert(i);
+                false
+            });
+            assert_eq!(seen.len(), n);
+        }
+    }
+
+    /// A few primitives in a plane keep a fine grid (the bounds leave small inputs alone).
+    #[test]
+    fn small_flat_scene_keeps_its_resolution() {
+        let b = Aabb::from_points(&[Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, 1.0, 0.0)]);
+        let r = Grid::build(&[b, b]).resolution();
+        assert!(r[0] > 8 && r[1] > 8 && r[2] == 1, "{r:?}");
     }
 }

@@ -39,6 +39,11 @@ mod kdtree;
 mod traverse;
 
 pub use aabb::Aabb;
+
+/// Heap bytes held by a vector (its capacity).
+pub(crate) fn vec_bytes<T>(v: &Vec<T>) -> usize {
+    v.capacity() * std::mem::size_of::<T>()
+}
 pub(crate) use bvh4::Bvh4;
 use grid::Grid;
 use kdtree::KdTree;
@@ -103,6 +108,19 @@ impl Accel {
                 order: identity(),
             },
         }
+    }
+
+    /// Heap bytes held by the structure (its nodes, cells and primitive lists): O(n) for
+    /// the BVH and the grid and O(n log n) at most for the kd-tree, whatever the primitives
+    /// (`docs/geometry.md`, "Bounds on degenerate input").
+    pub fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.order)
+            + match &self.structure {
+                Structure::Bvh(b) => b.heap_bytes(),
+                Structure::Grid(g) => g.heap_bytes(),
+                Structure::KdTree(k) => k.heap_bytes(),
+                Structure::BruteForce(_) => 0,
+            }
     }
 
     /// Which kind this is.

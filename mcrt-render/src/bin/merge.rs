@@ -1,8 +1,11 @@
 //! Merges the parts of a render into the image a single render would have given.
 //!
 //! ```text
-//! cargo run --release --bin merge -- [--variance] OUT.exr|OUT.png PARTS.exr...
+//! cargo run --release --bin merge -- [--variance] [--max-memory SIZE] OUT.exr|OUT.png PARTS.exr...
 //! ```
+//!
+//! `--max-memory` (e.g. `4G`, default 8G) is the memory budget: a part whose image would
+//! need more to merge is refused before anything is allocated (docs/renderer.md).
 //!
 //! The parts are written by `render --samples START..END` and/or `--crop x0,y0,x1,y1` (see
 //! `docs/distributed.md`). Their per-pixel sums and sample counts are added in f64, so the
@@ -11,14 +14,17 @@
 //! OUT-variance.exr with `--variance`), atomically. Parts of different renders (scene,
 //! options, seed, samples per pixel or size), parts that hold the same samples of a pixel,
 //! parts that leave samples out, and interrupted parts are refused, with the files and
-//! pixels concerned; nothing is written then. Exit status 0 on success, 1 on a refusal, 2 on
-//! a usage error.
+//! pixels concerned; nothing is written then. So are parts whose sums hold NaN or infinite
+//! values (with their count and the first pixel), and parts that are not regular files (a
+//! FIFO would block). File names need not be UTF-8. Exit status 0 on success, 1 on a
+//! refusal, 2 on a usage error.
 
 use mcrt_render::film::{merge_parts, read_part, OutputPlan};
+use std::ffi::OsString;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: merge [--variance] OUT.exr|OUT.png PARTS.exr...";
+const USAGE: &str = "usage: merge [--variance] [--max-memory SIZE] OUT.exr|OUT.png PARTS.exr...";
 
 fn run(out: PathBuf, parts: Vec<PathBuf>, variance: bool) -> Result<(), String> {
     let name = out
@@ -52,15 +58,38 @@ fn run(out: PathBuf, parts: Vec<PathBuf>, variance: bool) -> Result<(), String> 
 }
 
 fn main() -> ExitCode {
-    let mut args: Vec<String> = std::env::args().skip(1).collect();
-    if args.iter().any(|a| a == "--help" || a == "-h") {
+    // `args_os`: a file name need not be UTF-8 (`args` would panic on it).
+    let mut args: Vec<OsString> = std::env::args_os().skip(1).collect();
+    let is = |a: &OsString, s: &str| a.as_os_str() == s;
+    if args.iter().any(|a| is(a, "--help") || is(a, "-h")) {
         println!("{USAGE}\n\nAdds the parts written by render --samples/--crop into one image.");
         return ExitCode::SUCCESS;
     }
-    let variance = args.iter().any(|a| a == "--variance");
-    args.retain(|a| a != "--variance");
-    if let Some(bad) = args.iter().find(|a| a.starts_with("--")) {
-        eprintln!("error: unknown option {bad}\n{USAGE}");
+    let variance = args.iter().any(|a| is(a, "--variance"));
+    args.retain(|a| !is(a, "--variance"));
+    if let Some(i) = args.iter().position(|a| is(a, "--max-memory")) {
+        let size = args.get(i + 1).map(|v| match v.to_str() {
+            Some(v) => mcrt_render::memory::parse_size(v),
+            None => Err(format!("{}: not a size", v.to_string_lossy())),
+        });
+        match size {
+            Some(Ok(bytes)) => mcrt_render::memory::set_max_memory(bytes),
+            Some(Err(e)) => {
+                eprintln!("error: --max-memory {e}\n{USAGE}");
+                return ExitCode::from(2);
+            }
+            None => {
+                eprintln!("error: --max-memory needs a size such as 4G\n{USAGE}");
+                return ExitCode::from(2);
+            }
+        }
+        args.drain(i..i + 2);
+    }
+    if let Some(bad) = args
+        .iter()
+        .find(|a| a.as_encoded_bytes().starts_with(b"--"))
+    {
+        eprintln!("error: unknown option {}\n{USAGE}", bad.to_string_lossy());
         return ExitCode::from(2);
     }
     if args.len() < 2 {

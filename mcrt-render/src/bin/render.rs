@@ -16,7 +16,10 @@
 //! `--variance`). The output folder is checked before rendering, and files are replaced
 //! atomically. Ctrl-C (or SIGTERM) stops early, writes the image so far as
 //! `NAME.partial.exr` / `NAME.partial.png` (pixels without a sample are NaN in the EXR)
-//! and exits with status 130.
+//! and exits with status 130, in every phase: while the scene loads or the acceleration
+//! structure is built it exits at once (nothing written); during the render (Metropolis's
+//! bootstrap included) it writes the image so far; while the image is written it finishes
+//! writing it.
 //!
 //! With `--samples` or `--crop` the output is a *part* of the render, an EXR that the `merge`
 //! example adds to the other parts (see `docs/distributed.md`).
@@ -26,7 +29,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use mcrt::integrator::Strategy;
 use mcrt_render::description::{IntegratorKind, SampleCount, SamplerKind, SceneDescription};
 use mcrt_render::film::{OutputPlan, WindowError, EXIT_INTERRUPTED};
-use mcrt_render::render::{AccelKind, RenderOptions, Renderer, ShapeSampling};
+use mcrt_render::render::{AccelKind, RenderOptions, Renderer, ShapeSampling, MAX_THREADS};
+use std::ffi::OsString;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -96,9 +100,15 @@ const OPTIONS: &[Opt] = &[
         long: "threads",
         short: None,
         value: Some("N"),
-        help: "worker threads, 0 for all cores [default: 0]",
+        help: "worker threads, 0 for all cores, at most 1024 [default: 0]",
         apply: |a, v| {
-            a.opts.threads = num("--threads", v)?;
+            let n: usize = num("--threads", v)?;
+            if n > MAX_THREADS {
+                return Err(format!(
+                    "--threads {v}: at most {MAX_THREADS} worker threads"
+                ));
+            }
+            a.opts.threads = n;
             Ok(())
         },
     },
@@ -209,6 +219,20 @@ const OPTIONS: &[Opt] = &[
         },
     },
     Opt {
+        long: "max-memory",
+        short: None,
+        value: Some("SIZE"),
+        help: "memory budget for loading and rendering, e.g. 4G or 512M: a mesh, texture, \
+               film or MLT state that would need more is refused before it is allocated \
+               (docs/renderer.md, Memory budget) [default: 8G]",
+        apply: |_a, v| {
+            let bytes =
+                mcrt_render::memory::parse_size(v).map_err(|e| format!("--max-memory {e}"))?;
+            mcrt_render::memory::set_max_memory(bytes);
+            Ok(())
+        },
+    },
+    Opt {
         long: "bdpt-strategy",
         short: None,
         value: Some("S,T"),
@@ -267,6 +291,7 @@ fn num<T: std::str::FromStr>(flag: &str, v: &str) -> Result<T, String> {
 fn command() -> Command {
     let scene = Arg::new("scene")
         .value_name("SCENE.xml")
+        .value_parser(clap::value_parser!(PathBuf))
         .help("Mitsuba 3 XML scene [default: the built-in Cornell box]");
     all_options().fold(
         Command::new("render")
@@ -274,7 +299,8 @@ fn command() -> Command {
             .after_help(
                 "Images go to the folder renders/ of the current folder unless -o names a \
                  file. Ctrl-C or SIGTERM stops early: the image so far is written as \
-                 NAME.partial.exr / NAME.partial.png and the exit status is 130. \
+                 NAME.partial.exr / NAME.partial.png (nothing if the render has not begun) \
+                 and the exit status is 130. \
                  --samples and --crop write a part of the render; \
                  `cargo run --release --bin merge -- OUT.exr PARTS.exr...` adds the parts \
                  into the image one render would give (docs/distributed.md).",
@@ -286,7 +312,11 @@ fn command() -> Command {
                 arg = arg.short(s);
             }
             arg = match o.value {
-                Some(v) => arg.value_name(v).action(ArgAction::Append),
+                // Taken as `OsString`: a file name need not be UTF-8 (`parse_args`).
+                Some(v) => arg
+                    .value_name(v)
+                    .action(ArgAction::Append)
+                    .value_parser(clap::value_parser!(OsString)),
                 None => arg.action(ArgAction::SetTrue),
             };
             cmd.arg(arg)
@@ -298,7 +328,7 @@ fn command() -> Command {
 fn parse_args() -> Result<Args, clap::Error> {
     let m = command().try_get_matches()?;
     let mut a = Args {
-        scene: m.get_one::<String>("scene").map(PathBuf::from),
+        scene: m.get_one::<PathBuf>("scene").cloned(),
         ..Args::default()
     };
     let usage = |e: String| command().error(clap::error::ErrorKind::ValueValidation, e);
@@ -307,7 +337,15 @@ fn parse_args() -> Result<Args, clap::Error> {
             None if m.get_flag(o.long) => (o.apply)(&mut a, "").map_err(usage)?,
             None => {}
             Some(_) => {
-                for v in m.get_many::<String>(o.long).into_iter().flatten() {
+                for v in m.get_many::<OsString>(o.long).into_iter().flatten() {
+                    if o.long == "output" {
+                        // A file name, not necessarily UTF-8.
+                        a.out = Some(PathBuf::from(v));
+                        continue;
+                    }
+                    let v = v.to_str().ok_or_else(|| {
+                        usage(format!("--{} {}: not UTF-8", o.long, v.to_string_lossy()))
+                    })?;
                     (o.apply)(&mut a, v).map_err(usage)?;
                 }
             }
@@ -377,18 +415,12 @@ fn run(args: Args) -> Result<bool, String> {
     )
     .map_err(|e| e.to_string())?;
     plan.check_writable().map_err(|e| e.to_string())?;
+    let (cancel, rendering) = interrupt_handler()?;
     let desc = match &args.scene {
         None => builtin(&args.defines)?,
         Some(p) => load(p, &args.defines)?,
     };
     let renderer = Renderer::new(&desc, &args.opts).map_err(|e| e.to_string())?;
-    let cancel = Arc::new(AtomicBool::new(false));
-    {
-        // With ctrlc's `termination` feature this handles SIGINT, SIGTERM and SIGHUP.
-        let c = cancel.clone();
-        ctrlc::set_handler(move || c.store(true, Ordering::Relaxed))
-            .map_err(|e| format!("cannot install the Ctrl-C handler: {e}"))?;
-    }
     let (w, h) = renderer.size();
     println!(
         "{name}: {w}×{h}, integrator {}, {} {} ({}), strategy {}, effects: {}",
@@ -425,6 +457,7 @@ fn run(args: Args) -> Result<bool, String> {
         ProgressStyle::with_template("{bar:40} {percent:>3}% {elapsed_precise} eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
+    rendering.store(true, Ordering::SeqCst);
     let result = renderer.render(&|done, _| bar.set_position(done), &cancel);
     bar.finish_and_clear();
     let interrupted = cancel.load(Ordering::Relaxed);
@@ -468,6 +501,11 @@ fn run(args: Args) -> Result<bool, String> {
     };
     let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
     println!("wrote {}", names.join(", "));
+    if !interrupted && cancel.load(Ordering::Relaxed) {
+        // A signal while the finished image was written: it is whole, the status is 130.
+        println!("interrupted while writing: the image is complete");
+        return Ok(true);
+    }
     if interrupted {
         let (lo, hi) = result.film.count_range();
         println!(
@@ -476,6 +514,28 @@ fn run(args: Args) -> Result<bool, String> {
         );
     }
     Ok(interrupted)
+}
+
+/// Installs the SIGINT/SIGTERM/SIGHUP handler, before the scene is loaded: it returns the
+/// cancel flag, which the handler sets, and the flag that says the render has begun. Before
+/// that (loading, building the acceleration structure) there is no image to keep, and the
+/// handler ends the process at once with status 130; from then on the render stops early,
+/// the image so far is written and the status is 130.
+fn interrupt_handler() -> Result<(Arc<AtomicBool>, Arc<AtomicBool>), String> {
+    let cancel = Arc::new(AtomicBool::new(false));
+    let rendering = Arc::new(AtomicBool::new(false));
+    let (c, r) = (cancel.clone(), rendering.clone());
+    // With ctrlc's `termination` feature this handles SIGINT, SIGTERM and SIGHUP; the
+    // handler runs on its own thread, not in the signal's context.
+    ctrlc::set_handler(move || {
+        c.store(true, Ordering::SeqCst);
+        if !r.load(Ordering::SeqCst) {
+            eprintln!("interrupted before rendering: nothing written");
+            std::process::exit(i32::from(EXIT_INTERRUPTED));
+        }
+    })
+    .map_err(|e| format!("cannot install the Ctrl-C handler: {e}"))?;
+    Ok((cancel, rendering))
 }
 
 /// Whether `-o` is absent or names an EXR file.

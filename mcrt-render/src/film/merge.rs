@@ -1,7 +1,8 @@
 //! Merging the parts of a render ([`super::Part`]) into the film a single render would have
 //! given: the per-pixel sums and sample counts are added in f64, the splat sums likewise, and
 //! the splat scale is the single render's. Parts from different renders, parts that hold the
-//! same samples of a pixel twice, and sets of parts that leave samples out are refused.
+//! same samples of a pixel twice, parts whose sums are not finite, and sets of parts that
+//! leave samples out are refused.
 
 use super::part::Part;
 use super::window::{Crop, SampleRange};
@@ -49,6 +50,17 @@ pub enum MergeError {
         samples: SampleRange,
         /// The pixels both hold.
         pixels: Crop,
+    },
+    /// A part's sums hold NaN or infinite values (a damaged or altered file): merged, they
+    /// would make as many pixels of the image non-finite without a word.
+    NonFinite {
+        /// The part.
+        path: PathBuf,
+        /// The first pixel with such a value.
+        pixel: (u32, u32),
+        /// How many values (sums, sums of squares and splat sums, per channel) are not
+        /// finite.
+        values: u64,
     },
     /// Some pixels lack samples.
     Gap {
@@ -100,6 +112,16 @@ impl fmt::Display for MergeError {
                 a.display(),
                 b.display()
             ),
+            Self::NonFinite {
+                path,
+                pixel: (x, y),
+                values,
+            } => write!(
+                f,
+                "{}: {values} values of its sums are NaN or infinite, the first at pixel ({x}, \
+                 {y}) (a damaged part?)",
+                path.display()
+            ),
             Self::Gap {
                 pixel: (x, y),
                 missing,
@@ -123,7 +145,8 @@ impl std::error::Error for MergeError {}
 /// # Errors
 /// A part from another render (image size, samples per pixel, seed, or scene identity
 /// differ from the first part's), a part whose pixels do not hold the samples its header
-/// names, two parts holding the same samples of a pixel, or a pixel lacking samples.
+/// names, a part whose sums hold NaN or infinite values, two parts holding the same samples
+/// of a pixel, or a pixel lacking samples.
 pub fn merge_parts(parts: &[Part]) -> Result<Film, MergeError> {
     let first = parts.first().ok_or(MergeError::NoParts)?;
     for p in &parts[1..] {
@@ -131,6 +154,7 @@ pub fn merge_parts(parts: &[Part]) -> Result<Film, MergeError> {
     }
     for p in parts {
         check_complete(p)?;
+        check_finite(p)?;
     }
     check_no_overlap(parts)?;
     let (w, h) = (first.info.width, first.info.height);
@@ -215,6 +239,43 @@ fn check_complete(p: &Part) -> Result<(), MergeError> {
         }
     }
     Ok(())
+}
+
+/// Refuses a part whose sums hold NaN or infinite values, with their count.
+fn check_finite(p: &Part) -> Result<(), MergeError> {
+    let win = p.window;
+    let mut first = None;
+    let mut values = 0u64;
+    for (k, a) in p.pixels.iter().enumerate() {
+        let splat = p
+            .splats
+            .as_ref()
+            .and_then(|s| s.get(k))
+            .into_iter()
+            .flatten();
+        let bad = a
+            .sum
+            .iter()
+            .chain(&a.sum_sq)
+            .chain(splat)
+            .filter(|v| !v.is_finite())
+            .count() as u64;
+        if bad > 0 {
+            values += bad;
+            first = first.or(Some((
+                win.x0 + k as u32 % win.width(),
+                win.y0 + k as u32 / win.width(),
+            )));
+        }
+    }
+    match first {
+        None => Ok(()),
+        Some(pixel) => Err(MergeError::NonFinite {
+            path: p.path.clone(),
+            pixel,
+            values,
+        }),
+    }
 }
 
 fn check_no_overlap(parts: &[Part]) -> Result<(), MergeError> {

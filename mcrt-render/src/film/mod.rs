@@ -115,6 +115,12 @@ impl Film {
         }
     }
 
+    /// The bytes a film of `width × height` pixels takes at most (sums, squares, counts and
+    /// splats), for the memory budget ([`crate::memory`]).
+    pub fn bytes_for(width: u64, height: u64) -> u64 {
+        crate::memory::bytes(width.saturating_mul(height), 3 * 24 + 4)
+    }
+
     /// Adds `v` to the splat sum of pixel `index` (ignored past the end).
     pub fn add_splat(&mut self, index: usize, v: Vec3) {
         self.add_splat_sum(index, [v.x as f64, v.y as f64, v.z as f64]);

@@ -164,19 +164,49 @@ pub fn write_part(path: &Path, film: &Film, info: &PartInfo) -> Result<(), Image
     })
 }
 
+/// Checks a part's windows against the memory budget from its headers alone, before its
+/// pixels are read: merging needs a film of the display window (and a sample count per
+/// pixel), reading it its data window's channels and accumulators.
+fn check_budget(path: &Path) -> Result<(), ImageError> {
+    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| err(path, e))?;
+    for h in meta.headers.iter() {
+        let d = h.shared_attributes.display_window.size;
+        let (w, hh) = (d.0 as u64, d.1 as u64);
+        let merge = super::Film::bytes_for(w, hh).saturating_add(crate::memory::bytes(w * hh, 4));
+        crate::memory::check(
+            &format!("merging an image of {w} × {hh} pixels (the part's display window)"),
+            merge,
+        )
+        .map_err(|m| err(path, m))?;
+        let l = h.layer_size;
+        let data = crate::memory::bytes(l.0 as u64 * l.1 as u64, 13 * 4 + 2 * 56);
+        crate::memory::check(
+            &format!("reading a data window of {} × {} pixels", l.0, l.1),
+            data,
+        )
+        .map_err(|m| err(path, m))?;
+    }
+    Ok(())
+}
+
 /// Reads a part written by [`write_part`], checking that its header is complete and
 /// consistent (the sample range within the samples per pixel, the crop within the image
-/// and within the data window) and that every channel is there.
+/// and within the data window) and that every channel is there. Only a regular file is
+/// opened (a FIFO, device or folder is refused first).
 pub fn read_part(path: &Path) -> Result<Part, ImageError> {
     use exr::prelude::traits::{read, ReadChannels, ReadLayers};
     use exr::prelude::{AttributeValue, FlatSamples, Vec2};
+    // Only a regular file: opening a FIFO would wait for a writer forever (issue 26). It is
+    // checked before the header is read for the memory budget.
+    let file = crate::io::open_regular(path).map_err(|e| err(path, e))?;
+    check_budget(path)?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
         .all_channels()
         .first_valid_layer()
         .all_attributes()
-        .from_file(path)
+        .from_buffered(std::io::BufReader::new(file))
         .map_err(|e| err(path, e))?;
     let layer = &image.layer_data;
     let get = |k: &str| {

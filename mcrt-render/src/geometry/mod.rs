@@ -164,6 +164,13 @@ impl Geometry {
         self.prims.len()
     }
 
+    /// Heap bytes held by the acceleration structure (not the primitives): O(n) in the
+    /// primitive count for the BVH and the grid, O(n log n) at most for the kd-tree, for any
+    /// input (`docs/geometry.md`, "Bounds on degenerate input").
+    pub fn accel_heap_bytes(&self) -> usize {
+        self.query.heap_bytes()
+    }
+
     /// The acceleration structure in use.
     pub fn accel_kind(&self) -> AccelKind {
         self.query.kind()

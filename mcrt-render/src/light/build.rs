@@ -92,6 +92,7 @@ impl Lights {
                 }
             }
         }
+        check_power(desc, &lights, &power)?;
         let rectangles: Vec<Option<RectangleSampler>> = lights
             .iter()
             .map(|l| match *l {
@@ -147,4 +148,51 @@ impl Lights {
             has_delta,
         })
     }
+}
+
+/// Refuses a light whose power is not a finite `f32`, or powers whose sum is not (the choice
+/// of lights needs both), naming the brightest such light: it could not be chosen, and was
+/// dropped without a word (issue 26).
+fn check_power(desc: &SceneDescription, lights: &[Light], power: &[f32]) -> Result<(), LightError> {
+    let total: f32 = power.iter().sum();
+    if total.is_finite() {
+        return Ok(());
+    }
+    // The first light whose power is infinite or NaN, else the brightest.
+    let i = power
+        .iter()
+        .position(|p| !p.is_finite())
+        .or_else(|| (0..power.len()).max_by(|&a, &b| power[a].total_cmp(&power[b])))
+        .unwrap_or(0);
+    let shape_lights = lights
+        .iter()
+        .filter(|l| matches!(l, Light::Area { .. }))
+        .count();
+    let light = match lights.get(i) {
+        Some(Light::Area { shape, .. }) => {
+            let id = desc
+                .shapes
+                .get(*shape as usize)
+                .and_then(|s| s.id.as_deref());
+            match id {
+                Some(id) => format!("the area light on shape \"{id}\""),
+                None => format!("the area light on shape {}", shape + 1),
+            }
+        }
+        Some(l) => {
+            let kind = match l {
+                Light::Point { .. } => "point",
+                Light::Spot(_) => "spot",
+                Light::Directional { .. } => "directional",
+                Light::Constant { .. } => "constant",
+                _ => "envmap",
+            };
+            format!("the {kind} light (emitter {})", i - shape_lights + 1)
+        }
+        None => "a light".into(),
+    };
+    Err(LightError::PowerOverflow {
+        light,
+        power: format!("{:e}", power.get(i).copied().unwrap_or(f32::INFINITY)),
+    })
 }

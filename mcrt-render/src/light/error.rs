@@ -18,6 +18,15 @@ pub enum LightError {
     },
     /// A spot light's parameters are out of range (the message says which).
     Spot(String),
+    /// A light's power (its emission times its area or solid angle, or the scene's disk for
+    /// lights at infinity), or the lights' total power, is not a finite `f32`: the light
+    /// could not be chosen, and would have been dropped.
+    PowerOverflow {
+        /// The light, e.g. `the point light (emitter 1)`.
+        light: String,
+        /// Its power, in f64.
+        power: String,
+    },
 }
 
 impl fmt::Display for LightError {
@@ -30,6 +39,12 @@ impl fmt::Display for LightError {
                 write!(f, "light setup: {}: {reason}", path.display())
             }
             LightError::Spot(what) => write!(f, "light setup: spot light: {what}"),
+            LightError::PowerOverflow { light, power } => write!(
+                f,
+                "light setup: {light}: its power, {power}, or the lights' total power, exceeds \
+                 the largest f32, {:e}: lower its emission (or the scene's size)",
+                f32::MAX
+            ),
         }
     }
 }

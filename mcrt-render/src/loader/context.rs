@@ -20,6 +20,8 @@ pub(crate) struct Ctx<'a> {
     pub ids: HashMap<String, &'a Elem>,
     /// Texture images read so far, by path and `raw` (a texture used twice is read once).
     images: RefCell<HashMap<(PathBuf, bool), Arc<Image>>>,
+    /// The bytes the images in `images` hold (for the memory budget).
+    image_bytes: std::cell::Cell<u64>,
 }
 
 /// Type alias for results inside the loader.
@@ -37,6 +39,7 @@ impl<'a> Ctx<'a> {
             base_dir,
             ids: HashMap::new(),
             images: RefCell::default(),
+            image_bytes: std::cell::Cell::new(0),
         };
         ctx.collect(root)?;
         Ok(ctx)
@@ -64,6 +67,11 @@ impl<'a> Ctx<'a> {
         Ok(())
     }
 
+    /// The bytes of the images read so far in this load.
+    pub fn image_bytes(&self) -> u64 {
+        self.image_bytes.get()
+    }
+
     /// The image read from `path` with `raw` earlier in this load, if any.
     pub fn cached_image(&self, path: &Path, raw: bool) -> Option<Arc<Image>> {
         self.images
@@ -74,6 +82,8 @@ impl<'a> Ctx<'a> {
 
     /// Remembers an image read from `path` with `raw`; returns it.
     pub fn cache_image(&self, path: &Path, raw: bool, image: Arc<Image>) -> Arc<Image> {
+        let bytes = self.image_bytes.get().saturating_add(image.memory_bytes());
+        self.image_bytes.set(bytes);
         self.images
             .borrow_mut()
             .insert((path.to_path_buf(), raw), Arc::clone(&image));

@@ -28,6 +28,9 @@ pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<AreaEmitterDesc> {
     let mut p = Props::new(ctx, e)?;
     no_objects(ctx, &p)?;
     let radiance = non_negative(e, &mut p, "radiance")?;
+    // The power of a unit area (the shape's area multiplies it: `Lights::new` checks that).
+    validate::emission_power("radiance", radiance, std::f64::consts::PI)
+        .map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(AreaEmitterDesc { radiance })
 }

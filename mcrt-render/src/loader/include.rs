@@ -84,8 +84,14 @@ impl Reader<'_> {
             );
             return Err(sub_err(&root, SceneErrorKind::Misplaced(m)));
         }
-        if let Some(Err(m)) = root.attr("version").map(check_version) {
-            return Err(sub_err(&root, SceneErrorKind::Version(m)));
+        // Mitsuba 3 requires the version of an included file as of the main file's.
+        match root.attr("version").map(check_version) {
+            None => {
+                let m = "missing \"version\" attribute".to_string();
+                return Err(sub_err(&root, SceneErrorKind::Version(m)));
+            }
+            Some(Err(m)) => return Err(sub_err(&root, SceneErrorKind::Version(m))),
+            Some(Ok(())) => {}
         }
         Ok(root.children)
     }

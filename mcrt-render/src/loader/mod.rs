@@ -51,7 +51,7 @@ pub use crate::io::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};
 pub use crate::scene_error::{SceneError, SceneErrorKind};
 pub use crate::transform::look_at;
 
-use crate::description::SceneDescription;
+use crate::description::{EmitterDesc, SceneDescription};
 use context::{Ctx, Res};
 use props::Props;
 use std::path::Path;
@@ -91,6 +91,7 @@ pub fn parse_scene(
         ..SceneDescription::default()
     };
     let (mut integrator, mut sensor) = (None::<&Elem>, None::<&Elem>);
+    let mut environment = None::<&Elem>;
     for c in &root.children {
         match c.tag.as_str() {
             "integrator" => {
@@ -102,7 +103,16 @@ pub fn parse_scene(
                 desc.sensor = sensor::read_sensor(&ctx, c)?;
             }
             "shape" => desc.shapes.push(shape::read_shape(&ctx, c)?),
-            "emitter" => desc.emitters.push(emitter::read_emitter(&ctx, c)?),
+            "emitter" => {
+                let em = emitter::read_emitter(&ctx, c)?;
+                if matches!(
+                    em,
+                    EmitterDesc::Constant { .. } | EmitterDesc::EnvMap { .. }
+                ) {
+                    second_environment(&ctx, &mut environment, c)?;
+                }
+                desc.emitters.push(em);
+            }
             // Declared for `ref`; built here too so that its errors surface even if unused.
             "bsdf" => {
                 bsdf::read_bsdf(&ctx, c)?;
@@ -135,6 +145,21 @@ fn once<'a>(ctx: &Ctx, slot: &mut Option<&'a Elem>, e: &'a Elem) -> Res<()> {
             SceneErrorKind::Unsupported(format!(
                 "a second <{}> (the first is on line {})",
                 e.tag, prev.line
+            )),
+        ));
+    }
+    Ok(())
+}
+
+/// Records the environment emitter (`constant` or `envmap`): a scene has one at most.
+fn second_environment<'a>(ctx: &Ctx, slot: &mut Option<&'a Elem>, e: &'a Elem) -> Res<()> {
+    if let Some(prev) = slot.replace(e) {
+        return Err(ctx.err(
+            e,
+            SceneErrorKind::Unsupported(format!(
+                "more than one environment emitter (constant or envmap; the first is on line \
+                 {})",
+                prev.line
             )),
         ));
     }

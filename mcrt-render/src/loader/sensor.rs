@@ -104,6 +104,18 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
     if let Some(d) = diagonal {
         s.fov = horizontal_fov(d, s.film.width as f32 / s.film.height as f32);
         s.fov_axis = FovAxis::X;
+        // A focal length of 10⁻⁴⁰ mm (or a diagonal fov next to 180) leaves none.
+        if !(s.fov > 0.0 && s.fov < 180.0) {
+            let (param, what) = match focal.as_deref() {
+                Some(t) => ("focal_length", format!("\"{t}\" is too short or too long")),
+                None => ("fov", "(diagonal) is too wide".to_string()),
+            };
+            let msg = format!(
+                "{what}: the horizontal field of view on this film must lie strictly between 0 \
+                 and 180 degrees"
+            );
+            return Err(p.invalid(param, e, &msg));
+        }
     }
     s.sampler = sampler.unwrap_or_default();
     p.finish()?;

@@ -8,7 +8,8 @@ use super::{no_objects, plugin_type, unknown_plugin};
 use crate::description::BsdfDesc;
 use crate::scene_error::SceneErrorKind;
 use crate::texture::{
-    read_image, uv_transform, Bitmap, Checkerboard, FilterType, Texture, TextureParam, WrapMode,
+    read_image_beside, uv_transform, Bitmap, Checkerboard, FilterType, Texture, TextureParam,
+    WrapMode,
 };
 use glam::{Affine2, Vec3};
 use std::sync::Arc;
@@ -55,14 +56,18 @@ pub(crate) fn read_texture(ctx: &Ctx, e: &Elem) -> Res<Texture> {
             let image = match ctx.cached_image(&path, raw) {
                 Some(image) => image,
                 None => {
-                    let image = read_image(&path, raw).map_err(|reason| {
-                        ctx.err(
-                            e,
+                    let used = ctx.image_bytes();
+                    let image = read_image_beside(&path, raw, used).map_err(|reason| {
+                        // The budget's message is ours and says how to raise it: not clipped.
+                        let kind = if reason.contains("--max-memory") {
+                            SceneErrorKind::Memory(format!("{}: {reason}", path.display()))
+                        } else {
                             SceneErrorKind::Io {
                                 path: path.clone(),
                                 reason,
-                            },
-                        )
+                            }
+                        };
+                        ctx.err(e, kind)
                     })?;
                     ctx.cache_image(&path, raw, Arc::new(image))
                 }

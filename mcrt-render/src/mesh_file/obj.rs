@@ -15,12 +15,66 @@ use std::collections::HashMap;
 use std::path::Path;
 
 /// Reads the OBJ file at `path`, a regular file of at most
-/// [`MAX_OBJ_BYTES`](crate::io::MAX_OBJ_BYTES). Errors name the file and the
-/// line. Normals (or texture coordinates) are empty when some face corner has none.
+/// [`MAX_OBJ_BYTES`](crate::io::MAX_OBJ_BYTES), line by line: a line may have at most
+/// 1/1024 of the memory budget ([`crate::memory`]) and the mesh read so far must fit in
+/// the budget, so a huge or sparse file is refused at the line where it passes a limit,
+/// without being read whole. Errors name the file and the line. Normals (or texture
+/// coordinates) are empty when some face corner has none.
 pub fn read_obj(path: &Path) -> Result<ObjMesh, SceneError> {
-    let text = crate::io::read_capped(path, crate::io::MAX_OBJ_BYTES)
-        .map_err(|e| SceneError::io(path, &e))?;
-    parse_obj(&String::from_utf8_lossy(&text), Some(path))
+    use std::io::{BufRead, Read};
+    let io = |e: std::io::Error| SceneError::io(path, &e);
+    let file = crate::io::open_regular(path).map_err(io)?;
+    let cap = crate::io::MAX_OBJ_BYTES;
+    if file.metadata().map_err(io)?.len() > cap {
+        return Err(io(std::io::Error::other(format!(
+            "longer than {cap} bytes"
+        ))));
+    }
+    let budget = crate::memory::max_memory();
+    let max_line = (budget / 1024).max(4096) as usize;
+    let mut input = std::io::BufReader::with_capacity(1 << 16, file);
+    let (mut r, mut bytes, mut line_no) = (Reader::default(), Vec::new(), 0u32);
+    let at = |line_no: u32, m: String| {
+        SceneError::new(
+            Some(path),
+            Some(line_no),
+            None,
+            None,
+            SceneErrorKind::Memory(m),
+        )
+    };
+    loop {
+        bytes.clear();
+        let n = (&mut input)
+            .take(max_line as u64 + 1)
+            .read_until(b'\n', &mut bytes)
+            .map_err(io)?;
+        if n == 0 {
+            break;
+        }
+        line_no = line_no.saturating_add(1);
+        if bytes.len() > max_line && bytes.last() != Some(&b'\n') {
+            return Err(at(
+                line_no,
+                format!(
+                    "the line is longer than {}, the most a line may have under the memory \
+                     budget of {} (1/1024 of it); raise the limit with --max-memory",
+                    crate::memory::format_size(max_line as u64),
+                    crate::memory::format_size(budget)
+                ),
+            ));
+        }
+        let text = String::from_utf8_lossy(&bytes);
+        let line = text.strip_suffix('\n').unwrap_or(&text);
+        let line = line.strip_suffix('\r').unwrap_or(line);
+        r.line(line, line_no, Some(path))?;
+        let need = r.bytes_after_growth();
+        if need > budget {
+            let m = crate::memory::over_budget("the mesh read so far", need);
+            return Err(at(line_no, m));
+        }
+    }
+    r.finish(Some(path))
 }
 
 /// Parses OBJ text; `path` is used in messages.
@@ -37,27 +91,9 @@ pub fn parse_obj(text: &str, path: Option<&Path>) -> Result<ObjMesh, SceneError>
     let mut r = Reader::default();
     for (i, line) in text.lines().enumerate() {
         let line_no = u32::try_from(i + 1).unwrap_or(u32::MAX);
-        r.statement(line).map_err(|m| {
-            let keyword = line.split_whitespace().next().map(str::to_string);
-            SceneError::new(path, Some(line_no), None, keyword, SceneErrorKind::Obj(m))
-        })?;
+        r.line(line, line_no, path)?;
     }
-    if r.mesh.indices.is_empty() {
-        return Err(SceneError::new(
-            path,
-            None,
-            None,
-            None,
-            SceneErrorKind::Obj("the file has no faces".into()),
-        ));
-    }
-    if r.missing_normal {
-        r.mesh.normals.clear();
-    }
-    if r.missing_uv {
-        r.mesh.uvs.clear();
-    }
-    Ok(r.mesh)
+    r.finish(path)
 }
 
 /// One face corner: position, texture coordinate and normal indices (0-based).
@@ -74,7 +110,60 @@ struct Reader {
     mesh: ObjMesh,
 }
 
+/// The bytes of `v` once it has grown for its next item (doubled when full).
+fn grown<T>(v: &Vec<T>) -> u64 {
+    let cap = if v.len() == v.capacity() {
+        (2 * v.capacity()).max(4)
+    } else {
+        v.capacity()
+    };
+    (cap * std::mem::size_of::<T>()) as u64
+}
+
 impl Reader {
+    /// Reads line `line_no`; errors name it.
+    fn line(&mut self, line: &str, line_no: u32, path: Option<&Path>) -> Result<(), SceneError> {
+        self.statement(line).map_err(|m| {
+            let keyword = line.split_whitespace().next().map(str::to_string);
+            SceneError::new(path, Some(line_no), None, keyword, SceneErrorKind::Obj(m))
+        })
+    }
+
+    /// What the lists read so far take once each has grown once more (an upper bound on
+    /// what the next line can make them take).
+    fn bytes_after_growth(&self) -> u64 {
+        let entry = (std::mem::size_of::<(Corner, u32)>() + 1) as u64;
+        let map = (self.vertex_of.capacity() as u64 * 2).max(4) * entry;
+        grown(&self.positions)
+            + grown(&self.normals)
+            + grown(&self.uvs)
+            + grown(&self.mesh.positions)
+            + grown(&self.mesh.normals)
+            + grown(&self.mesh.uvs)
+            + grown(&self.mesh.indices)
+            + map
+    }
+
+    /// The mesh, once every line is read.
+    fn finish(mut self, path: Option<&Path>) -> Result<ObjMesh, SceneError> {
+        if self.mesh.indices.is_empty() {
+            return Err(SceneError::new(
+                path,
+                None,
+                None,
+                None,
+                SceneErrorKind::Obj("the file has no faces".into()),
+            ));
+        }
+        if self.missing_normal {
+            self.mesh.normals.clear();
+        }
+        if self.missing_uv {
+            self.mesh.uvs.clear();
+        }
+        Ok(self.mesh)
+    }
+
     fn statement(&mut self, line: &str) -> Result<(), String> {
         let line = line.split('#').next().unwrap_or("");
         let mut words = line.split_whitespace();

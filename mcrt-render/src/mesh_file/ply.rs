@@ -33,8 +33,88 @@ const UV_NAMES: [[&str; 2]; 4] = [
 /// Reads the PLY file at `path`, a regular file of at most
 /// [`MAX_MESH_BYTES`](super::MAX_MESH_BYTES). Errors name the file and the header line,
 /// or the element and its index in the data.
+///
+/// The header is read first and what the file would take in memory (its bytes, and the
+/// mesh its element counts describe) is checked against the memory budget
+/// ([`crate::memory`]) before the rest is read.
 pub fn read_ply(path: &Path) -> Result<TriangleMesh, SceneError> {
+    use std::io::Read;
+    const HEAD: u64 = 1 << 20;
+    let io = |e: std::io::Error| SceneError::io(path, &e);
+    let file = crate::io::open_regular(path).map_err(io)?;
+    let len = file.metadata().map_err(io)?.len();
+    let mut head = Vec::new();
+    file.take(HEAD).read_to_end(&mut head).map_err(io)?;
+    let header = Parser::<Skip>::new().read_header(&mut Reader::new(&head[..]));
+    match header {
+        Ok(header) => check_memory(&header, len).map_err(|(name, m)| {
+            let line = element_line(&head, &name);
+            let at = Some(format!("element \"{name}\""));
+            error(Some(path), line, at, SceneErrorKind::Memory(m))
+        })?,
+        // A header that does not end in the first MiB of a larger file: refused unread.
+        Err(_) if len > HEAD => {
+            let m = format!("no end_header in the first {HEAD} bytes");
+            return Err(error(
+                Some(path),
+                None,
+                Some("header".into()),
+                SceneErrorKind::Ply(m),
+            ));
+        }
+        Err(_) => {} // parse_ply says what is wrong
+    }
+    drop(head);
     parse_ply(&read_file(path)?, Some(path))
+}
+
+/// The header line (1-based) that declares element `name`, if it is found.
+fn element_line(bytes: &[u8], name: &str) -> Option<u32> {
+    let text = String::from_utf8_lossy(&bytes[..bytes.len().min(1 << 20)]);
+    let k = text.lines().position(|l| {
+        let mut w = l.split_whitespace();
+        w.next() == Some("element") && w.next() == Some(name)
+    })?;
+    u32::try_from(k + 1).ok()
+}
+
+/// Checks what reading a file of `len` bytes with `header` would take in memory against
+/// the budget: the file's bytes, and per vertex its position, normal and texture
+/// coordinates (and, for ASCII, the parsed row), per face at least one triangle (and, for
+/// ASCII, the parsed row and its list).
+fn check_memory(header: &Header, len: u64) -> Result<(), (String, String)> {
+    let ascii = header.encoding == Encoding::Ascii;
+    let mut need = len;
+    for (name, def) in &header.elements {
+        let per = match name.as_str() {
+            "vertex" => {
+                let row = if ascii {
+                    std::mem::size_of::<VertexRow>()
+                } else {
+                    0
+                };
+                12 + 12 + 8 + row
+            }
+            "face" => {
+                12 + if ascii {
+                    std::mem::size_of::<FaceRow>() + 12
+                } else {
+                    0
+                }
+            }
+            _ => 0,
+        };
+        let bytes = crate::memory::bytes(def.count as u64, per);
+        need = need.saturating_add(bytes);
+        if need > crate::memory::max_memory() {
+            let what = format!(
+                "reading this file ({len} bytes, element \"{name}\" of {} items)",
+                def.count
+            );
+            return Err((name.clone(), crate::memory::over_budget(&what, need)));
+        }
+    }
+    Ok(())
 }
 
 /// Parses a PLY file held in memory; `path` is used in messages.
@@ -58,6 +138,13 @@ pub fn parse_ply(bytes: &[u8], path: Option<&Path>) -> Result<TriangleMesh, Scen
         .read_header(&mut reader)
         .map_err(|e| fail(e.line(), Some("header".into()), e.to_string()))?;
     check_budget(&header, bytes.len()).map_err(|m| fail(None, Some("header".into()), m))?;
+    check_memory(&header, bytes.len() as u64).map_err(|(name, m)| {
+        let (line, at) = (
+            element_line(bytes, &name),
+            Some(format!("element \"{name}\"")),
+        );
+        error(path, line, at, SceneErrorKind::Memory(m))
+    })?;
     let ascii = header.encoding == Encoding::Ascii;
     // Layouts first, so that a wrong header is reported before any data is read.
     let mut layout = VertexLayout {

@@ -55,11 +55,17 @@ impl Renderer {
             return if self.specialize {
                 self.run_specialised(textured.clone(), p)
             } else {
-                self.run_loop(&self.view::<_, true, true>(textured.clone()), p)
+                self.run_loop(
+                    &self.view::<_, true, true>(textured.clone(), self.stop(p)),
+                    p,
+                )
             };
         }
         if !self.specialize {
-            return self.run_loop(&self.view::<_, true, true>(self.bsdfs.clone()), p);
+            return self.run_loop(
+                &self.view::<_, true, true>(self.bsdfs.clone(), self.stop(p)),
+                p,
+            );
         }
         if e.diffuse_only {
             let bsdfs: Vec<_> = self
@@ -84,18 +90,31 @@ impl Renderer {
         p: &tiles::LoopParams<'_>,
     ) -> (Film, tiles::LoopStats) {
         match (self.effects.delta_lights, self.effects.environment) {
-            (false, false) => self.run_loop(&self.view::<B, false, false>(bsdfs), p),
-            (true, false) => self.run_loop(&self.view::<B, true, false>(bsdfs), p),
-            (false, true) => self.run_loop(&self.view::<B, false, true>(bsdfs), p),
-            (true, true) => self.run_loop(&self.view::<B, true, true>(bsdfs), p),
+            (false, false) => self.run_loop(&self.view::<B, false, false>(bsdfs, self.stop(p)), p),
+            (true, false) => self.run_loop(&self.view::<B, true, false>(bsdfs, self.stop(p)), p),
+            (false, true) => self.run_loop(&self.view::<B, false, true>(bsdfs, self.stop(p)), p),
+            (true, true) => self.run_loop(&self.view::<B, true, true>(bsdfs, self.stop(p)), p),
         }
     }
 
-    /// The estimators' view of the scene with materials `bsdfs`.
-    pub(super) fn view<B, const DELTA: bool, const ENV: bool>(
-        &self,
+    /// What stops a path of the render's integrator at its next bounce: the cancel flag
+    /// for the path tracer, whose paths have no bound on their length (`max_depth` −1 and
+    /// a huge `rr_depth`), never for the others (the bidirectional paths stop at
+    /// `MAX_VERTICES`, `mlt`'s at [`crate::validate::MAX_MLT_DEPTH`], `direct`'s at once).
+    fn stop<'a>(&self, p: &tiles::LoopParams<'a>) -> &'a AtomicBool {
+        match self.integrator {
+            Integrator::Path(_) => p.cancel,
+            _ => &super::NEVER,
+        }
+    }
+
+    /// The estimators' view of the scene with materials `bsdfs`, whose paths end once
+    /// `stop` is set.
+    pub(super) fn view<'a, B, const DELTA: bool, const ENV: bool>(
+        &'a self,
         bsdfs: Vec<B>,
-    ) -> SceneView<'_, B, DELTA, ENV> {
+        stop: &'a AtomicBool,
+    ) -> SceneView<'a, B, DELTA, ENV> {
         SceneView {
             geometry: &self.geometry,
             bsdfs,
@@ -103,6 +122,7 @@ impl Renderer {
             camera: &self.camera,
             world: self.geometry.bounding_sphere(),
             filter: &self.filter,
+            stop,
         }
     }
 

@@ -6,7 +6,7 @@ use super::{split, Effects, RenderError, RenderOptions, Renderer};
 use crate::bsdf::{AnyBsdf, TexturedBsdf};
 use crate::camera::Camera;
 use crate::description::{IntegratorDesc, IntegratorKind, SceneDescription, ShapeKind};
-use crate::film::PixelFilter;
+use crate::film::{Film, PixelFilter};
 use crate::geometry::{Geometry, ShapeSampling};
 use crate::light::Lights;
 use glam::{Vec3, Vec4Swizzles};
@@ -66,6 +66,24 @@ impl Renderer {
         }
         // The rendered window: the whole film, or its crop window (the camera maps it).
         let (width, height) = (camera.width(), camera.height());
+        let (w64, h64) = (u64::from(width), u64::from(height));
+        crate::memory::check(
+            &format!("the film of {width} × {height} pixels"),
+            Film::bytes_for(w64, h64),
+        )
+        .map_err(RenderError::Invalid)?;
+        if let Integrator::Mlt(m) = &integrator {
+            let need = super::mlt_loop::state_bytes(m, w64, h64);
+            crate::memory::check(
+                &format!(
+                    "Metropolis light transport at {width} × {height} pixels and max_depth {} \
+                     (its chains' images, per-length sums and bootstrap)",
+                    m.max_depth
+                ),
+                need.saturating_add(Film::bytes_for(w64, h64)),
+            )
+            .map_err(RenderError::Invalid)?;
+        }
         let mut effects = Effects::of(&bsdfs, &lights, &integrator);
         if textured.is_some() {
             effects.textures = true;

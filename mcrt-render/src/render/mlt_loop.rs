@@ -1,6 +1,9 @@
 //! The render loop of Metropolis light transport: the image's brightness by bidirectional
-//! path tracing, a bootstrap of independent paths to start the chains from, then the chains, in batches of a fixed size so that the image does not depend on the thread
-//! count (each chain splats into its own buffer; buffers are added in chain order).
+//! path tracing, a bootstrap of independent paths to start the chains from, then the
+//! chains, in batches of a fixed size so that the image does not depend on the thread
+//! count (each chain splats into its own buffer; buffers are added in chain order). The
+//! cancel flag is read in every phase: before each bootstrap chunk and every
+//! [`CHECK_EVERY`] mutations.
 
 use super::tiles::{LoopParams, LoopStats};
 use crate::film::Film;
@@ -11,7 +14,7 @@ use mcrt::integrator::{
 use mcrt::sampling::distribution::AliasTable;
 use mcrt::sampling::sampler::hash::{combine, mix64};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 /// Chains run (and held in memory) at once.
 const CHAIN_BATCH: usize = 8;
@@ -23,14 +26,23 @@ const LENS_SALT: u64 = 0x6c65_6e73;
 /// Mutations between checks of the cancel flag.
 const CHECK_EVERY: u64 = 4096;
 
-/// The mean brightness of each (bootstrap sample, path length), index `i·D + k − 1`.
-fn bootstrap<S: BidirectionalScene + Sync>(scene: &S, mlt: &Mlt, seed: u64) -> Vec<f32> {
+/// The mean brightness of each (bootstrap sample, path length), index `i·D + k − 1`;
+/// incomplete (and not to be used) once `cancel` is set, which is read before each chunk.
+fn bootstrap<S: BidirectionalScene + Sync>(
+    scene: &S,
+    mlt: &Mlt,
+    seed: u64,
+    cancel: &AtomicBool,
+) -> Vec<f32> {
     let d = mlt.max_depth as usize;
     let n = mlt.bootstrap_samples as usize;
     (0..n.div_ceil(BOOT_CHUNK))
         .into_par_iter()
-        .flat_map_iter(|c| {
+        .map(|c| {
             let mut buf = BdptBuffers::default();
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
             let mut w = Vec::with_capacity(BOOT_CHUNK * d);
             for i in c * BOOT_CHUNK..((c + 1) * BOOT_CHUNK).min(n) {
                 for k in 1..=mlt.max_depth {
@@ -41,8 +53,11 @@ fn bootstrap<S: BidirectionalScene + Sync>(scene: &S, mlt: &Mlt, seed: u64) -> V
                     w.push(mcrt::integrator::mlt_brightness(path.value));
                 }
             }
-            w
+            Some(w)
         })
+        // Once cancelled, the chunks not begun are skipped (in order otherwise).
+        .while_some()
+        .flatten_iter()
         .collect()
 }
 
@@ -51,11 +66,13 @@ fn bootstrap<S: BidirectionalScene + Sync>(scene: &S, mlt: &Mlt, seed: u64) -> V
 /// estimated with bidirectional path tracing (every strategy, MIS) at `bootstrap_samples`
 /// film positions of a rank-1 lattice (Roberts' R2), far less noisy than the mean of the
 /// bootstrap's single-strategy paths (on the Cornell box those see the light directly in
-/// 0.6% of the samples, a 4% error at 10⁵ samples).
+/// 0.6% of the samples, a 4% error at 10⁵ samples). Incomplete (and not to be used) once
+/// `cancel` is set, which is read before each chunk of [`BOOT_CHUNK`] samples.
 fn brightness_per_length<S: BidirectionalScene + Sync>(
     scene: &S,
     mlt: &Mlt,
     seed: u64,
+    cancel: &AtomicBool,
 ) -> Vec<f64> {
     let n = mlt.bootstrap_samples as usize;
     let (w, h) = scene.film_size();
@@ -77,6 +94,9 @@ fn brightness_per_length<S: BidirectionalScene + Sync>(
             let mut buf = BdptBuffers::default();
             let mut splats = Vec::new();
             let mut st = StrategyStats::default();
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
             for i in c * BOOT_CHUNK..((c + 1) * BOOT_CHUNK).min(n) {
                 let lattice = Vec2::new(
                     (i as f64 * A1).fract() as f32,
@@ -107,8 +127,10 @@ fn brightness_per_length<S: BidirectionalScene + Sync>(
                     Some(&mut st),
                 );
             }
-            st
+            Some(st)
         })
+        // Once cancelled, the chunks not begun are skipped (in order otherwise).
+        .while_some()
         .collect();
     let mut all = StrategyStats::default();
     for p in &parts {
@@ -120,6 +142,33 @@ fn brightness_per_length<S: BidirectionalScene + Sync>(
         .skip(1)
         .map(|x| x.max(0.0) / n.max(1) as f64)
         .collect()
+}
+
+/// The bytes the render loop of `mlt` holds at most at `width × height` pixels, beside the
+/// film (for the memory budget): the images of the chains run at once, the per-length sums
+/// of the lengths those chains span (each folded into the film once its chains are done),
+/// and the bootstrap's brightness per (sample, length).
+pub(crate) fn state_bytes(mlt: &Mlt, width: u64, height: u64) -> u64 {
+    let pixels = width.saturating_mul(height);
+    let images = crate::memory::bytes(pixels, CHAIN_BATCH * 12);
+    let sums = crate::memory::bytes(pixels, (CHAIN_BATCH + 1) * 24);
+    let boot = crate::memory::bytes(
+        u64::from(mlt.bootstrap_samples).saturating_mul(u64::from(mlt.max_depth)),
+        4 + 8,
+    );
+    images.saturating_add(sums).saturating_add(boot)
+}
+
+/// Adds length `k`'s splat sums into `film`, scaled by `b_k` over the mutations it ran,
+/// and frees them.
+fn fold_length(film: &mut Film, sums: &mut [Option<Vec<[f64; 3]>>], k: usize, scale: f64) {
+    let Some(acc) = sums[k].take() else { return };
+    for (j, a) in acc.iter().enumerate() {
+        if a.iter().any(|&x| x != 0.0) {
+            let v = Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32) * scale as f32;
+            film.add_splat(j, v);
+        }
+    }
 }
 
 /// One chain's assignment: its length, the bootstrap sample it starts from, its mutations.
@@ -178,14 +227,25 @@ pub(crate) fn render_mlt<S: BidirectionalScene + Sync>(
     let mut stats = LoopStats::default();
     let pixels = p.width as u64 * p.height as u64;
     let total = p.spp as u64 * pixels;
-    let b = brightness_per_length(scene, mlt, p.seed);
-    let weights = bootstrap(scene, mlt, p.seed);
+    // Cancelled during the bootstrap: no sample of the image yet (a partial image of NaN).
+    let b = brightness_per_length(scene, mlt, p.seed, p.cancel);
+    if p.cancel.load(Ordering::Relaxed) {
+        return (film, stats);
+    }
+    let weights = bootstrap(scene, mlt, p.seed, p.cancel);
+    if p.cancel.load(Ordering::Relaxed) {
+        return (film, stats);
+    }
     let plans = plan_chains(mlt, p.seed, &b, &weights, total);
     // Splat sums per length (normalised at the end by what each length actually ran).
     let mut sums: Vec<Option<Vec<[f64; 3]>>> = vec![None; mlt.max_depth as usize];
     let mut done_len = vec![0u64; mlt.max_depth as usize];
     let done = AtomicU64::new(0);
-    for batch in plans.chunks(CHAIN_BATCH) {
+    // Length k's scale once all its chains have run: b_k / (its mutations per pixel).
+    let scale = |k: usize, done_len: &[u64]| b[k] * pixels as f64 / done_len[k] as f64;
+    // Plans come in order of length: the lengths below `folded` are in the film already.
+    let mut folded = 0;
+    for (n, batch) in plans.chunks(CHAIN_BATCH).enumerate() {
         if p.cancel.load(Ordering::Relaxed) {
             break;
         }
@@ -225,20 +285,23 @@ pub(crate) fn render_mlt<S: BidirectionalScene + Sync>(
                 }
             }
         }
-    }
-    // Each mutation splats a total brightness of 1: length k's sums enter the image times
-    // b_k / (its mutations per pixel).
-    for (k, acc) in sums.iter().enumerate() {
-        let Some(acc) = acc else { continue };
-        if done_len[k] == 0 {
-            continue;
-        }
-        let scale = b[k] * pixels as f64 / done_len[k] as f64;
-        for (j, a) in acc.iter().enumerate() {
-            if a.iter().any(|&x| x != 0.0) {
-                let v = Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32) * scale as f32;
-                film.add_splat(j, v);
+        // The lengths no later chain has: their sums are final (the same additions, in
+        // the same order of lengths, as folding them all at the end).
+        let next = plans
+            .get((n + 1) * CHAIN_BATCH)
+            .map_or(sums.len(), |q| q.segments as usize - 1);
+        while folded < next {
+            if done_len[folded] != 0 {
+                fold_length(&mut film, &mut sums, folded, scale(folded, &done_len));
             }
+            sums[folded] = None;
+            folded += 1;
+        }
+    }
+    // After a cancel: the lengths not folded yet.
+    for k in folded..sums.len() {
+        if done_len[k] != 0 {
+            fold_length(&mut film, &mut sums, k, scale(k, &done_len));
         }
     }
     film.set_splat_scale(1.0);

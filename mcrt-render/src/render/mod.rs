@@ -50,6 +50,7 @@ use crate::geometry::Geometry;
 use crate::light::Lights;
 use mcrt::integrator::{Bdpt, Integrator, MisWeightCheck, MisWeightOutcome};
 use mcrt::sampling::sampler::AnySampler;
+use std::sync::atomic::AtomicBool;
 
 /// A scene ready to render.
 pub struct Renderer {
@@ -74,11 +75,19 @@ pub struct Renderer {
     identity: u64,
 }
 
-/// Runs `f` in a pool of `threads` rayon threads (0: the global pool, all cores; also if
-/// the pool cannot be made).
+/// A stop flag that is never set.
+static NEVER: AtomicBool = AtomicBool::new(false);
+
+/// The most worker threads a render uses ([`RenderOptions::threads`] is clamped to it):
+/// far more than any machine has cores, and few enough that spawning them is harmless.
+pub const MAX_THREADS: usize = 1024;
+
+/// Runs `f` in a pool of `threads` rayon threads, at most [`MAX_THREADS`] (0: the global
+/// pool, all cores; also if the pool cannot be made).
 fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
     if threads > 0 {
-        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+        let n = threads.min(MAX_THREADS);
+        if let Ok(pool) = rayon::ThreadPoolBuilder::new().num_threads(n).build() {
             return pool.install(f);
         }
     }
@@ -141,9 +150,12 @@ impl Renderer {
     pub fn check_mis_weights(&self, bdpt: &Bdpt, check: &MisWeightCheck) -> MisWeightOutcome {
         match &self.textured {
             Some(textured) => {
-                bdpt.check_mis_weights(&self.view::<_, true, true>(textured.clone()), check)
+                bdpt.check_mis_weights(&self.view::<_, true, true>(textured.clone(), &NEVER), check)
             }
-            None => bdpt.check_mis_weights(&self.view::<_, true, true>(self.bsdfs.clone()), check),
+            None => bdpt.check_mis_weights(
+                &self.view::<_, true, true>(self.bsdfs.clone(), &NEVER),
+                check,
+            ),
         }
     }
 }
@@ -158,6 +170,11 @@ mod thread_tests {
     fn work_runs_on_the_requested_number_of_threads() {
         assert_eq!(on_threads(1, rayon::current_num_threads), 1);
         assert_eq!(on_threads(3, rayon::current_num_threads), 3);
+        // Issue 26: far more threads than any machine has are clamped.
+        assert_eq!(
+            on_threads(usize::MAX, rayon::current_num_threads),
+            super::MAX_THREADS
+        );
         assert_eq!(
             on_threads(0, rayon::current_num_threads),
             rayon::current_num_threads()

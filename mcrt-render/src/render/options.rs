@@ -12,7 +12,8 @@ pub struct RenderOptions {
     pub spp: Option<u32>,
     /// Seed (else the file's sampler seed).
     pub seed: Option<u64>,
-    /// Worker threads; 0 uses all cores.
+    /// Worker threads; 0 uses all cores. At most [`MAX_THREADS`](super::MAX_THREADS): more
+    /// are clamped to it (the `render` program refuses them).
     pub threads: usize,
     /// Sampling strategy at every vertex (else MIS with the power heuristic).
     pub strategy: Option<Strategy>,

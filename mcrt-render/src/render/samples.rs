@@ -39,6 +39,16 @@ pub(super) fn resolve(
         Some(kind) => desc.integrator.with_kind(kind),
         None => desc.integrator,
     };
+    if let IntegratorDesc::Mlt { max_depth, .. } = integrator {
+        let most = crate::validate::MAX_MLT_DEPTH;
+        if !(1..=most).contains(&max_depth) {
+            return Err(RenderError::Invalid(format!(
+                "integrator: max_depth {max_depth} (the scene's, carried over to mlt) must \
+                 lie in [1, {most}] for mlt: a chain keeps its length, and every length \
+                 has its own bootstrap samples and image; lower it in the scene or with -D"
+            )));
+        }
+    }
     let invalid = |e: crate::validate::Invalid| RenderError::Invalid(format!("sampler: {e}"));
     // Only `--spp` and `mutations_per_pixel` can be out of range: the file's
     // `sample_count` is a checked `SampleCount`.

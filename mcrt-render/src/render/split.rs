@@ -107,9 +107,24 @@ impl Fnv1a {
             Some(b) if name.is_relative() => b.join(&*name),
             _ => name.clone(),
         };
-        let content =
-            std::fs::read(&path).map_err(|e| format!("identity of {}: {e}", path.display()))?;
-        self.field(&content);
+        // Streamed: the file is hashed a chunk at a time, never held whole.
+        let fail = |e: std::io::Error| format!("identity of {}: {e}", path.display());
+        let mut f = std::fs::File::open(&path).map_err(fail)?;
+        let len = f.metadata().map_err(fail)?.len();
+        self.bytes(&len.to_le_bytes());
+        let mut buf = vec![0u8; 1 << 16];
+        let mut read = 0u64;
+        loop {
+            let n = std::io::Read::read(&mut f, &mut buf).map_err(fail)?;
+            if n == 0 {
+                break;
+            }
+            read += n as u64;
+            self.bytes(&buf[..n]);
+        }
+        if read != len {
+            return Err(fail(std::io::Error::other("the file changed while read")));
+        }
         *name = PathBuf::new();
         Ok(())
     }

@@ -2,8 +2,9 @@
 //! (rayon), per-pixel accumulation merged in a fixed order so the result does not depend on
 //! the thread count. A pixel sample is seeded by its pixel and its index alone, so a render
 //! of a sample range or a crop draws exactly the samples a whole render draws for them.
-//! The cancel flag is read before every pixel sample, so cancelling takes effect within
-//! one pixel sample (bounded by the loader's limits on per-sample work).
+//! The cancel flag is read before and after every pixel sample (a sample that was running
+//! when it was set is discarded), and the path tracer's paths end at their next bounce
+//! once it is set, so cancelling takes effect within one ray.
 
 use crate::camera::Camera;
 use crate::film::{Crop, Film, PixelAccum, PixelFilter, SampleRange};
@@ -119,6 +120,11 @@ fn render_tile_with<S: Scene, R: Sampler>(
                 let r = p
                     .integrator
                     .li(scene, ray.origin, ray.dir, t_max.min(p.t_max), &mut rng);
+                if p.cancel.load(Ordering::Relaxed) {
+                    // The path may have been cut short by the cancel (`SceneView::stop`).
+                    out.push((index, acc));
+                    return (out, rays, nonfinite);
+                }
                 rays += r.rays as u64;
                 let v = r.radiance;
                 if v.is_finite() {

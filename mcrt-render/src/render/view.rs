@@ -8,6 +8,7 @@ use crate::geometry::{offset_origin, Geometry, Ray};
 use crate::light::Lights;
 use glam::{Vec2, Vec3};
 use mcrt::integrator::{LightSample, Scene, SurfacePoint};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// A scene specialised on its material type `B` and on whether delta lights (`DELTA`) and
 /// an environment (`ENV`) may be present: when a flag is `false` the code paths for it are
@@ -22,6 +23,11 @@ pub(crate) struct SceneView<'a, B, const DELTA: bool, const ENV: bool> {
     pub(crate) world: (Vec3, f32),
     /// The pixel filter, by which the camera places its film samples.
     pub(crate) filter: &'a crate::film::PixelFilter,
+    /// Once set, [`Scene::trace`] finds nothing, so that a path ends at its next bounce:
+    /// a path tracer's path without a bound on its length (`max_depth` −1 or huge and a
+    /// huge `rr_depth` in a closed white room) stops when the render is cancelled. The
+    /// render loop discards the sample that was running.
+    pub(crate) stop: &'a AtomicBool,
 }
 
 impl<B: Material, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B, DELTA, ENV> {
@@ -37,6 +43,9 @@ impl<B: Material, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B,
 
     #[inline(always)]
     fn trace(&self, from: &SurfacePoint, dir: Vec3) -> Option<SurfacePoint> {
+        if self.stop.load(Ordering::Relaxed) {
+            return None;
+        }
         let origin = offset_origin(from.p, from.ng, dir);
         self.geometry.intersect(&Ray { origin, dir }, f32::INFINITY)
     }
@@ -155,6 +164,7 @@ mod tests {
             camera: &camera,
             world: geo.bounding_sphere(),
             filter: &crate::film::PixelFilter::Box,
+            stop: &AtomicBool::new(false),
         };
         let f = &desc.sensor.film;
         let ray = camera.generate_ray(Vec2::new(f.width as f32, f.height as f32) * 0.5);

@@ -1,7 +1,9 @@
-//! A texture image in linear RGB and its lookup at texture coordinates: Mitsuba 3's
+//! A texture image (its pixels as the file stores them, [`Texels`]) and its lookup at texture coordinates: Mitsuba 3's
 //! `bitmap` filters (`nearest`, `bilinear`) and wrap modes (`repeat`, `mirror`, `clamp`).
 
+use super::texels::Texels;
 use glam::{Vec2, Vec3};
+use std::borrow::Cow;
 
 /// How a lookup outside `[0, 1)²` maps back onto the image (Mitsuba's `wrap_mode`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -70,20 +72,47 @@ impl FilterType {
 /// Largest pixel coordinate a lookup computes with (2³⁰).
 const LIMIT: f32 = 1_073_741_824.0;
 
-/// Linear RGB pixels, row-major from the top-left. Texture coordinate `(u, v)` lies in
+/// Pixels read as linear RGB, row-major from the top-left, kept in the file's precision
+/// (8-bit values as bytes, half floats as halves) and converted at lookup. Texture coordinate `(u, v)` lies in
 /// pixel `(⌊u·w⌋, ⌊v·h⌋)`: `v = 0` is the top row, with no flip (as Mitsuba 3 reads
 /// images; its `obj` loader flips the files' `v` instead).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct Image {
     width: u32,
     height: u32,
-    pixels: Vec<Vec3>,
+    pixels: Texels,
+}
+
+/// The size and a hash of the pixels (FNV-1a of their linear values), not every pixel: a
+/// scene's identity is hashed from its description's `Debug` text, which must not grow to
+/// gigabytes with a large texture.
+impl std::fmt::Debug for Image {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut h = 0xcbf2_9ce4_8422_2325u64;
+        for i in 0..self.pixels.len() {
+            for c in self.pixels.get(i).to_array() {
+                for b in c.to_bits().to_le_bytes() {
+                    h = (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3);
+                }
+            }
+        }
+        f.debug_struct("Image")
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("pixels_fnv1a", &format_args!("{h:016x}"))
+            .finish()
+    }
 }
 
 impl Image {
     /// An image of `width × height` pixels; `None` unless both are at least 1 and
     /// `pixels` holds exactly their product.
     pub fn new(width: u32, height: u32, pixels: Vec<Vec3>) -> Option<Self> {
+        Self::from_texels(width, height, Texels::Linear(pixels))
+    }
+
+    /// [`Image::new`] of pixels in any precision.
+    pub(crate) fn from_texels(width: u32, height: u32, pixels: Texels) -> Option<Self> {
         let n = (width as usize).checked_mul(height as usize)?;
         (width > 0 && height > 0 && pixels.len() == n).then_some(Self {
             width,
@@ -102,15 +131,24 @@ impl Image {
         self.height
     }
 
-    /// The pixels, row-major from the top-left.
-    pub fn pixels(&self) -> &[Vec3] {
-        &self.pixels
+    /// The pixels in linear RGB, row-major from the top-left (converted from the file's
+    /// precision unless they are floats already).
+    pub fn pixels(&self) -> Cow<'_, [Vec3]> {
+        match &self.pixels {
+            Texels::Linear(v) => Cow::Borrowed(v),
+            t => Cow::Owned((0..t.len()).map(|i| t.get(i)).collect()),
+        }
+    }
+
+    /// The bytes its pixels take (for the memory budget).
+    pub fn memory_bytes(&self) -> u64 {
+        crate::memory::bytes(self.pixels.len() as u64, self.pixels.pixel_bytes())
     }
 
     #[inline]
     fn texel(&self, x: i64, y: i64, wrap: WrapMode) -> Vec3 {
         let (x, y) = (wrap.index(x, self.width), wrap.index(y, self.height));
-        self.pixels[y * self.width as usize + x]
+        self.pixels.get(y * self.width as usize + x)
     }
 
     /// The reconstructed value at texture coordinates `uv`. Bilinear: pixel centres sit at
@@ -143,10 +181,8 @@ impl Image {
 
     /// The mean luminance of the pixels (what Mitsuba's `bitmap` reports as its mean).
     pub fn mean_luminance(&self) -> f32 {
-        let sum: f64 = self
-            .pixels
-            .iter()
-            .map(|&p| f64::from(super::luminance(p)))
+        let sum: f64 = (0..self.pixels.len())
+            .map(|i| f64::from(super::luminance(self.pixels.get(i))))
             .sum();
         (sum / self.pixels.len() as f64) as f32
     }

@@ -20,8 +20,9 @@
 
 mod decode;
 mod image;
+mod texels;
 
-pub use decode::{read_image, srgb_to_linear, MAX_TEXTURE_PIXELS};
+pub use decode::{read_image, read_image_beside, srgb_to_linear, MAX_TEXTURE_PIXELS};
 pub use image::{FilterType, Image, WrapMode};
 
 use glam::{Affine2, Mat4, Vec2, Vec3};

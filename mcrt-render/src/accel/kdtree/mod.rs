@@ -125,6 +125,11 @@ impl KdTree {
         build::build(prims)
     }
 
+    /// Heap bytes held (nodes and leaf entries).
+    pub(crate) fn heap_bytes(&self) -> usize {
+        super::vec_bytes(&self.nodes) + super::vec_bytes(&self.items)
+    }
+
     /// The root voxel (empty when no primitive has a usable box).
     #[cfg(test)]
     pub(crate) fn bounds(&self) -> Aabb {

@@ -110,6 +110,14 @@ impl RayQuery {
         }
     }
 
+    /// Heap bytes held by the structure.
+    pub(super) fn heap_bytes(&self) -> usize {
+        match self {
+            RayQuery::PackedBvh(p) => p.heap_bytes(),
+            RayQuery::Accel(a) => a.heap_bytes(),
+        }
+    }
+
     /// Which structure this is.
     pub(super) fn kind(&self) -> AccelKind {
         match self {

@@ -74,6 +74,16 @@ enum LeafHit {
 }
 
 impl PackedBvh {
+    /// Heap bytes held (the BVH and the packed leaves).
+    pub(super) fn heap_bytes(&self) -> usize {
+        use crate::accel::vec_bytes;
+        self.bvh.heap_bytes()
+            + vec_bytes(&self.leaves)
+            + vec_bytes(&self.quads)
+            + vec_bytes(&self.quad_slots)
+            + vec_bytes(&self.tris)
+    }
+
     /// Packs the leaves of `bvh` (built over `units`); returns the slots' input primitive
     /// indices and the packed BVH. `prims` is in input order.
     pub(super) fn pack(bvh: Bvh4, units: &[Unit], prims: &[Prim]) -> (Vec<u32>, Self) {

@@ -6,6 +6,11 @@
 //! parallelogram edge of `a + c − b` (`b` the first triangle's vertex off the shared edge
 //! `a c`). That also makes them coplanar. Pairing is greedy in triangle order, so it is
 //! deterministic; triangles left over stay triangles.
+//!
+//! An edge shared by more than [`MAX_SHARING`] triangles (a non-manifold fan, or a stack of
+//! copies of one triangle) pairs none of them across it: each triangle then tries at most
+//! `3 MAX_SHARING` partners, so pairing stays O(N log N) for any triangle soup instead of
+//! quadratic in the number of triangles on one edge.
 
 use super::super::data::{Built, MeshData, Prim, ShapeData};
 use glam::Vec3;
@@ -13,6 +18,8 @@ use rayon::prelude::*;
 
 /// Relative tolerance on the fourth vertex, in units of the shorter parallelogram edge.
 const TOLERANCE: f64 = 1e-6;
+/// Most triangles on one edge (the same two positions) that are still paired across it.
+pub(crate) const MAX_SHARING: usize = 16;
 /// Smallest accepted `|e1 × e2| / (|e1| |e2|)` (sine of the corner angle): slivers stay
 /// triangles.
 const MIN_SINE: f64 = 1e-4;
@@ -160,7 +167,8 @@ pub(crate) fn units(built: &Built) -> Vec<Unit> {
 /// input order. An edge is keyed by its two vertices' numbers after vertices at the same
 /// position are given one number ([`same_position`]), 8 bytes instead of the positions'
 /// 24. Sorting one flat list allocates once (a map of edge to triangles would allocate per
-/// edge); each triangle finds its edges' places in the list by index, not by search.
+/// edge); each triangle finds its edges' places in the list, and where each edge's run of
+/// entries begins, by index, not by search.
 fn pair_range(
     prims: &[Prim],
     mesh: &MeshData,
@@ -195,17 +203,23 @@ fn pair_range(
     for (p, &(_, e)) in edges.iter().enumerate() {
         at[e as usize] = p as u32;
     }
-    // The triangles that have triangle i's edge k (i among them), in input order.
+    // `first[p]`: where the run of entries with entry p's edge begins.
+    let mut first = vec![0u32; edges.len()];
+    for p in 1..edges.len() {
+        first[p] = if edges[p].0 == edges[p - 1].0 {
+            first[p - 1]
+        } else {
+            p as u32
+        };
+    }
+    // The triangles that have triangle i's edge k (i among them), in input order; none if
+    // more than `MAX_SHARING` have it.
     let sharing = |i: usize, k: usize| {
         let p = at[3 * (i - start) + k] as usize;
-        let e = edges[p].0;
-        let first = edges[..p]
-            .iter()
-            .rposition(|x| x.0 != e)
-            .map_or(0, |q| q + 1);
-        edges[first..]
-            .iter()
-            .take_while(move |x| x.0 == e)
+        let (e, f) = (edges[p].0, first[p] as usize);
+        let run = edges[f..].iter().take_while(move |x| x.0 == e);
+        let few = run.clone().nth(MAX_SHARING).is_none();
+        run.take(if few { MAX_SHARING } else { 0 })
             .map(move |&(_, te)| start + te as usize / 3)
     };
     // Every triangle's parallelograms with its neighbours, in the order the greedy pass
@@ -322,54 +336,5 @@ mod tests {
 }
 
 #[cfg(test)]
-mod unit_tests {
-    use super::*;
-    use crate::description::{ShapeDesc, ShapeKind};
-
-    /// The units of one mesh shape.
-    fn units_of(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> Vec<Unit> {
-        let desc = ShapeDesc::new(ShapeKind::Mesh {
-            positions,
-            normals: vec![],
-            indices,
-        });
-        units(&super::super::super::build::build(&[desc], None).expect("builds"))
-    }
-
-    #[test]
-    fn shared_edges_are_found_by_position_not_by_index() {
-        let (b, a, c, d) = (Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0));
-        // Six vertices, each triangle its own three: the shared edge a c is found through
-        // equal positions.
-        let split = units_of(vec![b, a, c, a, d, c], vec![[0, 1, 2], [3, 4, 5]]);
-        assert!(matches!(
-            split[..],
-            [Unit::Pair {
-                first: 0,
-                second: 1,
-                ..
-            }]
-        ));
-        // The same with one copy of `c` off by one bit: no shared edge, two triangles.
-        let c2 = Vec3::new(0.0, f32::from_bits(1.0f32.to_bits() + 1), 0.0);
-        let apart = units_of(vec![b, a, c, a, d, c2], vec![[0, 1, 2], [3, 4, 5]]);
-        assert!(matches!(apart[..], [Unit::One(0), Unit::One(1)]));
-        // Two candidate partners for triangle 0 (triangle 2 copies triangle 1): the first
-        // in input order wins, the copy stays a triangle, as does triangle 3 (no shared
-        // edge).
-        let e = Vec3::new(1.0, -1.0, 0.0);
-        let u = units_of(
-            vec![b, a, c, d, e, Vec3::new(2.0, -1.0, 0.0)],
-            vec![[0, 1, 2], [1, 3, 2], [1, 3, 2], [1, 4, 5]],
-        );
-        let pairs: Vec<(u32, u32)> = u
-            .iter()
-            .filter_map(|u| match u {
-                Unit::Pair { first, second, .. } => Some((*first, *second)),
-                Unit::One(_) => None,
-            })
-            .collect();
-        assert_eq!(pairs, vec![(0, 1)], "{u:?}");
-        assert_eq!(u.len(), 3);
-    }
-}
+#[path = "pairing_tests.rs"]
+mod unit_tests;

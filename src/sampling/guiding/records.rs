@@ -1,0 +1,85 @@
+//! A worker's buffer of radiance records, merged into an [`SdTree`](super::SdTree) in a fixed
+//! order.
+
+use glam::Vec3;
+
+/// One radiance record: radiance arriving at `p` along `dir`, sampled with density `pdf`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GuidingRecord {
+    /// Where the radiance arrives.
+    pub p: Vec3,
+    /// The unit direction it arrives from (world space, pointing away from `p`).
+    pub dir: Vec3,
+    /// The radiance, a scalar (the mean of the RGB channels).
+    pub radiance: f32,
+    /// The density per steradian with which `dir` was sampled.
+    pub pdf: f32,
+}
+
+/// A buffer of [`GuidingRecord`]s that one worker (one tile) fills while it renders, so that
+/// the training tree can be shared read-only and updated afterwards in a fixed order
+/// ([`SdTree::merge`](super::SdTree::merge)): deterministic at any thread count. It also holds
+/// the guided path tracer's scratch space for the vertices of the current path.
+///
+/// ```
+/// use mcrt::glam::Vec3;
+/// use mcrt::sampling::guiding::{GuidingRecord, GuidingRecords, SdTree};
+///
+/// let mut buf = GuidingRecords::new();
+/// buf.push(GuidingRecord { p: Vec3::ZERO, dir: Vec3::Z, radiance: 1.0, pdf: 0.5 });
+/// let mut tree = SdTree::new(Vec3::splat(-1.0), Vec3::ONE);
+/// tree.merge(&buf);
+/// assert_eq!(tree.sample_count(), 1);
+/// buf.clear();
+/// assert!(buf.is_empty());
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct GuidingRecords {
+    records: Vec<GuidingRecord>,
+    pub(crate) scratch: Vec<PathVertex>,
+}
+
+/// A vertex of a guided path, while its incident radiance is being summed.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PathVertex {
+    pub p: Vec3,
+    pub dir: Vec3,
+    pub pdf: f32,
+    /// The path throughput after the vertex's sampling weight (and Russian roulette).
+    pub throughput: Vec3,
+    /// The contributions of the path after the vertex, summed.
+    pub radiance: Vec3,
+}
+
+impl GuidingRecords {
+    /// An empty buffer.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Appends a record.
+    #[inline]
+    pub fn push(&mut self, r: GuidingRecord) {
+        self.records.push(r);
+    }
+
+    /// The records, in the order they were pushed.
+    pub fn iter(&self) -> impl Iterator<Item = &GuidingRecord> {
+        self.records.iter()
+    }
+
+    /// The number of records.
+    pub fn len(&self) -> usize {
+        self.records.len()
+    }
+
+    /// Whether there are no records.
+    pub fn is_empty(&self) -> bool {
+        self.records.is_empty()
+    }
+
+    /// Removes every record (keeping the allocation).
+    pub fn clear(&mut self) {
+        self.records.clear();
+    }
+}

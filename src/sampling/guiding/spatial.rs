@@ -1,0 +1,215 @@
+//! The spatial half of the SD-tree: a binary tree over a cube around the scene, splitting at
+//! the midpoint along x, y, z in turn, with a [`DQuadTree`] in every leaf.
+
+use super::quadtree::DQuadTree;
+use super::records::GuidingRecords;
+use crate::sampling::unit::clamp_unit;
+use glam::Vec3;
+
+/// A node of the spatial tree: an inner node (the children's indices, the split axis is the
+/// depth modulo 3) or a leaf with its directional tree and the number of records it took.
+#[derive(Debug, Clone, PartialEq)]
+enum SNode {
+    Inner([u32; 2]),
+    Leaf { tree: DQuadTree, samples: u64 },
+}
+
+/// The deepest spatial subdivision (a leaf's cube is then `2^-(DEPTH/3)` of the whole).
+const MAX_SPATIAL_DEPTH: u32 = 48;
+
+/// An SD-tree (Müller, Gross & Novák 2017, "Practical Path Guiding for Efficient
+/// Light-Transport Simulation", CGF 36(4)): a binary tree over space whose leaves hold
+/// directional quadtrees ([`DQuadTree`]) of the radiance arriving in them.
+///
+/// One tree plays two parts in the training iterations ([`GuidingSchedule`](super::GuidingSchedule)):
+/// the tree of the previous iteration guides ([`SdTree::distribution`]) while a tree with
+/// the refined structure and no energy ([`SdTree::refined`]) collects the records of the
+/// current one ([`SdTree::record`], [`SdTree::merge`]).
+///
+/// Determinism: energies are `f64` sums in the order the records arrive. Workers record into
+/// their own [`GuidingRecords`] (per tile), and the renderer merges these buffers in a fixed
+/// order (tile order), so that the tree, and the image guided by it, is the same at any
+/// thread count. (Atomic float adds are not associative, hence not deterministic.)
+///
+/// ```
+/// use mcrt::glam::{Vec2, Vec3};
+/// use mcrt::sampling::guiding::SdTree;
+///
+/// let mut t = SdTree::new(Vec3::splat(-1.0), Vec3::splat(1.0));
+/// // Light arrives from +z everywhere.
+/// for i in 0..1000 {
+///     let p = Vec3::new((i % 10) as f32 / 5.0 - 1.0, 0.0, 0.0);
+///     t.record(p, Vec3::Z, 1.0, 1.0);
+/// }
+/// let guide = t.clone();
+/// let next = t.refined(100.0, 0.01, 20); // structure for the next iteration
+/// assert!(next.leaf_count() > 1);
+/// let d = guide.distribution(Vec3::ZERO);
+/// assert!(d.pdf(Vec3::Z) > 10.0 * d.pdf(-Vec3::Z));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct SdTree {
+    min: Vec3,
+    size: f32,
+    nodes: Vec<SNode>,
+}
+
+impl SdTree {
+    /// An empty tree over the cube around the box from `min` to `max` (the scene's bounds):
+    /// every point's distribution is the uniform sphere. A box that is empty or not finite
+    /// becomes the unit cube at the origin.
+    pub fn new(min: Vec3, max: Vec3) -> Self {
+        let (min, size) = if min.is_finite() && max.is_finite() && (max - min).max_element() > 0.0 {
+            let size = (max - min).max_element();
+            // A margin, so that points on the box's faces are inside.
+            (min - Vec3::splat(size * 1e-3), size * 1.002)
+        } else {
+            (Vec3::ZERO, 1.0)
+        };
+        Self {
+            min,
+            size,
+            nodes: vec![SNode::Leaf {
+                tree: DQuadTree::new(),
+                samples: 0,
+            }],
+        }
+    }
+
+    /// The lower corner and the side of the tree's cube.
+    pub fn bounds(&self) -> (Vec3, f32) {
+        (self.min, self.size)
+    }
+
+    /// The number of spatial leaves.
+    pub fn leaf_count(&self) -> usize {
+        self.nodes
+            .iter()
+            .filter(|n| matches!(n, SNode::Leaf { .. }))
+            .count()
+    }
+
+    /// The number of records the tree took.
+    pub fn sample_count(&self) -> u64 {
+        self.nodes
+            .iter()
+            .map(|n| match n {
+                SNode::Leaf { samples, .. } => *samples,
+                SNode::Inner(_) => 0,
+            })
+            .sum()
+    }
+
+    /// The index of the leaf containing `p` (a point outside the cube, or with NaN
+    /// coordinates, is clamped to it).
+    fn leaf_index(&self, p: Vec3) -> usize {
+        let mut x = ((p - self.min) / self.size).to_array();
+        for v in &mut x {
+            *v = clamp_unit(*v);
+        }
+        let (mut n, mut axis) = (0usize, 0usize);
+        while let SNode::Inner(c) = &self.nodes[n] {
+            let v = &mut x[axis];
+            n = if *v < 0.5 {
+                *v *= 2.0;
+                c[0] as usize
+            } else {
+                *v = *v * 2.0 - 1.0;
+                c[1] as usize
+            };
+            *v = clamp_unit(*v);
+            axis = (axis + 1) % 3;
+        }
+        n
+    }
+
+    /// The directional distribution of the radiance arriving at `p`.
+    pub fn distribution(&self, p: Vec3) -> &DQuadTree {
+        match &self.nodes[self.leaf_index(p)] {
+            SNode::Leaf { tree, .. } => tree,
+            SNode::Inner(_) => unreachable!("leaf_index returns a leaf"),
+        }
+    }
+
+    /// Records radiance (a scalar, such as the mean of the RGB channels) arriving at `p`
+    /// along the unit direction `dir`, sampled with density `pdf` per steradian: adds
+    /// `radiance / pdf` to the directional tree of `p`'s leaf and counts one record there. A
+    /// record whose `pdf` is not positive and finite is ignored; a radiance that is negative
+    /// or not finite counts as a record of zero energy.
+    pub fn record(&mut self, p: Vec3, dir: Vec3, radiance: f32, pdf: f32) {
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            return;
+        }
+        let value = f64::from(radiance) / f64::from(pdf);
+        let i = self.leaf_index(p);
+        if let SNode::Leaf { tree, samples } = &mut self.nodes[i] {
+            *samples += 1;
+            tree.record(dir, value);
+        }
+    }
+
+    /// Records every entry of `records`, in order.
+    pub fn merge(&mut self, records: &GuidingRecords) {
+        for r in records.iter() {
+            self.record(r.p, r.dir, r.radiance, r.pdf);
+        }
+    }
+
+    /// The tree that collects the records of the next iteration, after this one collected
+    /// those of an iteration: the same spatial tree with every leaf that took more than
+    /// `spatial_threshold` records split in two (and again, assuming the records halve with
+    /// each split, until under the threshold: the paper's `c·√(2^k)`, c = 12000), each new
+    /// leaf with a copy of its parent's directional tree; every directional tree refined by
+    /// [`DQuadTree::refined`]`(rho, max_depth)`. No energy and no records.
+    pub fn refined(&self, spatial_threshold: f64, rho: f64, max_depth: u32) -> SdTree {
+        let mut out = SdTree {
+            min: self.min,
+            size: self.size,
+            nodes: Vec::with_capacity(self.nodes.len()),
+        };
+        // (old node, new node, depth)
+        out.nodes.push(SNode::Inner([0, 0]));
+        let mut stack = vec![(0usize, 0usize, 0u32)];
+        while let Some((o, ni, depth)) = stack.pop() {
+            match &self.nodes[o] {
+                SNode::Inner(c) => {
+                    let a = out.push_placeholder();
+                    let b = out.push_placeholder();
+                    out.nodes[ni] = SNode::Inner([a as u32, b as u32]);
+                    stack.push((c[0] as usize, a, depth + 1));
+                    stack.push((c[1] as usize, b, depth + 1));
+                }
+                SNode::Leaf { tree, samples } => {
+                    let fresh = tree.refined(rho, max_depth);
+                    out.split_leaf(ni, fresh, *samples as f64, spatial_threshold, depth);
+                }
+            }
+        }
+        out
+    }
+
+    fn push_placeholder(&mut self) -> usize {
+        self.nodes.push(SNode::Inner([0, 0]));
+        self.nodes.len() - 1
+    }
+
+    /// Makes node `ni` a leaf with `tree`, or, while `samples` exceeds `threshold`, an inner
+    /// node whose halves each get `samples / 2`.
+    fn split_leaf(&mut self, ni: usize, tree: DQuadTree, samples: f64, threshold: f64, depth: u32) {
+        let mut stack = vec![(ni, samples, depth)];
+        while let Some((n, s, d)) = stack.pop() {
+            if s > threshold && d < MAX_SPATIAL_DEPTH {
+                let a = self.push_placeholder();
+                let b = self.push_placeholder();
+                self.nodes[n] = SNode::Inner([a as u32, b as u32]);
+                stack.push((a, s / 2.0, d + 1));
+                stack.push((b, s / 2.0, d + 1));
+            } else {
+                self.nodes[n] = SNode::Leaf {
+                    tree: tree.clone(),
+                    samples: 0,
+                };
+            }
+        }
+    }
+}
