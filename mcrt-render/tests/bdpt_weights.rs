@@ -15,8 +15,8 @@
 use mcrt::glam::Vec3;
 use mcrt::integrator::{Bdpt, MisWeightCheck, Strategy};
 use mcrt_render::description::{
-    BsdfDesc, ConductorFresnel, EmitterDesc, MicrofacetKind, Roughness, SceneDescription,
-    ShapeDesc, ShapeKind, ThinLensDesc,
+    BsdfDesc, ConductorFresnel, EmitterDesc, Microfacet, MicrofacetKind, Roughness,
+    SceneDescription, ShapeDesc, ShapeKind, ThinLensDesc,
 };
 use mcrt_render::render::{RenderOptions, Renderer};
 
@@ -69,9 +69,10 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
     materials.shapes.push(sphere(
         0.0,
         BsdfDesc::RoughDielectric {
-            distribution: MicrofacetKind::Ggx,
-            alpha: Roughness::new(0.3).expect("a roughness"),
-            sample_visible: true,
+            microfacet: Microfacet::new(
+                MicrofacetKind::Ggx,
+                Roughness::new(0.3).expect("a roughness"),
+            ),
             int_ior: 1.5,
             ext_ior: 1.0,
             specular_reflectance: Vec3::ONE,

@@ -276,9 +276,10 @@ fn thin_glass_sphere_returns_one() {
 
 fn rough_glass(alpha: f32) -> BsdfDesc {
     BsdfDesc::RoughDielectric {
-        distribution: MicrofacetKind::Ggx,
-        alpha: Roughness::new(alpha).expect("a roughness"),
-        sample_visible: true,
+        microfacet: Microfacet::new(
+            MicrofacetKind::Ggx,
+            Roughness::new(alpha).expect("a roughness"),
+        ),
         int_ior: 1.5,
         ext_ior: 1.0,
         specular_reflectance: Vec3::ONE,
@@ -302,9 +303,7 @@ fn nearly_smooth_rough_glass_sphere_returns_one() {
 #[test]
 fn lossy_spheres_return_what_mitsuba_returns() {
     let rough_plastic = |distribution, alpha| BsdfDesc::RoughPlastic {
-        distribution,
-        alpha: Roughness::new(alpha).expect("a roughness"),
-        sample_visible: true,
+        microfacet: Microfacet::new(distribution, Roughness::new(alpha).expect("a roughness")),
         int_ior: 1.49,
         ext_ior: 1.000277,
         diffuse_reflectance: Vec3::ONE,

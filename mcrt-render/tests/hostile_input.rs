@@ -272,7 +272,10 @@ fn roughness_below_1e_4_is_clamped_as_mitsuba_does() {
         );
         let d = parse(&xml).expect("loads");
         match d.shapes[0].bsdf {
-            BsdfDesc::RoughConductor { alpha: a, .. } => {
+            BsdfDesc::RoughConductor {
+                microfacet: mcrt_render::description::Microfacet { alpha: a, .. },
+                ..
+            } => {
                 assert!(a.is_finite() && a == expect, "{alpha}: {a}")
             }
             ref other => panic!("{other:?}"),

@@ -4,8 +4,8 @@
 use mcrt::glam::{Mat4, Vec3};
 use mcrt_render::cornell_box::{cornell_box, cornell_box_with};
 use mcrt_render::description::{
-    BsdfDesc, ConductorFresnel, EmitterDesc, FilterDesc, FovAxis, IntegratorDesc, MicrofacetKind,
-    Roughness, SamplerKind, SceneDescription, ShapeKind, ThinLensDesc,
+    BsdfDesc, ConductorFresnel, EmitterDesc, FilterDesc, FovAxis, IntegratorDesc, Microfacet,
+    MicrofacetKind, Roughness, SamplerKind, SceneDescription, ShapeKind, ThinLensDesc,
 };
 use mcrt_render::loader::{load_scene, look_at, parse_scene, SceneError, SceneErrorKind};
 use std::path::Path;
@@ -73,9 +73,10 @@ fn veach_plates_are_ggx_mirrors_of_rising_roughness() {
         assert_eq!(
             s.bsdf,
             BsdfDesc::RoughConductor {
-                distribution: MicrofacetKind::Ggx,
-                alpha: Roughness::new(alpha).expect("a roughness"),
-                sample_visible: true,
+                microfacet: Microfacet::new(
+                    MicrofacetKind::Ggx,
+                    Roughness::new(alpha).expect("a roughness")
+                ),
                 fresnel: ConductorFresnel::Perfect,
                 specular_reflectance: Vec3::ONE,
             }
@@ -328,9 +329,13 @@ fn mitsuba3_materials_and_their_defaults() {
     assert_eq!(
         d.shapes[1].bsdf,
         BsdfDesc::RoughPlastic {
-            distribution: MicrofacetKind::Ggx,
-            alpha: Roughness::new(0.3).expect("a roughness"),
-            sample_visible: false,
+            microfacet: Microfacet {
+                sample_visible: false,
+                ..Microfacet::new(
+                    MicrofacetKind::Ggx,
+                    Roughness::new(0.3).expect("a roughness")
+                )
+            },
             int_ior: 1.49,
             ext_ior: air,
             diffuse_reflectance: half,
@@ -341,9 +346,7 @@ fn mitsuba3_materials_and_their_defaults() {
     assert_eq!(
         d.shapes[2].bsdf,
         BsdfDesc::RoughDielectric {
-            distribution: MicrofacetKind::Beckmann,
-            alpha: Roughness::DEFAULT,
-            sample_visible: true,
+            microfacet: Microfacet::new(MicrofacetKind::Beckmann, Roughness::DEFAULT),
             int_ior: 1.5046,
             ext_ior: air,
             specular_reflectance: one,

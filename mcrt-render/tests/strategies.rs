@@ -7,7 +7,8 @@
 use mcrt::glam::{Mat4, Vec3};
 use mcrt::integrator::Strategy;
 use mcrt_render::description::{
-    BsdfDesc, ConductorFresnel, IntegratorDesc, MicrofacetKind, Roughness, SceneDescription,
+    BsdfDesc, ConductorFresnel, IntegratorDesc, Microfacet, MicrofacetKind, Roughness,
+    SceneDescription,
 };
 use mcrt_render::film::compare_blocks;
 use mcrt_render::render::{RenderOptions, Renderer};
@@ -74,9 +75,10 @@ fn test_box(max_depth: i32) -> SceneDescription {
         .find(|s| s.id.as_deref() == Some("large-box"))
         .expect("the box has a large box");
     tall.bsdf = BsdfDesc::RoughConductor {
-        distribution: MicrofacetKind::Ggx,
-        alpha: Roughness::new(0.3).expect("a roughness"),
-        sample_visible: true,
+        microfacet: Microfacet::new(
+            MicrofacetKind::Ggx,
+            Roughness::new(0.3).expect("a roughness"),
+        ),
         fresnel: ConductorFresnel::Perfect,
         specular_reflectance: Vec3::splat(0.8),
     };

@@ -2,7 +2,7 @@
 //! Smith masking, sampled by its visible normals (Mitsuba's `sample_visible`, the default)
 //! or by the whole distribution.
 
-use crate::description::{MicrofacetKind, Roughness};
+use crate::description::{Microfacet, MicrofacetKind};
 use glam::{Vec2, Vec3};
 use mcrt::sampling::warp::{
     Beckmann, BeckmannVisible, Ggx, GgxVisible, MicrofacetDistribution, Warp,
@@ -35,16 +35,17 @@ impl Ndf {
         })
     }
 
-    /// The distribution `kind` of a checked roughness: it cannot fail, and nothing checks
-    /// `alpha` again (the visible normals are built per direction from this distribution,
-    /// [`Ndf::visible`]).
+    /// The distribution of a rough material's checked parameters: it cannot fail, and
+    /// nothing checks the roughness again (the visible normals are built per direction from
+    /// this distribution, [`Ndf::visible`]).
     ///
     /// `sample_visible` (Mitsuba's default) samples the normals visible from the incident
     /// direction; otherwise the whole distribution, `D(m) cos θ_m` (the same expected value,
     /// more noise).
-    pub fn of(kind: MicrofacetKind, alpha: Roughness, sample_visible: bool) -> Self {
+    pub fn of(m: &Microfacet) -> Self {
+        let (kind, sample_visible) = (m.distribution, m.sample_visible);
         // A `Roughness` lies in [10⁻⁴, 10], inside the warps' [10⁻⁴, 10⁴].
-        let a = alpha.get();
+        let a = m.alpha.get();
         let ggx = || Ggx::new(a).unwrap_or_else(|e| unreachable!("Roughness {a}: {e}"));
         let beckmann = || Beckmann::new(a).unwrap_or_else(|e| unreachable!("Roughness {a}: {e}"));
         match (kind, sample_visible) {
@@ -167,10 +168,15 @@ mod tests {
     /// which `pdf_visible` reports too, whatever the direction; masking and D unchanged.
     #[test]
     fn sampling_all_normals_has_the_distributions_density() {
-        let alpha = Roughness::new(0.3).expect("a roughness");
+        let alpha = crate::description::Roughness::new(0.3).expect("a roughness");
         let wo = Vec3::new(0.6, 0.0, 0.8);
         for kind in [MicrofacetKind::Ggx, MicrofacetKind::Beckmann] {
-            let (visible, all) = (Ndf::of(kind, alpha, true), Ndf::of(kind, alpha, false));
+            let visible = Microfacet::new(kind, alpha);
+            let all = Microfacet {
+                sample_visible: false,
+                ..visible
+            };
+            let (visible, all) = (Ndf::of(&visible), Ndf::of(&all));
             for u in [
                 Vec2::new(0.1, 0.7),
                 Vec2::new(0.9, 0.2),

@@ -3,11 +3,13 @@
 //! [`Default`] values means what the same XML without those attributes means to Mitsuba.
 
 mod checked;
+mod microfacet;
 mod principled;
 
 pub use crate::texture::{Texture, TextureParam};
 pub use checked::{Roughness, SampleCount};
 use glam::{Mat4, Vec3};
+pub use microfacet::Microfacet;
 pub use principled::{PrincipledParams, MAX_SPECULAR};
 use std::path::PathBuf;
 
@@ -519,14 +521,8 @@ pub enum BsdfDesc {
     },
     /// `roughconductor`: a microfacet conductor, sampled with visible normals.
     RoughConductor {
-        /// The normal distribution.
-        distribution: MicrofacetKind,
-        /// Roughness α (default 0.1). Isotropic only.
-        alpha: Roughness,
-        /// Sample the normals visible from the incident direction (Mitsuba's
-        /// `sample_visible`, default true), else the whole distribution: the same expected
-        /// value, more noise.
-        sample_visible: bool,
+        /// The microfacet surface (distribution, roughness, sampling).
+        microfacet: Microfacet,
         /// The Fresnel term.
         fresnel: ConductorFresnel,
         /// Scale on the reflectance (default 1).
@@ -546,14 +542,8 @@ pub enum BsdfDesc {
     /// `roughdielectric`: microfacet glass that reflects and refracts, sampled with
     /// visible normals.
     RoughDielectric {
-        /// The normal distribution (default Beckmann).
-        distribution: MicrofacetKind,
-        /// Roughness α (default 0.1). Isotropic only.
-        alpha: Roughness,
-        /// Sample the normals visible from the incident direction (Mitsuba's
-        /// `sample_visible`, default true), else the whole distribution: the same expected
-        /// value, more noise.
-        sample_visible: bool,
+        /// The microfacet surface (distribution, roughness, sampling).
+        microfacet: Microfacet,
         /// Interior index of refraction (default 1.5046, BK7).
         int_ior: f32,
         /// Exterior index of refraction (default 1.000277, air).
@@ -590,14 +580,8 @@ pub enum BsdfDesc {
     },
     /// `roughplastic`: a diffuse base under a rough dielectric coating.
     RoughPlastic {
-        /// The coating's normal distribution (default Beckmann).
-        distribution: MicrofacetKind,
-        /// Roughness α (default 0.1). Isotropic only.
-        alpha: Roughness,
-        /// Sample the normals visible from the incident direction (Mitsuba's
-        /// `sample_visible`, default true), else the whole distribution: the same expected
-        /// value, more noise.
-        sample_visible: bool,
+        /// The microfacet surface (distribution, roughness, sampling).
+        microfacet: Microfacet,
         /// Index of refraction of the coating (default 1.49, polypropylene).
         int_ior: f32,
         /// Exterior index of refraction (default 1.000277, air).

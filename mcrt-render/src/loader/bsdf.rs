@@ -8,7 +8,9 @@ use super::texture;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::bsdf::named_conductor;
-use crate::description::{BsdfDesc, ConductorFresnel, MicrofacetKind, Roughness, TextureParam};
+use crate::description::{
+    BsdfDesc, ConductorFresnel, Microfacet, MicrofacetKind, Roughness, TextureParam,
+};
 use crate::param_defs::bsdf::{ALPHA, ALPHA_U, ALPHA_V, DISTRIBUTION, SAMPLE_VISIBLE};
 use crate::scene_error::SceneErrorKind;
 use crate::validate;
@@ -118,34 +120,24 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             fresnel: fresnel(e, &mut p)?,
             specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
         },
-        "roughconductor" => {
-            let (distribution, alpha, sample_visible) = microfacet(e, &mut p)?;
-            BsdfDesc::RoughConductor {
-                distribution,
-                alpha,
-                sample_visible,
-                fresnel: fresnel(e, &mut p)?,
-                specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
-            }
-        }
+        "roughconductor" => BsdfDesc::RoughConductor {
+            microfacet: microfacet(e, &mut p)?,
+            fresnel: fresnel(e, &mut p)?,
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+        },
         "dielectric" => BsdfDesc::Dielectric {
             int_ior: ior(e, &mut p, "int_ior", BK7)?,
             ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
             specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
             specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
         },
-        "roughdielectric" => {
-            let (distribution, alpha, sample_visible) = microfacet(e, &mut p)?;
-            BsdfDesc::RoughDielectric {
-                distribution,
-                alpha,
-                sample_visible,
-                int_ior: ior(e, &mut p, "int_ior", BK7)?,
-                ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
-                specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
-                specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
-            }
-        }
+        "roughdielectric" => BsdfDesc::RoughDielectric {
+            microfacet: microfacet(e, &mut p)?,
+            int_ior: ior(e, &mut p, "int_ior", BK7)?,
+            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+        },
         "thindielectric" => BsdfDesc::ThinDielectric {
             int_ior: ior(e, &mut p, "int_ior", BK7)?,
             ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
@@ -159,19 +151,14 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
             nonlinear: p.bool("nonlinear")?.unwrap_or(false),
         },
-        "roughplastic" => {
-            let (distribution, alpha, sample_visible) = microfacet(e, &mut p)?;
-            BsdfDesc::RoughPlastic {
-                distribution,
-                alpha,
-                sample_visible,
-                int_ior: ior(e, &mut p, "int_ior", POLYPROPYLENE)?,
-                ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
-                diffuse_reflectance: p.rgb("diffuse_reflectance")?.unwrap_or(Vec3::splat(0.5)),
-                specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
-                nonlinear: p.bool("nonlinear")?.unwrap_or(false),
-            }
-        }
+        "roughplastic" => BsdfDesc::RoughPlastic {
+            microfacet: microfacet(e, &mut p)?,
+            int_ior: ior(e, &mut p, "int_ior", POLYPROPYLENE)?,
+            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
+            diffuse_reflectance: p.rgb("diffuse_reflectance")?.unwrap_or(Vec3::splat(0.5)),
+            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            nonlinear: p.bool("nonlinear")?.unwrap_or(false),
+        },
         "principled" => super::principled::principled(e, &mut p)?,
         other => return Err(unknown_plugin(ctx, e, other)),
     };
@@ -262,14 +249,15 @@ const AIR: f32 = 1.000277;
 
 /// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`], and
 /// `sample_visible`, which only changes the noise, never the expected value.
-fn microfacet(e: &Elem, p: &mut Props) -> Res<(MicrofacetKind, Roughness, bool)> {
-    let distribution = match p.get_choice(&DISTRIBUTION)? {
-        "ggx" => MicrofacetKind::Ggx,
-        _ => MicrofacetKind::Beckmann,
-    };
-    let alpha = roughness(e, p)?;
-    let sample_visible = p.get_bool(&SAMPLE_VISIBLE)?;
-    Ok((distribution, alpha, sample_visible))
+fn microfacet(e: &Elem, p: &mut Props) -> Res<Microfacet> {
+    Ok(Microfacet {
+        distribution: match p.get_choice(&DISTRIBUTION)? {
+            "ggx" => MicrofacetKind::Ggx,
+            _ => MicrofacetKind::Beckmann,
+        },
+        alpha: roughness(e, p)?,
+        sample_visible: p.get_bool(&SAMPLE_VISIBLE)?,
+    })
 }
 
 /// The isotropic roughness: `alpha` ([`ALPHA`]: values in [0, 10⁻⁴) are raised to 10⁻⁴, as
