@@ -11,7 +11,12 @@ use crate::bsdf::named_conductor;
 use crate::description::{
     BsdfDesc, ConductorFresnel, Microfacet, MicrofacetKind, Roughness, TextureParam,
 };
-use crate::param_defs::bsdf::{ALPHA, ALPHA_U, ALPHA_V, DISTRIBUTION, SAMPLE_VISIBLE};
+use crate::param_defs::bsdf::{
+    ALPHA, ALPHA_U, ALPHA_V, COATING_IOR, DIFFUSE_REFLECTANCE, DISTRIBUTION, ETA, EXT_IOR, INT_IOR,
+    K, MATERIAL, NONLINEAR, REFLECTANCE, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
+    SPECULAR_TRANSMITTANCE,
+};
+use crate::param_defs::IorParam;
 use crate::scene_error::SceneErrorKind;
 use crate::validate;
 use glam::Vec3;
@@ -111,53 +116,52 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
         _ => {}
     }
     no_objects(ctx, &p)?;
-    let one = Vec3::ONE;
     let desc = match ty {
         "diffuse" => BsdfDesc::Diffuse {
-            reflectance: p.rgb("reflectance")?.unwrap_or(Vec3::splat(0.5)),
+            reflectance: p.get_rgb(&REFLECTANCE)?,
         },
         "conductor" => BsdfDesc::Conductor {
             fresnel: fresnel(e, &mut p)?,
-            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
         },
         "roughconductor" => BsdfDesc::RoughConductor {
             microfacet: microfacet(e, &mut p)?,
             fresnel: fresnel(e, &mut p)?,
-            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
+            specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
         },
         "dielectric" => BsdfDesc::Dielectric {
-            int_ior: ior(e, &mut p, "int_ior", BK7)?,
-            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
-            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
-            specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+            int_ior: ior(e, &mut p, &INT_IOR)?,
+            ext_ior: ior(e, &mut p, &EXT_IOR)?,
+            specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
+            specular_transmittance: p.get_rgb(&SPECULAR_TRANSMITTANCE)?,
         },
         "roughdielectric" => BsdfDesc::RoughDielectric {
             microfacet: microfacet(e, &mut p)?,
-            int_ior: ior(e, &mut p, "int_ior", BK7)?,
-            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
-            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
-            specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+            int_ior: ior(e, &mut p, &INT_IOR)?,
+            ext_ior: ior(e, &mut p, &EXT_IOR)?,
+            specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
+            specular_transmittance: p.get_rgb(&SPECULAR_TRANSMITTANCE)?,
         },
         "thindielectric" => BsdfDesc::ThinDielectric {
-            int_ior: ior(e, &mut p, "int_ior", BK7)?,
-            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
-            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
-            specular_transmittance: p.rgb("specular_transmittance")?.unwrap_or(one),
+            int_ior: ior(e, &mut p, &INT_IOR)?,
+            ext_ior: ior(e, &mut p, &EXT_IOR)?,
+            specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
+            specular_transmittance: p.get_rgb(&SPECULAR_TRANSMITTANCE)?,
         },
         "plastic" => BsdfDesc::Plastic {
-            int_ior: ior(e, &mut p, "int_ior", POLYPROPYLENE)?,
-            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
-            diffuse_reflectance: p.rgb("diffuse_reflectance")?.unwrap_or(Vec3::splat(0.5)),
-            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
-            nonlinear: p.bool("nonlinear")?.unwrap_or(false),
+            int_ior: ior(e, &mut p, &COATING_IOR)?,
+            ext_ior: ior(e, &mut p, &EXT_IOR)?,
+            diffuse_reflectance: p.get_rgb(&DIFFUSE_REFLECTANCE)?,
+            specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
+            nonlinear: p.get_bool(&NONLINEAR)?,
         },
         "roughplastic" => BsdfDesc::RoughPlastic {
             microfacet: microfacet(e, &mut p)?,
-            int_ior: ior(e, &mut p, "int_ior", POLYPROPYLENE)?,
-            ext_ior: ior(e, &mut p, "ext_ior", AIR)?,
-            diffuse_reflectance: p.rgb("diffuse_reflectance")?.unwrap_or(Vec3::splat(0.5)),
-            specular_reflectance: p.rgb("specular_reflectance")?.unwrap_or(one),
-            nonlinear: p.bool("nonlinear")?.unwrap_or(false),
+            int_ior: ior(e, &mut p, &COATING_IOR)?,
+            ext_ior: ior(e, &mut p, &EXT_IOR)?,
+            diffuse_reflectance: p.get_rgb(&DIFFUSE_REFLECTANCE)?,
+            specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
+            nonlinear: p.get_bool(&NONLINEAR)?,
         },
         "principled" => super::principled::principled(e, &mut p)?,
         other => return Err(unknown_plugin(ctx, e, other)),
@@ -240,13 +244,6 @@ fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>, depth: u32) -> Res
     Ok(BsdfDesc::TwoSided(Box::new(inner)))
 }
 
-/// Mitsuba's default interior index of a dielectric, BK7 glass.
-const BK7: f32 = 1.5046;
-/// Mitsuba's default interior index of a plastic coating, polypropylene.
-const POLYPROPYLENE: f32 = 1.49;
-/// Mitsuba's default exterior index, air.
-const AIR: f32 = 1.000277;
-
 /// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`], and
 /// `sample_visible`, which only changes the noise, never the expected value.
 fn microfacet(e: &Elem, p: &mut Props) -> Res<Microfacet> {
@@ -290,9 +287,9 @@ fn roughness(e: &Elem, p: &mut Props) -> Res<Roughness> {
 /// (Au, Cu, Al, …) gives the RGB values Mitsuba's RGB variants use, and cannot be combined
 /// with `eta` or `k`.
 fn fresnel(e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
-    let material = p.string("material")?.unwrap_or_else(|| "none".into());
+    let material = p.string(MATERIAL.name)?.unwrap_or_else(|| "none".into());
     let unbounded = super::spectrum::SpectrumUse::Unbounded;
-    let (eta, k) = (p.colour("eta", unbounded)?, p.colour("k", unbounded)?);
+    let (eta, k) = (p.colour(ETA.name, unbounded)?, p.colour(K.name, unbounded)?);
     if material != "none" {
         if eta.is_some() || k.is_some() {
             let which = if eta.is_some() { "eta" } else { "k" };
@@ -323,9 +320,10 @@ fn fresnel(e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
 }
 
 /// An index of refraction given as a number or as one of Mitsuba's named media.
-fn ior(e: &Elem, p: &mut Props, name: &str, default: f32) -> Res<f32> {
+fn ior(e: &Elem, p: &mut Props, d: &IorParam) -> Res<f32> {
+    let name = d.name;
     let value = match p.raw(name) {
-        None => default,
+        None => d.default,
         Some((Value::Str(s), _)) => named_ior(&s)
             .ok_or_else(|| p.invalid(name, e, &format!("\"{s}\" is not a known medium")))?,
         Some((Value::Float(v), _)) => v,

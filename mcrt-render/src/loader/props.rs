@@ -7,7 +7,9 @@ use super::spectrum::{Spectrum, SpectrumUse};
 use super::transform::{check_attrs, read_transform, xyz};
 use super::tree::Elem;
 use super::values::{parse_bool, parse_float, parse_int, parse_triple};
-use crate::param_defs::{self, BoolParam, ChoiceParam, FloatParam, IntParam, PluginParams};
+use crate::param_defs::{
+    self, BoolParam, ChoiceParam, ColourParam, FloatParam, IntParam, PluginParams,
+};
 use crate::scene_error::SceneErrorKind;
 use glam::{Mat4, Vec3};
 use std::collections::HashMap;
@@ -239,6 +241,11 @@ impl<'c, 'a> Props<'c, 'a> {
     /// or a `<float>`/`<integer>` used for all three channels.
     pub fn rgb(&mut self, name: &str) -> Res<Option<Vec3>> {
         self.colour(name, SpectrumUse::Reflectance)
+    }
+
+    /// Colour parameter `d` (as [`Props::rgb`]), or its default.
+    pub fn get_rgb(&mut self, d: &ColourParam) -> Res<Vec3> {
+        Ok(self.rgb(d.name)?.unwrap_or(Vec3::splat(d.default)))
     }
 
     /// A colour as [`Props::rgb`], with a `<spectrum>` converted for `usage`.

@@ -1,7 +1,10 @@
-//! The parameters of the rough materials `roughconductor`, `roughdielectric` and
+//! The parameters of the materials `diffuse`, `conductor`, `dielectric`,
+//! `thindielectric`, `plastic` and the rough ones, `roughconductor`, `roughdielectric` and
 //! `roughplastic`.
 
-use super::{BoolParam, ChoiceParam, FloatParam, OtherParam, ParamDef, PluginParams};
+use super::{
+    BoolParam, ChoiceParam, ColourParam, FloatParam, IorParam, OtherParam, ParamDef, PluginParams,
+};
 use crate::description::Roughness;
 
 /// `distribution`: the microfacet normal distribution.
@@ -48,26 +51,109 @@ const fn other(name: &'static str, kind: &'static str, doc: &'static str) -> Oth
     OtherParam { name, kind, doc }
 }
 
-const MATERIAL: OtherParam = other("material", "string", "a named conductor, or `none`");
-const ETA: OtherParam = other("eta", "rgb", "real part of the complex index of refraction");
-const K: OtherParam = other(
+/// `material` of the conductors: a named conductor, or `none`.
+pub(crate) const MATERIAL: OtherParam = other("material", "string", "a named conductor, or `none`");
+/// `eta` of the conductors.
+pub(crate) const ETA: OtherParam =
+    other("eta", "rgb", "real part of the complex index of refraction");
+/// `k` of the conductors.
+pub(crate) const K: OtherParam = other(
     "k",
     "rgb",
     "imaginary part of the complex index of refraction",
 );
-const SPECULAR_REFLECTANCE: OtherParam =
-    other("specular_reflectance", "rgb", "scale on reflection");
-const SPECULAR_TRANSMITTANCE: OtherParam =
-    other("specular_transmittance", "rgb", "scale on transmission");
-const DIFFUSE_REFLECTANCE: OtherParam = other("diffuse_reflectance", "rgb", "albedo of the base");
-const INT_IOR: OtherParam = other("int_ior", "float or string", "interior index of refraction");
-const EXT_IOR: OtherParam = other("ext_ior", "float or string", "exterior index of refraction");
 
-/// `nonlinear` of `roughplastic`.
+const fn colour(name: &'static str, default: f32, doc: &'static str) -> ColourParam {
+    ColourParam { name, default, doc }
+}
+
+/// `reflectance` of `diffuse`.
+pub(crate) const REFLECTANCE: ColourParam = colour("reflectance", 0.5, "the albedo");
+/// `specular_reflectance`.
+pub(crate) const SPECULAR_REFLECTANCE: ColourParam =
+    colour("specular_reflectance", 1.0, "scale on reflection");
+/// `specular_transmittance` of the dielectrics.
+pub(crate) const SPECULAR_TRANSMITTANCE: ColourParam =
+    colour("specular_transmittance", 1.0, "scale on transmission");
+/// `diffuse_reflectance` of the plastics.
+pub(crate) const DIFFUSE_REFLECTANCE: ColourParam =
+    colour("diffuse_reflectance", 0.5, "albedo of the base");
+
+/// `int_ior` of the dielectrics (BK7 glass).
+pub(crate) const INT_IOR: IorParam = IorParam {
+    name: "int_ior",
+    default: 1.5046,
+    doc: "interior index of refraction",
+};
+/// `int_ior` of the plastics (polypropylene).
+pub(crate) const COATING_IOR: IorParam = IorParam {
+    name: "int_ior",
+    default: 1.49,
+    doc: "index of refraction of the coating",
+};
+/// `ext_ior` (air).
+pub(crate) const EXT_IOR: IorParam = IorParam {
+    name: "ext_ior",
+    default: 1.000277,
+    doc: "exterior index of refraction",
+};
+
+/// `nonlinear` of the plastics.
 pub(crate) const NONLINEAR: BoolParam = BoolParam {
     name: "nonlinear",
     default: false,
     doc: "internal scattering tints the base's colour",
+};
+
+/// `diffuse`.
+pub(crate) const DIFFUSE: PluginParams = PluginParams {
+    category: "bsdf",
+    plugin: "diffuse",
+    params: &[ParamDef::Colour(&REFLECTANCE)],
+};
+
+/// `conductor`.
+pub(crate) const CONDUCTOR: PluginParams = PluginParams {
+    category: "bsdf",
+    plugin: "conductor",
+    params: &[
+        ParamDef::Other(&MATERIAL),
+        ParamDef::Other(&ETA),
+        ParamDef::Other(&K),
+        ParamDef::Colour(&SPECULAR_REFLECTANCE),
+    ],
+};
+
+/// `dielectric`.
+pub(crate) const DIELECTRIC: PluginParams = PluginParams {
+    category: "bsdf",
+    plugin: "dielectric",
+    params: &[
+        ParamDef::Ior(&INT_IOR),
+        ParamDef::Ior(&EXT_IOR),
+        ParamDef::Colour(&SPECULAR_REFLECTANCE),
+        ParamDef::Colour(&SPECULAR_TRANSMITTANCE),
+    ],
+};
+
+/// `thindielectric`: the same parameters as `dielectric` (`int_ior` is the pane's).
+pub(crate) const THINDIELECTRIC: PluginParams = PluginParams {
+    category: "bsdf",
+    plugin: "thindielectric",
+    params: DIELECTRIC.params,
+};
+
+/// `plastic`.
+pub(crate) const PLASTIC: PluginParams = PluginParams {
+    category: "bsdf",
+    plugin: "plastic",
+    params: &[
+        ParamDef::Ior(&COATING_IOR),
+        ParamDef::Ior(&EXT_IOR),
+        ParamDef::Colour(&DIFFUSE_REFLECTANCE),
+        ParamDef::Colour(&SPECULAR_REFLECTANCE),
+        ParamDef::Bool(&NONLINEAR),
+    ],
 };
 
 /// `roughconductor`.
@@ -83,7 +169,7 @@ pub(crate) const ROUGHCONDUCTOR: PluginParams = PluginParams {
         ParamDef::Other(&MATERIAL),
         ParamDef::Other(&ETA),
         ParamDef::Other(&K),
-        ParamDef::Other(&SPECULAR_REFLECTANCE),
+        ParamDef::Colour(&SPECULAR_REFLECTANCE),
     ],
 };
 
@@ -97,10 +183,10 @@ pub(crate) const ROUGHDIELECTRIC: PluginParams = PluginParams {
         ParamDef::Other(&ALPHA_U),
         ParamDef::Other(&ALPHA_V),
         ParamDef::Bool(&SAMPLE_VISIBLE),
-        ParamDef::Other(&INT_IOR),
-        ParamDef::Other(&EXT_IOR),
-        ParamDef::Other(&SPECULAR_REFLECTANCE),
-        ParamDef::Other(&SPECULAR_TRANSMITTANCE),
+        ParamDef::Ior(&INT_IOR),
+        ParamDef::Ior(&EXT_IOR),
+        ParamDef::Colour(&SPECULAR_REFLECTANCE),
+        ParamDef::Colour(&SPECULAR_TRANSMITTANCE),
     ],
 };
 
@@ -114,10 +200,10 @@ pub(crate) const ROUGHPLASTIC: PluginParams = PluginParams {
         ParamDef::Other(&ALPHA_U),
         ParamDef::Other(&ALPHA_V),
         ParamDef::Bool(&SAMPLE_VISIBLE),
-        ParamDef::Other(&INT_IOR),
-        ParamDef::Other(&EXT_IOR),
-        ParamDef::Other(&DIFFUSE_REFLECTANCE),
-        ParamDef::Other(&SPECULAR_REFLECTANCE),
+        ParamDef::Ior(&COATING_IOR),
+        ParamDef::Ior(&EXT_IOR),
+        ParamDef::Colour(&DIFFUSE_REFLECTANCE),
+        ParamDef::Colour(&SPECULAR_REFLECTANCE),
         ParamDef::Bool(&NONLINEAR),
     ],
 };

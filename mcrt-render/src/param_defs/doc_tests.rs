@@ -136,6 +136,8 @@ fn every_default_is_valid() {
                     assert!((f.accept)(f.default.get()).is_ok(), "{}", f.name)
                 }
                 ParamDef::Choice(c) => assert!(c.choices.contains(&c.default), "{}", c.name),
+                ParamDef::Colour(c) => assert!(c.default >= 0.0, "{}", c.name),
+                ParamDef::Ior(i) => assert!(i.default > 0.0, "{}", i.name),
                 ParamDef::Bool(_) | ParamDef::Other(_) => {}
             }
         }

@@ -78,6 +78,31 @@ pub(crate) struct ChoiceParam {
     pub doc: &'static str,
 }
 
+/// A colour parameter (`<rgb>`, `<spectrum>` or a float; a texture where the material
+/// allows one), as a reflectance: its range is checked with the material's other values.
+#[derive(Debug)]
+pub(crate) struct ColourParam {
+    /// The Mitsuba name.
+    pub name: &'static str,
+    /// The value when the scene does not give one (grey).
+    pub default: f32,
+    /// What it means.
+    #[cfg_attr(not(test), allow(dead_code))] // read by the docs' test
+    pub doc: &'static str,
+}
+
+/// An index of refraction: a positive float or the name of one of Mitsuba's media.
+#[derive(Debug)]
+pub(crate) struct IorParam {
+    /// The Mitsuba name.
+    pub name: &'static str,
+    /// The value when the scene does not give one.
+    pub default: f32,
+    /// What it means.
+    #[cfg_attr(not(test), allow(dead_code))] // read by the docs' test
+    pub doc: &'static str,
+}
+
 /// A parameter read by code of its own (a colour, a named index of refraction, …): its
 /// name and type are listed here so that the table of its plugin is complete.
 #[derive(Debug)]
@@ -105,6 +130,10 @@ pub(crate) enum ParamDef {
     Bool(&'static BoolParam),
     /// One of a few strings.
     Choice(&'static ChoiceParam),
+    /// A colour.
+    Colour(&'static ColourParam),
+    /// An index of refraction.
+    Ior(&'static IorParam),
     /// Read by code of its own.
     Other(&'static OtherParam),
 }
@@ -118,6 +147,8 @@ impl ParamDef {
             Self::Float(_) | Self::Roughness(_) => "float",
             Self::Bool(_) => "boolean",
             Self::Choice(_) => "string",
+            Self::Colour(_) => "rgb",
+            Self::Ior(_) => "float or string",
             Self::Other(p) => p.kind,
         }
     }
@@ -141,6 +172,8 @@ impl ParamDef {
             Self::Roughness(p) => p.doc,
             Self::Bool(p) => p.doc,
             Self::Choice(p) => p.doc,
+            Self::Colour(p) => p.doc,
+            Self::Ior(p) => p.doc,
             Self::Other(p) => p.doc,
         }
     }
@@ -153,6 +186,8 @@ impl ParamDef {
             Self::Roughness(p) => p.name,
             Self::Bool(p) => p.name,
             Self::Choice(p) => p.name,
+            Self::Colour(p) => p.name,
+            Self::Ior(p) => p.name,
             Self::Other(p) => p.name,
         }
     }
@@ -180,6 +215,11 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     sampler::LDSAMPLER,
     sampler::MULTIJITTER,
     sampler::ORTHOGONAL,
+    bsdf::DIFFUSE,
+    bsdf::CONDUCTOR,
+    bsdf::DIELECTRIC,
+    bsdf::THINDIELECTRIC,
+    bsdf::PLASTIC,
     bsdf::ROUGHCONDUCTOR,
     bsdf::ROUGHDIELECTRIC,
     bsdf::ROUGHPLASTIC,
