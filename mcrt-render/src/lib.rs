@@ -20,6 +20,7 @@
 //! |---|---|
 //! | [`io`] | reading files from users: regular files only, at most so many bytes; EXR images with a bound on their pixels |
 //! | [`scene_error`] | the scene error type, located by file, line, column and element ([`scene_error::SceneError`]) |
+//! | [`scene_warning`] | the scene warning type, located as errors are ([`scene_warning::SceneWarning`]) |
 //! | [`transform`] | matrices that place things: Mitsuba 3's [`transform::look_at`] |
 //! | [`texture`] | `bitmap` and `checkerboard` textures: image decoding, filtering, wrapping |
 //! | [`description`] | what a scene file says, as plain data ([`description::SceneDescription`]) |
@@ -53,6 +54,7 @@ pub mod mesh_file;
 mod param_defs;
 pub mod render;
 pub mod scene_error;
+pub mod scene_warning;
 pub mod texture;
 pub mod transform;
 pub mod validate;

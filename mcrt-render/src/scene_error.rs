@@ -151,9 +151,21 @@ pub struct SceneError {
 /// Most characters of user text an error message quotes in one place.
 pub(crate) const QUOTE_CHARS: usize = 120;
 
+/// Most characters of an I/O error's reason: room for the [`MAX_LISTED_FOLDERS`] folders
+/// a file was searched in, each quoted and clipped to [`QUOTE_CHARS`].
+const IO_REASON_CHARS: usize = (MAX_LISTED_FOLDERS + 1) * (QUOTE_CHARS + 4);
+
+/// Most folders a "not found" message lists.
+pub(crate) const MAX_LISTED_FOLDERS: usize = 16;
+
 /// `s`, cut to [`QUOTE_CHARS`] characters with `…` marking the cut.
 pub(crate) fn clip(s: &str) -> String {
-    match s.char_indices().nth(QUOTE_CHARS) {
+    clip_to(s, QUOTE_CHARS)
+}
+
+/// `s`, cut to `n` characters with `…` marking the cut.
+fn clip_to(s: &str, n: usize) -> String {
+    match s.char_indices().nth(n) {
         None => s.to_string(),
         Some((k, _)) => format!("{}…", &s[..k]),
     }
@@ -172,9 +184,11 @@ impl SceneErrorKind {
     fn clipped(self) -> Self {
         let c = |s: String| clip(&s);
         match self {
+            // A reason may list the folders searched, each clipped on its own (see
+            // `loader::search_path`): a longer bound, still no quote over QUOTE_CHARS.
             Self::Io { path, reason } => Self::Io {
                 path: clip_path(&path),
-                reason: c(reason),
+                reason: clip_to(&reason, IO_REASON_CHARS),
             },
             Self::Xml(m) => Self::Xml(c(m)),
             Self::Version(m) => Self::Version(c(m)),

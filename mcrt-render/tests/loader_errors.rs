@@ -36,7 +36,7 @@ fn malformed_xml() {
 #[test]
 fn bad_or_missing_version() {
     for (xml, words) in [
-        ("<scene version=\"0.6.0\"/>", "0.6.0"),
+        ("<scene version=\"0.6\"/>", "0.6"),
         ("<scene version=\"three\"/>", "three"),
         ("<scene/>", "missing"),
     ] {

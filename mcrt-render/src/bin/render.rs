@@ -377,8 +377,14 @@ fn builtin(defines: &[(String, String)]) -> Result<SceneDescription, String> {
     ))
 }
 
+/// Loads the scene file and prints the loader's warnings (file, line, element) to stderr.
 fn load(path: &std::path::Path, defines: &[(String, String)]) -> Result<SceneDescription, String> {
-    mcrt_render::loader::load_scene(path, defines).map_err(|e| e.to_string())
+    let (desc, warnings) =
+        mcrt_render::loader::load_scene_with_warnings(path, defines).map_err(|e| e.to_string())?;
+    for w in &warnings {
+        eprintln!("{w}");
+    }
+    Ok(desc)
 }
 
 /// Renders and writes; returns whether the render was interrupted.

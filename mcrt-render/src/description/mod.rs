@@ -411,7 +411,8 @@ pub enum ShapeKind {
     },
     /// `obj`: a triangle mesh read from a Wavefront OBJ file.
     Obj {
-        /// The file, resolved against the scene file's folder.
+        /// The file, as found on the scene's search path (its `<path>` folders, its folder,
+        /// the current directory).
         filename: PathBuf,
         /// Use flat face normals even where the file has vertex normals.
         face_normals: bool,
@@ -420,14 +421,16 @@ pub enum ShapeKind {
     },
     /// `ply`: a triangle mesh read from a PLY file (ASCII or binary).
     Ply {
-        /// The file, resolved against the scene file's folder.
+        /// The file, as found on the scene's search path (its `<path>` folders, its folder,
+        /// the current directory).
         filename: PathBuf,
         /// Use flat face normals even where the file has vertex normals.
         face_normals: bool,
     },
     /// `serialized`: one mesh of a file in Mitsuba's compressed mesh format.
     Serialized {
-        /// The file, resolved against the scene file's folder.
+        /// The file, as found on the scene's search path (its `<path>` folders, its folder,
+        /// the current directory).
         filename: PathBuf,
         /// Which mesh of the file (Mitsuba's default 0, the first).
         shape_index: u32,
@@ -718,7 +721,8 @@ pub enum EmitterDesc {
     },
     /// `envmap`: an environment map read from an EXR file (latitude–longitude).
     EnvMap {
-        /// The file, resolved against the scene file's folder.
+        /// The file, as found on the scene's search path (its `<path>` folders, its folder,
+        /// the current directory).
         filename: PathBuf,
         /// Scale on the radiance (default 1).
         scale: f32,

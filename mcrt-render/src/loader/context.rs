@@ -1,8 +1,10 @@
-//! Shared state of one load: the file name for messages, the folder relative paths are
-//! resolved against, and the objects that carry an `id`.
+//! Shared state of one load: the file name for messages, the folders relative paths are
+//! resolved against, the objects that carry an `id`, and the warnings so far.
 
+use super::search_path::SearchPath;
 use super::tree::Elem;
 use crate::scene_error::{SceneError, SceneErrorKind};
+use crate::scene_warning::SceneWarning;
 use crate::texture::Image;
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -14,8 +16,15 @@ use std::sync::Arc;
 pub(crate) struct Ctx<'a> {
     /// The scene file, for messages.
     pub file: Option<&'a Path>,
-    /// The folder that relative file names are resolved against.
-    pub base_dir: PathBuf,
+    /// The folders that relative file names are resolved against (the scene's `<path>`s,
+    /// its folder, the current directory).
+    pub search: SearchPath,
+    /// Whether a top-level declaration (a `<bsdf>`, `<texture>` or `<volume>` read only
+    /// to check it) is being read: a volume texture is accepted there, as Mitsuba accepts
+    /// one in a material no shape uses.
+    pub declaration: std::cell::Cell<bool>,
+    /// Warnings so far, in file order, each once.
+    warnings: RefCell<Vec<SceneWarning>>,
     /// Every element with an `id`.
     pub ids: HashMap<String, &'a Elem>,
     /// Texture images read so far, by path and `raw` (a texture used twice is read once).
@@ -28,15 +37,14 @@ pub(crate) struct Ctx<'a> {
 pub(crate) type Res<T> = Result<T, SceneError>;
 
 impl<'a> Ctx<'a> {
-    /// Collects the ids of `root`'s descendants; a repeated id is an error.
-    pub fn new(file: Option<&'a Path>, root: &'a Elem) -> Res<Self> {
-        let base_dir = file
-            .and_then(Path::parent)
-            .map(Path::to_path_buf)
-            .unwrap_or_default();
+    /// Collects the ids of `root`'s descendants; a repeated id is an error. `search` is
+    /// the scene file's final list of folders.
+    pub fn new(file: Option<&'a Path>, root: &'a Elem, search: SearchPath) -> Res<Self> {
         let mut ctx = Self {
             file,
-            base_dir,
+            search,
+            declaration: std::cell::Cell::new(false),
+            warnings: RefCell::default(),
             ids: HashMap::new(),
             images: RefCell::default(),
             image_bytes: std::cell::Cell::new(0),
@@ -101,14 +109,55 @@ impl<'a> Ctx<'a> {
         )
     }
 
-    /// Resolves `name` against the scene's folder and checks that it is a regular file
-    /// that can be opened and read; `magic`, if given, must be the file's first bytes.
-    pub fn readable_file(&self, e: &Elem, name: &str, magic: Option<&[u8]>) -> Res<PathBuf> {
-        let p = Path::new(name);
-        let path = if p.is_absolute() {
-            p.to_path_buf()
-        } else {
-            self.base_dir.join(p)
+    /// A warning located at element `e` (given once, however often `e` is read).
+    pub fn warn(&self, e: &Elem, message: String) {
+        let w = SceneWarning::new(
+            e.file.as_deref().or(self.file),
+            Some(e.line),
+            Some(e.column),
+            Some(e.describe()),
+            message,
+        );
+        let mut all = self.warnings.borrow_mut();
+        if !all.contains(&w) {
+            all.push(w);
+        }
+    }
+
+    /// The warnings given so far.
+    pub fn take_warnings(&self) -> Vec<SceneWarning> {
+        std::mem::take(&mut self.warnings.borrow_mut())
+    }
+
+    /// Resolves `name` against the scene's folders (the first that holds it; see
+    /// [`SearchPath`]) and checks that it is a regular file that can be opened and read;
+    /// `magic`, if given, is the file's first bytes and the format's name.
+    pub fn readable_file(
+        &self,
+        e: &Elem,
+        name: &str,
+        magic: Option<(&[u8], &str)>,
+    ) -> Res<PathBuf> {
+        let Some(path) = self
+            .search
+            .resolve(Path::new(name))
+            .filter(|_| !name.is_empty())
+        else {
+            let reason = if name.is_empty() {
+                "empty file name".to_string()
+            } else {
+                format!(
+                    "not found in the folders searched: {}",
+                    self.search.describe()
+                )
+            };
+            return Err(self.err(
+                e,
+                SceneErrorKind::Io {
+                    path: PathBuf::from(name),
+                    reason,
+                },
+            ));
         };
         let io_err = |reason: String| {
             self.err(
@@ -119,16 +168,13 @@ impl<'a> Ctx<'a> {
                 },
             )
         };
-        if name.is_empty() {
-            return Err(io_err("empty file name".into()));
-        }
         let mut f = crate::io::open_regular(&path).map_err(|x| io_err(x.to_string()))?;
-        if let Some(magic) = magic {
+        if let Some((magic, format)) = magic {
             let mut head = vec![0u8; magic.len()];
             f.read_exact(&mut head)
                 .map_err(|x| io_err(format!("cannot read its header: {x}")))?;
             if head != magic {
-                return Err(io_err("not an OpenEXR file (wrong magic number)".into()));
+                return Err(io_err(format!("not {format} file (wrong magic number)")));
             }
         }
         Ok(path)

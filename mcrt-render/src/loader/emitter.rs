@@ -99,7 +99,7 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
                     SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
                 )
             })?;
-            let filename = ctx.readable_file(e, &name, Some(&EXR_MAGIC))?;
+            let filename = ctx.readable_file(e, &name, Some((&EXR_MAGIC, "an OpenEXR")))?;
             let scale = p.float("scale")?.unwrap_or(1.0);
             EmitterDesc::EnvMap {
                 filename,

@@ -1,9 +1,9 @@
 //! `<include filename="…"/>`: the children of another scene file's `<scene>` in place of
-//! the element, read with the parameters known so far, as Mitsuba 3 does.
+//! the element, read with the parameters and search path known so far, as Mitsuba 3 does.
 
 use super::params::Params;
 use super::position::Positions;
-use super::tree::{check_version, prescan, Elem, Reader};
+use super::tree::{parse_version, prescan, Elem, Reader};
 use crate::io::canonical;
 use crate::scene_error::{SceneError, SceneErrorKind};
 use std::path::Path;
@@ -14,8 +14,9 @@ const MAX_INCLUDE_DEPTH: usize = 16;
 
 impl Reader<'_> {
     /// `<include filename>`: the children of the named file's `<scene>`, read with the
-    /// parameters known so far. The name resolves against the scene file's folder; the
-    /// file must be a regular scene file of at most 256 MiB, not one already being read.
+    /// parameters known so far. The name resolves against the including file's search path
+    /// (its folder first); the file must be a regular scene file of at most 256 MiB, not
+    /// one already being read. A file older than 2.0.0 is upgraded.
     pub(super) fn include(&mut self, e: &Elem, depth: usize) -> Result<Vec<Elem>, SceneError> {
         if let Some((n, _)) = e.attrs.iter().find(|(n, _)| n != "filename") {
             return Err(self.err(e, SceneErrorKind::UnknownAttribute(n.clone())));
@@ -27,14 +28,26 @@ impl Reader<'_> {
         let name = e
             .attr("filename")
             .ok_or_else(|| self.err(e, SceneErrorKind::MissingAttribute("filename".into())))?;
-        let path = self.base_dir.join(name);
+        let Some(path) = self
+            .search
+            .resolve(Path::new(name))
+            .filter(|_| !name.is_empty())
+        else {
+            let reason = if name.is_empty() {
+                "empty file name".to_string()
+            } else {
+                format!(
+                    "not found in the folders searched: {}",
+                    self.search.describe()
+                )
+            };
+            let path = name.into();
+            return Err(self.err(e, SceneErrorKind::Io { path, reason }));
+        };
         let io = |reason: String| SceneErrorKind::Io {
             path: path.clone(),
             reason,
         };
-        if name.is_empty() {
-            return Err(self.err(e, io("empty file name".into())));
-        }
         let bytes = crate::io::read_capped(&path, crate::io::MAX_SCENE_BYTES)
             .map_err(|x| self.err(e, io(x.to_string())))?;
         let key = canonical(&path);
@@ -63,11 +76,15 @@ impl Reader<'_> {
             let p = x.pos();
             text_err(p.row, p.col, SceneErrorKind::Xml(x.to_string()))
         })?;
+        let mut search = self.search.clone();
+        if let Some(folder) = path.parent().filter(|f| !f.as_os_str().is_empty()) {
+            search.prepend(folder.to_path_buf());
+        }
         let mut sub = Reader {
             positions: Positions::new(&xml),
             file: Some(&path),
-            included: Some(here),
-            base_dir: self.base_dir.clone(),
+            included: Some(Arc::clone(&here)),
+            search,
             stack: std::mem::take(&mut self.stack),
             params: std::mem::replace(&mut self.params, Params::new(&[])),
         };
@@ -76,7 +93,7 @@ impl Reader<'_> {
         sub.stack.pop();
         self.stack = std::mem::take(&mut sub.stack);
         self.params = sub.params;
-        let root = root?;
+        let mut root = root?;
         if root.tag != "scene" {
             let m = format!(
                 "an included file's root must be <scene>, not <{}>",
@@ -85,13 +102,16 @@ impl Reader<'_> {
             return Err(sub_err(&root, SceneErrorKind::Misplaced(m)));
         }
         // Mitsuba 3 requires the version of an included file as of the main file's.
-        match root.attr("version").map(check_version) {
+        let version = match root.attr("version").map(parse_version) {
             None => {
                 let m = "missing \"version\" attribute".to_string();
                 return Err(sub_err(&root, SceneErrorKind::Version(m)));
             }
             Some(Err(m)) => return Err(sub_err(&root, SceneErrorKind::Version(m))),
-            Some(Ok(())) => {}
+            Some(Ok(v)) => v,
+        };
+        if version < super::upgrade::UPGRADE_BELOW {
+            super::upgrade::upgrade(&mut root, Some(&here));
         }
         Ok(root.children)
     }

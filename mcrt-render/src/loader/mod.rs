@@ -38,17 +38,21 @@ mod params;
 mod position;
 mod principled;
 mod props;
+mod search_path;
 mod sensor;
 mod shape;
 mod spectrum;
 mod texture;
 mod transform;
 mod tree;
+mod upgrade;
 mod values;
+mod volume;
 
 use crate::io::read_capped;
 pub use crate::io::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};
 pub use crate::scene_error::{SceneError, SceneErrorKind};
+pub use crate::scene_warning::SceneWarning;
 pub use crate::transform::look_at;
 
 use crate::description::{EmitterDesc, SceneDescription};
@@ -59,32 +63,62 @@ use tree::Elem;
 
 /// Reads and parses the scene file at `path`. `defines` are `-D name=value` pairs; they
 /// take precedence over the file's `<default>` values. Relative file names inside the
-/// scene (OBJ meshes, EXR maps) are resolved against the scene file's folder.
+/// scene (meshes, textures, maps) are resolved on the file search path: the scene's
+/// `<path>` folders, its folder, the current directory (`docs/scene-format.md`).
 ///
 /// Only a regular file of at most [`MAX_SCENE_BYTES`] is read (a FIFO or a device is
-/// refused before it is opened).
+/// refused before it is opened). The loader's warnings are dropped; see
+/// [`load_scene_with_warnings`].
 pub fn load_scene(
     path: &Path,
     defines: &[(String, String)],
 ) -> Result<SceneDescription, SceneError> {
+    load_scene_with_warnings(path, defines).map(|(d, _)| d)
+}
+
+/// [`load_scene`], with the loader's warnings (what Mitsuba 3 accepts but a user likely
+/// did not mean, such as a `<rotate>` axis that is not unit length), in file order.
+pub fn load_scene_with_warnings(
+    path: &Path,
+    defines: &[(String, String)],
+) -> Result<(SceneDescription, Vec<SceneWarning>), SceneError> {
     let bytes = read_capped(path, MAX_SCENE_BYTES).map_err(|e| SceneError::io(path, &e))?;
     let xml = String::from_utf8(bytes).map_err(|_| {
         let e = std::io::Error::other("not UTF-8 text");
         SceneError::io(path, &e)
     })?;
-    parse_scene(&xml, Some(path), defines)
+    parse_scene_with_warnings(&xml, Some(path), defines)
 }
 
 /// Parses scene XML held in memory. `source` is the file it came from, used in messages
 /// and to resolve relative file names (without it, they are resolved against the current
-/// directory). `defines` take precedence over `<default>` values.
+/// directory). `defines` take precedence over `<default>` values. The loader's warnings
+/// are dropped; see [`parse_scene_with_warnings`].
 pub fn parse_scene(
     xml: &str,
     source: Option<&Path>,
     defines: &[(String, String)],
 ) -> Result<SceneDescription, SceneError> {
-    let root = tree::read_tree(xml, source, defines)?;
-    let ctx = Ctx::new(source, &root)?;
+    parse_scene_with_warnings(xml, source, defines).map(|(d, _)| d)
+}
+
+/// [`parse_scene`], with the loader's warnings in file order.
+///
+/// ```
+/// use mcrt_render::loader::parse_scene_with_warnings;
+/// let xml = "<scene version=\"3.0.0\">\n<shape type=\"cube\"><transform name=\"to_world\">\n\
+///            <rotate x=\"0\" y=\"1\" z=\"1\" angle=\"30\"/></transform></shape></scene>";
+/// let (_, warnings) = parse_scene_with_warnings(xml, None, &[]).unwrap();
+/// assert_eq!(warnings[0].line, Some(3));
+/// assert!(warnings[0].to_string().contains("not unit length"));
+/// ```
+pub fn parse_scene_with_warnings(
+    xml: &str,
+    source: Option<&Path>,
+    defines: &[(String, String)],
+) -> Result<(SceneDescription, Vec<SceneWarning>), SceneError> {
+    let (root, search) = tree::read_tree(xml, source, defines)?;
+    let ctx = Ctx::new(source, &root, search)?;
     transform::check_attrs(&ctx, &root, &["version"], &["version"])?;
     let mut desc = SceneDescription {
         source: source.map(Path::to_path_buf),
@@ -113,13 +147,15 @@ pub fn parse_scene(
                 }
                 desc.emitters.push(em);
             }
-            // Declared for `ref`; built here too so that its errors surface even if unused.
+            // Declared for `ref`; built here too so that its errors surface even if unused
+            // (a volume texture is accepted here: it counts only where a shape uses it).
             "bsdf" => {
-                bsdf::read_bsdf(&ctx, c)?;
+                declaration(&ctx, || bsdf::read_bsdf(&ctx, c).map(|_| ()))?;
             }
             "texture" => {
-                texture::read_texture(&ctx, c)?;
+                declaration(&ctx, || texture::read_texture(&ctx, c).map(|_| ()))?;
             }
+            "volume" => volume::read_volume(&ctx, c)?,
             _ => return Err(top_level_error(&ctx, c)),
         }
     }
@@ -134,7 +170,15 @@ pub fn parse_scene(
         let at = sensor.or(integrator).unwrap_or(&root);
         return Err(ctx.err(at, SceneErrorKind::InvalidValue(i.to_string())));
     }
-    Ok(desc)
+    Ok((desc, ctx.take_warnings()))
+}
+
+/// Runs `read` on a top-level declaration (see [`Ctx::declaration`]).
+fn declaration(ctx: &Ctx, read: impl FnOnce() -> Res<()>) -> Res<()> {
+    ctx.declaration.set(true);
+    let r = read();
+    ctx.declaration.set(false);
+    r
 }
 
 /// Records the only allowed element of a kind (integrator, sensor).

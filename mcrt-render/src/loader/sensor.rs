@@ -26,6 +26,10 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
     let mut s = SensorDesc::default();
     if ty == "thinlens" {
         s.lens = Some(read_lens(ctx, e, &mut p)?);
+    } else {
+        // Mitsuba 3's perspective reads `focus_distance` (a float, as every projective
+        // camera does) and never uses it: accepted and ignored.
+        p.float("focus_distance")?;
     }
     // Mitsuba 3 reads `fov` (with `fov_axis`) or `focal_length` (default 50 mm on a 36 × 24
     // mm frame: a diagonal field of view), and refuses both. A diagonal fov becomes the
@@ -230,6 +234,8 @@ fn read_film(ctx: &Ctx, e: &Elem) -> Res<FilmDesc> {
     for name in ["sample_border", "compensate"] {
         p.bool(name)?;
     }
+    // Mitsuba 0.6's `banner` (a boolean): Mitsuba 3's film marks it read, of any type.
+    p.raw("banner");
     // Mitsuba's crop window: offsets default to 0, sizes to the rest of the film.
     let max = MAX_RESOLUTION;
     let (ox, oy) = (

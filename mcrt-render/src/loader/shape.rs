@@ -60,6 +60,10 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
             ShapeKind::Sphere { center, radius }
         }
         "obj" | "ply" | "serialized" => mesh_file(ctx, e, ty, &mut p)?,
+        "sdfgrid" => {
+            let m = "shape \"sdfgrid\" (signed distance fields are not rendered)".to_string();
+            return Err(ctx.err(e, SceneErrorKind::Unsupported(m)));
+        }
         other => return Err(unknown_plugin(ctx, e, other)),
     };
     let mut shape = ShapeDesc::new(kind);

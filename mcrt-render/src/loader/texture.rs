@@ -17,6 +17,9 @@ use std::sync::Arc;
 /// Reads a `<texture>` element.
 pub(crate) fn read_texture(ctx: &Ctx, e: &Elem) -> Res<Texture> {
     let ty = plugin_type(ctx, e)?;
+    if ty == "volume" {
+        return super::volume::read_volume_texture(ctx, e);
+    }
     let mut p = Props::new(ctx, e)?;
     no_objects(ctx, &p)?;
     let to_uv = match p.transform("to_uv")? {

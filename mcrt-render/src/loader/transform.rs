@@ -90,19 +90,67 @@ pub(crate) fn xyz(ctx: &Ctx, e: &Elem, extra: &[&str], default: f32) -> Res<Vec3
     Ok(Vec3::from(out))
 }
 
+/// Largest distance from 1 of an axis length taken as unit (a few f32 roundings of a
+/// unit vector written in decimals).
+const UNIT_AXIS_TOLERANCE: f32 = 1e-5;
+
+/// `<rotate>` about `axis` by `angle` degrees. A unit axis (within
+/// [`UNIT_AXIS_TOLERANCE`]) gives a rotation. Any other axis is used as given, as Mitsuba
+/// 3.9.1 does (its `rotate` does not normalise), which is not a pure rotation: the loader
+/// warns.
 fn rotate(ctx: &Ctx, e: &Elem) -> Res<Mat4> {
     let axis = xyz(ctx, e, &["angle"], 0.0)?;
     let angle = e
         .attr("angle")
         .ok_or_else(|| ctx.err(e, SceneErrorKind::MissingAttribute("angle".into())))?;
     let angle = parse_float(angle).map_err(|m| ctx.err(e, SceneErrorKind::Malformed(m)))?;
-    let axis = axis.try_normalize().ok_or_else(|| {
-        ctx.err(
+    if axis == Vec3::ZERO {
+        return Err(ctx.err(
             e,
             SceneErrorKind::InvalidValue("the rotation axis is zero".into()),
-        )
-    })?;
-    Ok(Mat4::from_axis_angle(axis, angle.to_radians()))
+        ));
+    }
+    let length = axis.length();
+    if (length - 1.0).abs() <= UNIT_AXIS_TOLERANCE {
+        return Ok(Mat4::from_axis_angle(axis.normalize(), angle.to_radians()));
+    }
+    ctx.warn(
+        e,
+        format!(
+            "the rotation axis ({}, {}, {}) is not unit length (length {length}); as in \
+             Mitsuba 3 it is used as given, so the transform is not a pure rotation \
+             (normalise the axis for one)",
+            axis.x, axis.y, axis.z
+        ),
+    );
+    Ok(axis_angle_unnormalised(axis, angle))
+}
+
+/// Rodrigues' rotation matrix `c·I + s·[a]× + (1 − c)·a aᵀ` evaluated with the axis `a` as
+/// given (not normalised), in f64, as Mitsuba 3.9.1's `Transform::rotate` (Dr.Jit's
+/// `rotate`) computes it.
+fn axis_angle_unnormalised(axis: Vec3, degrees: f32) -> Mat4 {
+    let a = axis.as_dvec3();
+    let (s, c) = f64::from(degrees).to_radians().sin_cos();
+    let k = 1.0 - c;
+    let m = glam::DMat3::from_cols(
+        glam::DVec3::new(
+            a.x * a.x * k + c,
+            a.x * a.y * k + a.z * s,
+            a.x * a.z * k - a.y * s,
+        ),
+        glam::DVec3::new(
+            a.x * a.y * k - a.z * s,
+            a.y * a.y * k + c,
+            a.y * a.z * k + a.x * s,
+        ),
+        glam::DVec3::new(
+            a.x * a.z * k + a.y * s,
+            a.y * a.z * k - a.x * s,
+            a.z * a.z * k + c,
+        ),
+    );
+    Mat4::from_mat3(m.as_mat3())
 }
 
 fn lookat(ctx: &Ctx, e: &Elem) -> Res<Mat4> {

@@ -1,10 +1,12 @@
 //! Reads the XML text into a small owned element tree, checking the version, applying
 //! `<default>` parameters and `-D` defines, substituting `$name` in every attribute
-//! value in document order, and putting the contents of each `<include filename>`d scene
-//! in its place, as Mitsuba 3 does.
+//! value in document order, taking `<path>` folders into the search path, putting the
+//! contents of each `<include filename>`d scene in its place, and upgrading files older
+//! than 2.0.0, as Mitsuba 3 does.
 
 use super::params::{Params, SubstError};
 use super::position::Positions;
+use super::search_path::SearchPath;
 use crate::scene_error::{clip, SceneError, SceneErrorKind};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -31,6 +33,8 @@ pub(crate) struct Elem {
     pub column: u32,
     /// The included file the element comes from (`None`: the scene file itself).
     pub file: Option<Arc<Path>>,
+    /// The `name` the file gave, when the upgrade of an old file renamed it.
+    pub renamed_from: Option<Box<str>>,
 }
 
 impl Elem {
@@ -51,16 +55,20 @@ impl Elem {
             }
         }
         s.push('>');
+        if let Some(old) = &self.renamed_from {
+            s.push_str(&format!(" (name=\"{}\" in the file)", clip(old)));
+        }
         s
     }
 }
 
-/// Parses `xml` into the `<scene>` element tree.
+/// Parses `xml` into the `<scene>` element tree, with the folders that the files it names
+/// resolve against.
 pub(crate) fn read_tree(
     xml: &str,
     file: Option<&Path>,
     defines: &[(String, String)],
-) -> Result<Elem, SceneError> {
+) -> Result<(Elem, SearchPath), SceneError> {
     let opts = roxmltree::ParsingOptions {
         allow_dtd: false,
         nodes_limit: 10_000_000,
@@ -91,38 +99,37 @@ pub(crate) fn read_tree(
         positions: Positions::new(xml),
         file,
         included: None,
-        base_dir: file
-            .and_then(Path::parent)
-            .map(Path::to_path_buf)
-            .unwrap_or_default(),
+        search: SearchPath::for_scene(file),
         stack: file.map(crate::io::canonical).into_iter().collect(),
         params: Params::new(defines),
     };
-    let root = reader.convert(doc.root_element(), 0)?;
+    let mut root = reader.convert(doc.root_element(), 0)?;
     let err = |kind| {
-        Err(SceneError::new(
+        SceneError::new(
             file,
             Some(root.line),
             Some(root.column),
             Some(root.describe()),
             kind,
-        ))
+        )
     };
     if root.tag != "scene" {
-        return err(SceneErrorKind::Misplaced(format!(
+        return Err(err(SceneErrorKind::Misplaced(format!(
             "the root element must be <scene>, not <{}>",
             root.tag
-        )));
+        ))));
     }
-    match root.attr("version") {
-        None => err(SceneErrorKind::Version(
+    let version = match root.attr("version") {
+        None => Err(err(SceneErrorKind::Version(
             "missing \"version\" attribute".into(),
-        )),
-        Some(v) => match check_version(v) {
-            Ok(()) => check_defines(&reader.params, file, defines).map(|()| root),
-            Err(m) => err(SceneErrorKind::Version(m)),
-        },
+        ))),
+        Some(v) => parse_version(v).map_err(|m| err(SceneErrorKind::Version(m))),
+    }?;
+    if version < super::upgrade::UPGRADE_BELOW {
+        super::upgrade::upgrade(&mut root, None);
     }
+    check_defines(&reader.params, file, defines)?;
+    Ok((root, reader.search))
 }
 
 /// Refuses a define that is none of the scene's parameters (see [`Params`]).
@@ -221,16 +228,13 @@ fn tag_end(b: &[u8], mut i: usize) -> (usize, bool, usize) {
     (b.len(), false, equals)
 }
 
-/// Accepts `major.minor.patch` with major 2 or more (older files need Mitsuba's
-/// camelCase upgrade, which is not supported).
-pub(super) fn check_version(v: &str) -> Result<(), String> {
+/// A version `major.minor.patch` (periods or spaces between; Mitsuba 3's `util::Version`).
+/// Files older than 2.0.0 are upgraded on load (`upgrade.rs`).
+pub(super) fn parse_version(v: &str) -> Result<[u32; 3], String> {
     let parts: Vec<&str> = v.split(['.', ' ']).filter(|s| !s.is_empty()).collect();
     let nums: Option<Vec<u32>> = parts.iter().map(|p| p.parse().ok()).collect();
     match nums {
-        Some(n) if n.len() == 3 && n[0] >= 2 => Ok(()),
-        Some(n) if n.len() == 3 => Err(format!(
-            "version \"{v}\" predates 2.0.0 (camelCase parameter names are not supported)"
-        )),
+        Some(n) if n.len() == 3 => Ok([n[0], n[1], n[2]]),
         _ => Err(format!(
             "could not parse version \"{v}\" (expected major.minor.patch)"
         )),
@@ -242,8 +246,9 @@ pub(super) struct Reader<'a> {
     pub(super) file: Option<&'a Path>,
     /// The file being read when it is an included one (shared by its elements).
     pub(super) included: Option<Arc<Path>>,
-    /// The scene file's folder, against which `<include>` names resolve.
-    pub(super) base_dir: PathBuf,
+    /// The folders `<include>` names and `<path>` values resolve against (this file's
+    /// list; see [`SearchPath`]).
+    pub(super) search: SearchPath,
     /// The files being read, outermost first (for cycles and depth).
     pub(super) stack: Vec<PathBuf>,
     pub(super) params: Params,
@@ -267,6 +272,7 @@ impl Reader<'_> {
             line,
             column,
             file: self.included.clone(),
+            renamed_from: None,
         };
         for i in 0..elem.attrs.len() {
             let value = self.substitute(&elem.attrs[i].1);
@@ -294,6 +300,13 @@ impl Reader<'_> {
                 let c = self.convert(child, depth + 1)?;
                 if c.tag == "default" {
                     self.add_default(&c)?;
+                } else if c.tag == "path" {
+                    // Mitsuba 3: `<path>` only directly inside a file's root element.
+                    if !node.parent().is_some_and(|p| p.is_root()) {
+                        let m = "<path> not directly inside <scene>".to_string();
+                        return Err(self.err(&c, SceneErrorKind::Misplaced(m)));
+                    }
+                    self.add_path(&c)?;
                 } else if c.tag == "include" {
                     let inner = self.include(&c, depth)?;
                     elem.children.extend(inner);
@@ -325,6 +338,35 @@ impl Reader<'_> {
             ));
         }
         self.params.declare(name, value);
+        Ok(())
+    }
+
+    /// `<path value>`: the folder (resolved against the list so far) goes in front of this
+    /// file's search path; it must exist.
+    fn add_path(&mut self, e: &Elem) -> Result<(), SceneError> {
+        if let Some((n, _)) = e.attrs.iter().find(|(n, _)| n != "value") {
+            return Err(self.err(e, SceneErrorKind::UnknownAttribute(n.clone())));
+        }
+        if let Some(k) = e.children.first() {
+            let m = format!("<{}> inside <path>", k.tag);
+            return Err(self.err(k, SceneErrorKind::Misplaced(m)));
+        }
+        let value = e
+            .attr("value")
+            .ok_or_else(|| self.err(e, SceneErrorKind::MissingAttribute("value".into())))?;
+        let found = self
+            .search
+            .resolve(Path::new(value))
+            .filter(|_| !value.is_empty());
+        let Some(folder) = found.filter(|p| std::fs::metadata(p).is_ok()) else {
+            let reason = format!(
+                "<path>: folder not found in the folders searched: {}",
+                self.search.describe()
+            );
+            let path = PathBuf::from(value);
+            return Err(self.err(e, SceneErrorKind::Io { path, reason }));
+        };
+        self.search.prepend(folder);
         Ok(())
     }
 
@@ -374,18 +416,18 @@ mod tests {
 
     #[test]
     fn versions() {
-        assert!(check_version("3.0.0").is_ok());
-        assert!(check_version("2.1.0").is_ok());
-        assert!(check_version("0.6.0").is_err());
-        assert!(check_version("3.0").is_err());
-        assert!(check_version("x.0.0").is_err());
+        assert_eq!(parse_version("3.0.0"), Ok([3, 0, 0]));
+        assert_eq!(parse_version("2.1.0"), Ok([2, 1, 0]));
+        assert_eq!(parse_version("0.6 0"), Ok([0, 6, 0]));
+        assert!(parse_version("3.0").is_err());
+        assert!(parse_version("x.0.0").is_err());
     }
 
     #[test]
     fn defines_beat_defaults_and_longest_name_wins() {
         let xml = r#"<scene version="3.0.0"><default name="a" value="1"/>
             <default name="ab" value="2"/><x v="$a $ab"/></scene>"#;
-        let t = read_tree(xml, None, &[("a".into(), "9".into())]).unwrap();
+        let (t, _) = read_tree(xml, None, &[("a".into(), "9".into())]).unwrap();
         assert_eq!(t.children[0].attr("v"), Some("9 2"));
     }
 }
