@@ -97,7 +97,8 @@ impl Instancing {
             }
             let corners: Vec<Vec3> = (0..8)
                 .map(|c| {
-                    let pick = |bit: u32, lo: f32, hi: f32| if c >> bit & 1 == 1 { hi } else { lo };
+                    let pick =
+                        |bit: u32, lo: f32, hi: f32| if (c >> bit) & 1 == 1 { hi } else { lo };
                     to_world.transform_point3(Vec3::new(
                         pick(0, b.min.x, b.max.x),
                         pick(1, b.min.y, b.max.y),
