@@ -88,7 +88,7 @@ impl Instancing {
                 continue; // nothing to hit
             }
             let to_world = super::build::affine(i, s)?;
-            let normal = Mat3A::from(to_world.matrix3).inverse().transpose();
+            let normal = to_world.matrix3.inverse().transpose();
             if !normal.is_finite() {
                 return Err(GeometryError::BadTransform {
                     shape: i,

@@ -89,7 +89,7 @@ impl RayQuery {
             let units = pairing::units(built);
             let boxes: Vec<Aabb> = units
                 .par_iter()
-                .map(|u| unit_bounds(u, prims, &built.shapes))
+                .map(|u| unit_bounds(u, prims, built.shapes))
                 .collect();
             let bvh = Bvh4::build(&boxes);
             let (slots, packed) = PackedBvh::pack(bvh, &units, prims);
@@ -99,10 +99,7 @@ impl RayQuery {
                 bounds: union(&boxes),
             };
         }
-        let boxes: Vec<Aabb> = prims
-            .iter()
-            .map(|p| prim_bounds(p, &built.shapes))
-            .collect();
+        let boxes: Vec<Aabb> = prims.iter().map(|p| prim_bounds(p, built.shapes)).collect();
         QueryBuild {
             query: RayQuery::Accel(Accel::build(kind, &boxes)),
             slots: (0..prims.len() as u32).collect(),

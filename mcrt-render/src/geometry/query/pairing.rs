@@ -144,7 +144,7 @@ pub(crate) fn units(built: &PrimsView) -> Vec<Unit> {
             .find(|&i| built.ids[i].shape != shape)
             .unwrap_or(n);
         if let ShapeData::Mesh(mesh) = &built.shapes[shape as usize] {
-            pair_range(&built.prims, mesh, start..end, &mut partner, &mut taken);
+            pair_range(built.prims, mesh, start..end, &mut partner, &mut taken);
         }
         start = end;
     }
