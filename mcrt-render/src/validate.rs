@@ -523,11 +523,45 @@ pub fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
         }
     }
     transform("to_world", &s.to_world)?;
+    if let ShapeKind::Instance(_) = s.kind {
+        if s.flip_normals {
+            return Err(invalid(
+                "flip_normals",
+                "is not supported on an instance (as in Mitsuba 3)",
+            ));
+        }
+        if s.emitter.is_some() {
+            return Err(invalid(
+                "emitter",
+                "an instance cannot carry an emitter (as in Mitsuba 3)",
+            ));
+        }
+    }
     bsdf(&s.bsdf)?;
     match &s.emitter {
         Some(e) => colour("radiance", e.radiance),
         None => Ok(()),
     }
+}
+
+/// A shape inside a shape group: a [`shape`] that is neither an instance nor an emitter
+/// (Mitsuba 3's `shapegroup.cpp` refuses both).
+pub fn grouped_shape(s: &ShapeDesc) -> Result<(), Invalid> {
+    if let ShapeKind::Instance(_) = s.kind {
+        return Err(invalid(
+            "type",
+            "an instance inside a shape group: nested instancing is not supported (as in \
+             Mitsuba 3)",
+        ));
+    }
+    if s.emitter.is_some() {
+        return Err(invalid(
+            "emitter",
+            "shapes in a shape group cannot emit: instancing of emitters is not supported (as \
+             in Mitsuba 3)",
+        ));
+    }
+    shape(s)
 }
 
 /// Every check above on a whole description but the total [`work`], which depends on the
@@ -545,6 +579,17 @@ pub fn scene(d: &SceneDescription) -> Result<(), String> {
                 .map(|x| format!(" ({x})"))
                 .unwrap_or_default();
         shape(s).map_err(part(format!("shape {i}{id}")))?;
+    }
+    for (g, group) in d.shape_groups().into_iter().enumerate() {
+        let gid = group
+            .id
+            .as_deref()
+            .map(|x| format!(" ({x})"))
+            .unwrap_or_default();
+        for (i, s) in group.shapes.iter().enumerate() {
+            let at = format!("shape group {g}{gid}, shape {i}");
+            grouped_shape(s).map_err(part(at))?;
+        }
     }
     for (i, e) in d.emitters.iter().enumerate() {
         emitter(e).map_err(part(format!("emitter {i}")))?;

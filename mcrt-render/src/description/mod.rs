@@ -3,12 +3,15 @@
 //! [`Default`] values means what the same XML without those attributes means to Mitsuba.
 
 mod checked;
+mod instancing;
 mod microfacet;
 mod principled;
 
 pub use crate::texture::{Texture, TextureParam};
 pub use checked::{Roughness, SampleCount};
 use glam::{Mat4, Vec3};
+pub(crate) use instancing::groups_of;
+pub use instancing::ShapeGroupDesc;
 pub use microfacet::Microfacet;
 pub use principled::{PrincipledParams, MAX_SPECULAR};
 use std::path::PathBuf;
@@ -447,6 +450,11 @@ pub enum ShapeKind {
         /// Triangles as vertex indices.
         indices: Vec<[u32; 3]>,
     },
+    /// `instance`: the shapes of a shape group (Mitsuba's `shapegroup`), placed by this
+    /// shape's `to_world` on top of each one's own. The group is shared, not copied: every
+    /// instance of it holds the same [`Arc`](std::sync::Arc), and the geometry builds it
+    /// once ([`ShapeGroupDesc`] has the rules).
+    Instance(std::sync::Arc<ShapeGroupDesc>),
 }
 
 /// A shape with its transform, material and optional area emitter.

@@ -9,7 +9,16 @@ use glam::{Affine3A, Mat3, Vec2, Vec3};
 use rayon::prelude::*;
 use std::path::Path;
 
+#[cfg(test)]
 pub(crate) fn build(shapes: &[ShapeDesc], base_dir: Option<&Path>) -> Result<Built, GeometryError> {
+    build_refs(&shapes.iter().collect::<Vec<_>>(), base_dir)
+}
+
+/// [`build`] over shapes given by reference (a scene's shapes followed by its groups').
+pub(crate) fn build_refs(
+    shapes: &[&ShapeDesc],
+    base_dir: Option<&Path>,
+) -> Result<Built, GeometryError> {
     let mut out = Built {
         prims: Vec::new(),
         ids: Vec::new(),
@@ -38,10 +47,11 @@ fn push_prims(out: &mut Built, shape: u32, data: &ShapeData) {
         }
         &ShapeData::Sphere { center, radius, .. } => push(Prim::Sphere { center, radius }, 0),
         ShapeData::Disk(_) => push(Prim::Disk(shape), 0),
+        ShapeData::Instance => {}
     }
 }
 
-fn affine(i: usize, desc: &ShapeDesc) -> Result<Affine3A, GeometryError> {
+pub(super) fn affine(i: usize, desc: &ShapeDesc) -> Result<Affine3A, GeometryError> {
     let m = desc.to_world;
     let bad = |what| Err(GeometryError::BadTransform { shape: i, what });
     if !m.is_finite() {
@@ -113,6 +123,8 @@ fn shape_data(
             ShapeData::Mesh(mesh(i, pos, nrm, indices.clone(), flip, false)?)
         }
         &ShapeKind::Sphere { center, radius } => sphere(i, m, center, radius, flip)?,
+        // Its group is built on its own (`geometry/instances.rs`).
+        ShapeKind::Instance(_) => ShapeData::Instance,
         ShapeKind::Disk => disk(m, flip),
         // Read by `file_mesh::build` above.
         ShapeKind::Obj { .. } | ShapeKind::Ply { .. } | ShapeKind::Serialized { .. } => {

@@ -66,6 +66,9 @@ pub(crate) enum ShapeData {
         flip: bool,
     },
     Disk(DiskData),
+    /// An instance of a shape group: no primitives of its own (its group's shapes follow
+    /// the scene's in the numbering, `description::instancing`).
+    Instance,
 }
 
 /// Everything built from the descriptions, primitives in input order.
@@ -73,6 +76,38 @@ pub(crate) struct Built {
     pub(crate) prims: Vec<Prim>,
     pub(crate) ids: Vec<PrimId>,
     pub(crate) shapes: Vec<ShapeData>,
+}
+
+/// The primitives of one level of the geometry (the scene's own, or one shape group's),
+/// with the data of every shape (indexed by [`PrimId::shape`]).
+#[derive(Clone, Copy)]
+pub(crate) struct PrimsView<'a> {
+    pub(crate) prims: &'a [Prim],
+    pub(crate) ids: &'a [PrimId],
+    pub(crate) shapes: &'a [ShapeData],
+}
+
+impl Built {
+    /// All primitives.
+    #[cfg(test)]
+    pub(crate) fn view(&self) -> PrimsView<'_> {
+        PrimsView {
+            prims: &self.prims,
+            ids: &self.ids,
+            shapes: &self.shapes,
+        }
+    }
+
+    /// The primitives of shapes `first..end` (contiguous: primitives are in shape order).
+    pub(crate) fn shapes_view(&self, first: u32, end: u32) -> PrimsView<'_> {
+        let a = self.ids.partition_point(|id| id.shape < first);
+        let b = self.ids.partition_point(|id| id.shape < end);
+        PrimsView {
+            prims: &self.prims[a..b],
+            ids: &self.ids[a..b],
+            shapes: &self.shapes,
+        }
+    }
 }
 
 /// Validates and packs a world-space mesh. `reverse` reverses the winding (used for

@@ -52,6 +52,8 @@ mod build;
 mod data;
 mod error;
 mod file_mesh;
+mod instances;
+mod level;
 mod offset;
 mod query;
 mod sample;
@@ -64,13 +66,14 @@ pub(crate) use sample::RectangleSampler;
 pub use sample::ShapeSampling;
 
 use crate::accel::Aabb;
-use crate::description::ShapeDesc;
-use data::{Prim, PrimId, ShapeData};
+use crate::description::{ShapeDesc, ShapeKind};
+use data::{Prim, ShapeData};
 use glam::{Vec2, Vec3, Vec3A};
+use instances::Instancing;
+use level::Level;
 use mcrt::integrator::SurfacePoint;
 use mcrt::sampling::Frame;
-use query::{HitRecord, RayQuery, Stored};
-use rayon::prelude::*;
+use query::HitRecord;
 use std::f32::consts::PI;
 use std::path::Path;
 
@@ -103,18 +106,27 @@ pub struct ShapeSample {
 }
 
 /// The scene's shapes in world space with an acceleration structure.
+///
+/// Instances of shape groups ([`ShapeKind::Instance`]) form a second level: each group is
+/// built once in its own space with a structure of the same kind, and a structure over the
+/// instances' world boxes finds the instances a ray reaches (`geometry/instances.rs`).
+/// Shapes are numbered as [`SceneDescription::all_shapes`](
+/// crate::description::SceneDescription::all_shapes) lists them: the shapes given, then the
+/// shapes of each distinct group. Shapes inside groups cannot be sampled (they may not
+/// emit): their [`Geometry::shape_area`] is 0 and [`Geometry::sample_shape`] gives `None`.
 #[derive(Debug, Clone)]
 pub struct Geometry {
-    /// Primitives in the ray-query backend's slot order.
-    prims: Vec<Prim>,
-    ids: Vec<PrimId>,
-    query: RayQuery,
-    /// Per stored primitive: a triangle's unit front normal ([`SurfacePoint::ng`]), else zero.
-    face_ng: Vec<Vec3>,
+    /// The shapes' own primitives (not the groups').
+    top: Level,
+    /// Every shape's data, in the numbering above (groups' shapes in their group's space).
     shapes: Vec<ShapeData>,
+    /// How many of `shapes` are the scene's own (the rest are in groups).
+    own_shapes: u32,
     /// Per shape: world to object directions (a sphere's rotation, for its uv; else the
     /// identity).
     uv_frames: Vec<glam::Mat3>,
+    /// The instances and their groups, if there are any.
+    instancing: Option<Box<Instancing>>,
     bounds: Aabb,
     shape_sampling: ShapeSampling,
 }
@@ -125,55 +137,105 @@ impl Geometry {
     ///
     /// # Errors
     /// A transform that is not finite, affine and invertible; a sphere under a non-uniform
-    /// scale; an invalid mesh; an unreadable OBJ file.
+    /// scale; an invalid mesh; an unreadable OBJ file; an instance inside a shape group
+    /// (nested instancing, refused as by Mitsuba 3).
     pub fn new(
         shapes: &[ShapeDesc],
         base_dir: Option<&Path>,
         accel: AccelKind,
     ) -> Result<Self, GeometryError> {
-        let built = build::build(shapes, base_dir)?;
-        let q = RayQuery::build(accel, &built);
-        // Gathers over every primitive, in parallel (`collect` keeps the order).
-        let ids: Vec<PrimId> = q.slots.par_iter().map(|&i| built.ids[i as usize]).collect();
+        let groups = crate::description::groups_of(shapes);
+        let mut all: Vec<&ShapeDesc> = shapes.iter().collect();
+        let mut firsts = Vec::with_capacity(groups.len());
+        for g in &groups {
+            firsts.push(all.len() as u32);
+            all.extend(g.shapes.iter());
+        }
+        if let Some(i) =
+            (shapes.len()..all.len()).find(|&i| matches!(all[i].kind, ShapeKind::Instance(_)))
+        {
+            return Err(GeometryError::InvalidShape {
+                shape: i,
+                what: "an instance inside a shape group (nested instancing is not supported, \
+                       as in Mitsuba 3)"
+                    .into(),
+            });
+        }
+        let built = build::build_refs(&all, base_dir)?;
+        let own = shapes.len() as u32;
+        let top = Level::build(accel, built.shapes_view(0, own));
+        let instancing = if groups.is_empty() {
+            None
+        } else {
+            let levels = (0..groups.len())
+                .map(|k| {
+                    let end = firsts.get(k + 1).copied().unwrap_or(all.len() as u32);
+                    Level::build(accel, built.shapes_view(firsts[k], end))
+                })
+                .collect();
+            Some(Box::new(Instancing::build(accel, shapes, &groups, levels)?))
+        };
+        let bounds = match &instancing {
+            Some(i) => top.bounds.union(i.bounds),
+            None => top.bounds,
+        };
         Ok(Self {
-            prims: q
-                .slots
-                .par_iter()
-                .map(|&i| built.prims[i as usize])
-                .collect(),
-            face_ng: ids
-                .par_iter()
-                .map(|id| face_normal(&built.shapes, id))
-                .collect(),
-            ids,
-            query: q.query,
+            top,
+            uv_frames: all.iter().map(|d| build::uv_frame(d)).collect(),
             shapes: built.shapes,
-            uv_frames: shapes.iter().map(build::uv_frame).collect(),
-            bounds: q.bounds,
+            own_shapes: own,
+            instancing,
+            bounds,
             shape_sampling: ShapeSampling::default(),
         })
     }
 
-    /// Number of shapes.
+    /// Number of shapes: those given and those of their shape groups (see [`Geometry`]).
     pub fn shape_count(&self) -> usize {
         self.shapes.len()
     }
 
-    /// Number of primitives (triangles, spheres, disks).
+    /// Number of primitives stored (triangles, spheres, disks): a shape group's count once,
+    /// however many instances it has.
     pub fn primitive_count(&self) -> usize {
-        self.prims.len()
+        self.top.prims.len() + self.instancing.as_ref().map_or(0, |i| i.primitive_count())
+    }
+
+    /// Number of instances of shape groups (those of empty groups not counted).
+    pub fn instance_count(&self) -> usize {
+        self.instancing.as_ref().map_or(0, |i| i.len())
     }
 
     /// Heap bytes held by the acceleration structure (not the primitives): O(n) in the
     /// primitive count for the BVH and the grid, O(n log n) at most for the kd-tree, for any
-    /// input (`docs/geometry.md`, "Bounds on degenerate input").
+    /// input (`docs/geometry.md`, "Bounds on degenerate input"). With instances: each
+    /// group's structure once, plus the instances (their transforms) and the structure over
+    /// them, O(instances).
     pub fn accel_heap_bytes(&self) -> usize {
-        self.query.heap_bytes()
+        self.top.accel_bytes() + self.instancing.as_ref().map_or(0, |i| i.accel_bytes())
+    }
+
+    /// Heap bytes held by the stored primitives and their per-primitive data (a shape
+    /// group's once), not counting the shapes' vertex data.
+    pub fn primitive_heap_bytes(&self) -> usize {
+        self.top.prim_bytes() + self.instancing.as_ref().map_or(0, |i| i.prim_bytes())
     }
 
     /// The acceleration structure in use.
     pub fn accel_kind(&self) -> AccelKind {
-        self.query.kind()
+        self.top.query.kind()
+    }
+
+    /// Shape `shape`'s data if it is one of the scene's own shapes (not in a group, not an
+    /// instance): what the shape samplers may use.
+    #[inline]
+    fn own_shape(&self, shape: u32) -> Option<&ShapeData> {
+        if shape >= self.own_shapes {
+            return None;
+        }
+        self.shapes
+            .get(shape as usize)
+            .filter(|d| !matches!(d, ShapeData::Instance))
     }
 
     /// The world-space bounding box of all shapes (empty when there are none).
@@ -193,37 +255,46 @@ impl Geometry {
     /// The nearest hit with `0 < t < t_max`.
     #[inline(never)]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<SurfacePoint> {
-        let (t, rec) = self.query.closest(self.stored(), ray, t_max)?;
-        Some(self.make_hit(ray, t, rec))
+        let top = self
+            .top
+            .query
+            .closest(self.top.stored(&self.shapes), ray, t_max);
+        if let Some(inst) = &self.instancing {
+            let bound = top.as_ref().map_or(t_max, |h| h.0);
+            if let Some((k, t, rec)) = inst.closest(&self.shapes, ray, bound) {
+                let (group, local) = inst.local(k, ray);
+                return Some(inst.hit_to_world(k, self.make_hit(group, &local, t, rec)));
+            }
+        }
+        let (t, rec) = top?;
+        Some(self.make_hit(&self.top, ray, t, rec))
     }
 
     /// True when anything is hit with `0 < t < t_max`.
     #[inline(never)]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        self.query.any(self.stored(), ray, t_max)
+        self.top
+            .query
+            .any(self.top.stored(&self.shapes), ray, t_max)
+            || self
+                .instancing
+                .as_ref()
+                .is_some_and(|i| i.any(&self.shapes, ray, t_max))
     }
 
+    /// Fills in the surface data of a hit found by the search in `level`.
     #[inline(always)]
-    fn stored(&self) -> Stored<'_> {
-        Stored {
-            prims: &self.prims,
-            shapes: &self.shapes,
-        }
-    }
-
-    /// Fills in the surface data of a hit found by the search.
-    #[inline(always)]
-    fn make_hit(&self, ray: &Ray, t: f32, rec: HitRecord) -> SurfacePoint {
-        let id = self.ids[rec.slot as usize];
+    fn make_hit(&self, level: &Level, ray: &Ray, t: f32, rec: HitRecord) -> SurfacePoint {
+        let id = level.ids[rec.slot as usize];
         let mut p = ray.at(t);
         let mut uv = Vec2::new(rec.b1, rec.b2);
         let (ng, ns) = match &self.shapes[id.shape as usize] {
             ShapeData::Mesh(m) => {
                 let b0 = 1.0 - rec.b1 - rec.b2;
-                if let Prim::Tri(tri) = &self.prims[rec.slot as usize] {
+                if let Prim::Tri(tri) = &level.prims[rec.slot as usize] {
                     p = tri.point(Vec3A::new(b0, rec.b1, rec.b2));
                 }
-                let ng = self.face_ng[rec.slot as usize];
+                let ng = level.face_ng[rec.slot as usize];
                 let ns = if m.normals.is_empty() {
                     ng
                 } else {
@@ -259,6 +330,8 @@ impl Geometry {
                 uv = Vec2::new(local.truncate().length(), phi / (2.0 * PI));
                 (d.normal, d.normal)
             }
+            // Never stored as a primitive.
+            ShapeData::Instance => (Vec3::Z, Vec3::Z),
         };
         SurfacePoint {
             p,
@@ -269,17 +342,5 @@ impl Geometry {
             prim: id.prim,
             uv,
         }
-    }
-}
-
-/// The unit front normal of a triangle (zero for other primitives), as hits report it.
-fn face_normal(shapes: &[ShapeData], id: &PrimId) -> Vec3 {
-    match &shapes[id.shape as usize] {
-        ShapeData::Mesh(m) => {
-            let [a, b, c] = m.indices[id.prim as usize].map(|v| m.positions[v as usize]);
-            let sign = if m.flip { -1.0 } else { 1.0 };
-            sign * (b - a).cross(c - a).normalize_or(Vec3::Z)
-        }
-        _ => Vec3::ZERO,
     }
 }

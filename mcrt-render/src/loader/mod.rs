@@ -7,6 +7,7 @@
 //! (`lookat`, `matrix`, `translate`, `rotate`, `scale`), and the plugins
 //! `path`/`direct`, `perspective`/`thinlens`, `independent`/`stratified`/`ldsampler`/`multijitter`/`orthogonal`, `hdrfilm` with
 //! `box`/`gaussian`/`tent` and `crop_*`, `rectangle`/`cube`/`disk`/`sphere`/`obj`/`ply`/`serialized`,
+//! `shapegroup`/`instance`,
 //! `diffuse`/`conductor`/`roughconductor`/`dielectric`/`twosided` and the other BSDFs of
 //! `docs/scene-format.md`, `area`/`point`/`spot`/`directional`/`constant`/`envmap`, and the
 //! textures `bitmap`/`checkerboard` on BSDF colours, blend weights and opacities. Semantics
@@ -33,6 +34,7 @@ mod cie_tables;
 mod context;
 mod emitter;
 mod include;
+mod instance;
 mod integrator;
 mod params;
 mod position;
@@ -126,6 +128,7 @@ pub fn parse_scene_with_warnings(
     };
     let (mut integrator, mut sensor) = (None::<&Elem>, None::<&Elem>);
     let mut environment = None::<&Elem>;
+    let mut groups = instance::Groups::default();
     for c in &root.children {
         match c.tag.as_str() {
             "integrator" => {
@@ -136,7 +139,11 @@ pub fn parse_scene_with_warnings(
                 once(&ctx, &mut sensor, c)?;
                 desc.sensor = sensor::read_sensor(&ctx, c)?;
             }
-            "shape" => desc.shapes.push(shape::read_shape(&ctx, c)?),
+            "shape" => {
+                if let Some(s) = instance::read_top_shape(&ctx, c, &mut groups)? {
+                    desc.shapes.push(s);
+                }
+            }
             "emitter" => {
                 let em = emitter::read_emitter(&ctx, c)?;
                 if matches!(

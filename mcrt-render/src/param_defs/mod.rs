@@ -17,6 +17,7 @@ pub(crate) mod bsdf;
 mod doc_tests;
 pub(crate) mod integrator;
 pub(crate) mod sampler;
+pub(crate) mod shape;
 
 /// An integer parameter in `min..=max`.
 #[derive(Debug)]
@@ -223,6 +224,8 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     bsdf::ROUGHCONDUCTOR,
     bsdf::ROUGHDIELECTRIC,
     bsdf::ROUGHPLASTIC,
+    shape::INSTANCE,
+    shape::SHAPEGROUP,
 ];
 
 /// The table of plugin `plugin` of element `category`, if it has one.

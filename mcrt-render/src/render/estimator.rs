@@ -5,12 +5,16 @@ use super::samples::resolve;
 use super::{split, Effects, RenderError, RenderOptions, Renderer};
 use crate::bsdf::{AnyBsdf, TexturedBsdf};
 use crate::camera::Camera;
-use crate::description::{IntegratorDesc, IntegratorKind, SceneDescription, ShapeKind};
+use crate::description::{
+    IntegratorDesc, IntegratorKind, SceneDescription, ShapeDesc, ShapeGroupDesc, ShapeKind,
+};
 use crate::film::{Film, PixelFilter};
 use crate::geometry::{Geometry, ShapeSampling};
 use crate::light::Lights;
 use glam::{Vec3, Vec4Swizzles};
 use mcrt::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
+use std::collections::HashMap;
+use std::sync::Arc;
 
 impl Renderer {
     /// The body of [`Renderer::new`], on its thread pool.
@@ -36,8 +40,9 @@ impl Renderer {
             .with_shape_sampling(shape_sampling);
         let lights = Lights::new(desc, &geo, scene_radius(desc)).map_err(RenderError::Lights)?;
         let camera = Camera::new(&desc.sensor).map_err(RenderError::Camera)?;
-        let bsdfs = desc
-            .shapes
+        // Per shape in the numbering hits report: the scene's, then its groups'.
+        let all_shapes = desc.all_shapes();
+        let bsdfs = all_shapes
             .iter()
             .enumerate()
             .map(|(i, s)| {
@@ -48,10 +53,10 @@ impl Renderer {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let textured = desc.shapes.iter().any(|s| s.bsdf.is_textured()).then(|| {
+        let textured = all_shapes.iter().any(|s| s.bsdf.is_textured()).then(|| {
             bsdfs
                 .iter()
-                .zip(&desc.shapes)
+                .zip(&all_shapes)
                 .map(|(b, s)| TexturedBsdf::with_base(b.clone(), &s.bsdf))
                 .collect::<Vec<_>>()
         });
@@ -206,24 +211,61 @@ fn check_bidirectional(
 }
 
 /// Radius of a sphere about the origin that holds every shape (approximate for meshes read
-/// from files, which count as a unit cube).
+/// from files, which count as a unit cube; an instance counts as the box of its group's
+/// points, computed once per group).
 fn scene_radius(desc: &SceneDescription) -> f32 {
     let mut r = 1.0f32;
+    let mut groups: HashMap<*const ShapeGroupDesc, Vec<Vec3>> = HashMap::new();
     for s in &desc.shapes {
-        let pts: Vec<Vec3> = match &s.kind {
-            ShapeKind::Mesh { positions, .. } => positions.clone(),
-            ShapeKind::Sphere { center, radius } => (0..8)
-                .map(|i| *center + Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)) * *radius)
-                .collect(),
-            _ => (0..8)
-                .map(|i| Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)))
-                .collect(),
+        let pts = match &s.kind {
+            ShapeKind::Instance(g) => groups
+                .entry(Arc::as_ptr(g))
+                .or_insert_with(|| group_box_corners(g))
+                .clone(),
+            _ => shape_points(s),
         };
         for p in pts {
             r = r.max((s.to_world * p.extend(1.0)).xyz().length());
         }
     }
     r
+}
+
+/// The points of a shape (not an instance) that [`scene_radius`] counts, in object space.
+fn shape_points(s: &ShapeDesc) -> Vec<Vec3> {
+    match &s.kind {
+        ShapeKind::Mesh { positions, .. } => positions.clone(),
+        ShapeKind::Sphere { center, radius } => (0..8)
+            .map(|i| *center + Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)) * *radius)
+            .collect(),
+        _ => (0..8)
+            .map(|i| Vec3::new(bit(i, 0), bit(i, 1), bit(i, 2)))
+            .collect(),
+    }
+}
+
+/// The corners of the box holding a group's shapes' points ([`shape_points`]), in the
+/// group's space; none for an empty group.
+fn group_box_corners(g: &ShapeGroupDesc) -> Vec<Vec3> {
+    let mut b = crate::accel::Aabb::EMPTY;
+    for s in &g.shapes {
+        for p in shape_points(s) {
+            b = b.grow((s.to_world * p.extend(1.0)).xyz());
+        }
+    }
+    if b.is_empty() {
+        return Vec::new();
+    }
+    (0..8)
+        .map(|i| {
+            let pick = |k: u32, lo: f32, hi: f32| if (i >> k) & 1 == 1 { hi } else { lo };
+            Vec3::new(
+                pick(0, b.min.x, b.max.x),
+                pick(1, b.min.y, b.max.y),
+                pick(2, b.min.z, b.max.z),
+            )
+        })
+        .collect()
 }
 
 fn bit(i: u32, b: u32) -> f32 {

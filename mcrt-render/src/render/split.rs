@@ -155,6 +155,20 @@ pub(crate) fn render_identity(
             h.file(base, filename)?;
         }
     }
+    // Each shape group once, in full (an instance's `Debug` names its group only), in the
+    // order of `shape_groups`, which is the numbering of the shapes.
+    for g in desc.shape_groups() {
+        let mut shapes = g.shapes.clone();
+        for s in &mut shapes {
+            match &mut s.kind {
+                ShapeKind::Obj { filename, .. }
+                | ShapeKind::Ply { filename, .. }
+                | ShapeKind::Serialized { filename, .. } => h.file(base, filename)?,
+                _ => {}
+            }
+        }
+        h.field(format!("{shapes:?}").as_bytes());
+    }
     h.field(format!("{d:?}").as_bytes());
     h.field(resolved.as_bytes());
     Ok(h.0)

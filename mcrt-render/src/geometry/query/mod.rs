@@ -17,7 +17,7 @@ mod tri4;
 
 pub(crate) use scalar::TriSoa;
 
-use super::data::{Built, Prim, ShapeData};
+use super::data::{Prim, PrimsView, ShapeData};
 use super::Ray;
 use crate::accel::{Aabb, Accel, AccelKind, Bvh4};
 use packed_bvh::PackedBvh;
@@ -75,7 +75,7 @@ pub(super) enum RayQuery {
 /// A built backend and the slot order it stores primitives in.
 pub(super) struct QueryBuild {
     pub(super) query: RayQuery,
-    /// `slots[s]` is the input index (in [`Built::prims`]) of the primitive in slot `s`.
+    /// `slots[s]` is the input index (in the level's primitives) of the primitive in slot `s`.
     pub(super) slots: Vec<u32>,
     /// The bounding box of every primitive.
     pub(super) bounds: Aabb,
@@ -83,13 +83,13 @@ pub(super) struct QueryBuild {
 
 impl RayQuery {
     /// Builds the backend of the given kind over `built`'s primitives.
-    pub(super) fn build(kind: AccelKind, built: &Built) -> QueryBuild {
+    pub(super) fn build(kind: AccelKind, built: &PrimsView) -> QueryBuild {
         let prims = &built.prims;
         if kind == AccelKind::Bvh {
             let units = pairing::units(built);
             let boxes: Vec<Aabb> = units
                 .par_iter()
-                .map(|u| unit_bounds(u, prims, &built.shapes))
+                .map(|u| unit_bounds(u, prims, built.shapes))
                 .collect();
             let bvh = Bvh4::build(&boxes);
             let (slots, packed) = PackedBvh::pack(bvh, &units, prims);
@@ -99,10 +99,7 @@ impl RayQuery {
                 bounds: union(&boxes),
             };
         }
-        let boxes: Vec<Aabb> = prims
-            .iter()
-            .map(|p| prim_bounds(p, &built.shapes))
-            .collect();
+        let boxes: Vec<Aabb> = prims.iter().map(|p| prim_bounds(p, built.shapes)).collect();
         QueryBuild {
             query: RayQuery::Accel(Accel::build(kind, &boxes)),
             slots: (0..prims.len() as u32).collect(),

@@ -291,7 +291,7 @@ mod tests {
     use mcrt::integrator::SurfacePoint;
 
     fn packed(g: &Geometry) -> &PackedBvh {
-        match &g.query {
+        match &g.top.query {
             RayQuery::PackedBvh(p) => p,
             RayQuery::Accel(_) => panic!("not the packed BVH"),
         }

@@ -12,7 +12,7 @@
 //! `3 MAX_SHARING` partners, so pairing stays O(N log N) for any triangle soup instead of
 //! quadratic in the number of triangles on one edge.
 
-use super::super::data::{Built, MeshData, Prim, ShapeData};
+use super::super::data::{MeshData, Prim, PrimsView, ShapeData};
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -133,7 +133,7 @@ pub(crate) enum Unit {
 
 /// Pairs up the triangles of every mesh in `built`; every primitive appears in exactly one
 /// unit, in input order of the unit's first primitive.
-pub(crate) fn units(built: &Built) -> Vec<Unit> {
+pub(crate) fn units(built: &PrimsView) -> Vec<Unit> {
     let n = built.prims.len();
     let mut partner: Vec<Option<(u32, Quad)>> = vec![None; n];
     let mut taken = vec![false; n];
@@ -144,7 +144,7 @@ pub(crate) fn units(built: &Built) -> Vec<Unit> {
             .find(|&i| built.ids[i].shape != shape)
             .unwrap_or(n);
         if let ShapeData::Mesh(mesh) = &built.shapes[shape as usize] {
-            pair_range(&built.prims, mesh, start..end, &mut partner, &mut taken);
+            pair_range(built.prims, mesh, start..end, &mut partner, &mut taken);
         }
         start = end;
     }

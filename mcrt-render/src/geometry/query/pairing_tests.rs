@@ -11,7 +11,11 @@ fn units_of(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> Vec<Unit> {
         normals: vec![],
         indices,
     });
-    units(&super::super::super::build::build(&[desc], None).expect("builds"))
+    units(
+        &super::super::super::build::build(&[desc], None)
+            .expect("builds")
+            .view(),
+    )
 }
 
 #[test]

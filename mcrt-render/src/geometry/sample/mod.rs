@@ -102,18 +102,18 @@ impl Geometry {
 
     /// The surface area of shape `shape` (world space); 0 for an index out of range.
     pub fn shape_area(&self, shape: u32) -> f32 {
-        match self.shapes.get(shape as usize) {
+        match self.own_shape(shape) {
             Some(ShapeData::Mesh(m)) => m.area,
             Some(ShapeData::Sphere { radius, .. }) => 4.0 * PI * radius * radius,
             Some(ShapeData::Disk(d)) => d.area,
-            None => 0.0,
+            Some(ShapeData::Instance) | None => 0.0,
         }
     }
 
     /// The sampler of shape `shape` if it is a `rectangle` (sampled as a whole): the one
     /// [`Geometry::sample_shape`] uses, for a light to call without the shape lookup.
     pub(crate) fn rectangle_sampler(&self, shape: u32) -> Option<&RectangleSampler> {
-        match self.shapes.get(shape as usize)? {
+        match self.own_shape(shape)? {
             ShapeData::Mesh(m) => m.rectangle.as_ref(),
             _ => None,
         }
@@ -122,7 +122,7 @@ impl Geometry {
     /// A sphere bounding shape `shape` (centre, radius); `None` for an index out of range
     /// or a mesh without vertices.
     pub(crate) fn shape_bounding_sphere(&self, shape: u32) -> Option<(Vec3, f32)> {
-        match self.shapes.get(shape as usize)? {
+        match self.own_shape(shape)? {
             ShapeData::Mesh(m) => {
                 let b = Aabb::from_points(&m.positions);
                 (!b.is_empty()).then(|| (b.center(), 0.5 * b.extent().length()))
@@ -136,6 +136,7 @@ impl Geometry {
                     + d.to_world.matrix3.y_axis.length_squared())
                 .sqrt(),
             )),
+            ShapeData::Instance => None,
         }
     }
 
@@ -143,7 +144,7 @@ impl Geometry {
     /// meshes and cubes do (to choose a triangle); rectangles, spheres and disks ignore it.
     pub(crate) fn shape_reads_pick(&self, shape: u32) -> bool {
         matches!(
-            self.shapes.get(shape as usize),
+            self.own_shape(shape),
             Some(ShapeData::Mesh(m)) if m.rectangle.is_none()
         )
     }
@@ -160,7 +161,7 @@ impl Geometry {
         u_pick: f32,
         u: Vec2,
     ) -> Option<ShapeSample> {
-        match self.shapes.get(shape as usize)? {
+        match self.own_shape(shape)? {
             ShapeData::Mesh(m) => mesh::sample(m, self.shape_sampling, reference, u_pick, u),
             &ShapeData::Sphere {
                 center,
@@ -177,6 +178,7 @@ impl Geometry {
                     pdf,
                 })
             }
+            ShapeData::Instance => None,
         }
     }
 
@@ -189,7 +191,7 @@ impl Geometry {
         if !(area > 0.0 && area.is_finite()) {
             return None;
         }
-        let (p, n) = match self.shapes.get(shape as usize)? {
+        let (p, n) = match self.own_shape(shape)? {
             ShapeData::Mesh(m) => mesh::sample_area(m, u_pick, u)?,
             &ShapeData::Sphere {
                 center,
@@ -203,6 +205,7 @@ impl Geometry {
                 let q = UniformDiskConcentric.sample(u);
                 (d.to_world.transform_point3(q.extend(0.0)), d.normal)
             }
+            ShapeData::Instance => return None,
         };
         p.is_finite().then_some(ShapeSample {
             p,
@@ -224,13 +227,13 @@ impl Geometry {
     /// [`Geometry::shape_pdf`] at point `p` with front normal `ng` of primitive `prim` of
     /// shape `shape` (what the estimators' surface points carry).
     pub(crate) fn shape_pdf_at(&self, shape: u32, reference: Vec3, at: (Vec3, Vec3, u32)) -> f32 {
-        let pdf = match self.shapes.get(shape as usize) {
+        let pdf = match self.own_shape(shape) {
             Some(ShapeData::Mesh(m)) => mesh::pdf(m, self.shape_sampling, reference, at),
             Some(&ShapeData::Sphere { center, radius, .. }) => {
                 sphere::pdf(center, radius, reference, at.0)
             }
             Some(ShapeData::Disk(d)) => area_to_solid_angle(1.0 / d.area, reference, at.0, at.1),
-            None => None,
+            Some(ShapeData::Instance) | None => None,
         };
         pdf.unwrap_or(0.0)
     }
