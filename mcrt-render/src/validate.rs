@@ -522,6 +522,17 @@ pub fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
             return Err(invalid("radius", "must be finite and positive"));
         }
     }
+    if let ShapeKind::Cylinder { p0, p1, radius } = s.kind {
+        if !(p0.is_finite() && p1.is_finite()) {
+            return Err(invalid("p0", "and p1 must be finite"));
+        }
+        if p0 == p1 {
+            return Err(invalid("p1", "must differ from p0"));
+        }
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(invalid("radius", "must be finite and positive"));
+        }
+    }
     transform("to_world", &s.to_world)?;
     bsdf(&s.bsdf)?;
     match &s.emitter {

@@ -407,6 +407,17 @@ pub enum ShapeKind {
         /// Radius (default 1).
         radius: f32,
     },
+    /// `cylinder`: an open tube (no caps) of radius `radius` about the segment from `p0` to
+    /// `p1` (applied before `to_world`), normals pointing outwards. `to_world` may rotate,
+    /// translate, scale uniformly, and scale along the axis; nothing else.
+    Cylinder {
+        /// Start of the axis (default origin).
+        p0: Vec3,
+        /// End of the axis (default (0, 0, 1)).
+        p1: Vec3,
+        /// Radius (default 1).
+        radius: f32,
+    },
     /// `obj`: a triangle mesh read from a Wavefront OBJ file.
     Obj {
         /// The file, resolved against the scene file's folder.

@@ -38,6 +38,7 @@ fn push_prims(out: &mut Built, shape: u32, data: &ShapeData) {
         }
         &ShapeData::Sphere { center, radius, .. } => push(Prim::Sphere { center, radius }, 0),
         ShapeData::Disk(_) => push(Prim::Disk(shape), 0),
+        ShapeData::Cylinder(_) => push(Prim::Cylinder(shape), 0),
     }
 }
 
@@ -114,6 +115,9 @@ fn shape_data(
         }
         &ShapeKind::Sphere { center, radius } => sphere(i, m, center, radius, flip)?,
         ShapeKind::Disk => disk(m, flip),
+        &ShapeKind::Cylinder { p0, p1, radius } => ShapeData::Cylinder(
+            super::cylinder::CylinderData::new(i, m, p0, p1, radius, flip)?,
+        ),
         // Read by `file_mesh::build` above.
         ShapeKind::Obj { .. } | ShapeKind::Ply { .. } | ShapeKind::Serialized { .. } => {
             return Err(GeometryError::InvalidShape {

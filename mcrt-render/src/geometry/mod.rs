@@ -49,6 +49,7 @@
 //! ```
 
 mod build;
+mod cylinder;
 mod data;
 mod error;
 mod file_mesh;
@@ -258,6 +259,11 @@ impl Geometry {
                 let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
                 uv = Vec2::new(local.truncate().length(), phi / (2.0 * PI));
                 (d.normal, d.normal)
+            }
+            ShapeData::Cylinder(c) => {
+                let (q, n, st) = c.surface(p);
+                (p, uv) = (q, st);
+                (n, n)
             }
         };
         SurfacePoint {

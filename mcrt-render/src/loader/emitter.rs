@@ -14,6 +14,14 @@ use glam::{Mat4, Vec3};
 /// The first bytes of every OpenEXR file.
 const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 
+/// Whether the file at `path` starts as a Radiance RGBE image.
+fn starts_rgbe(path: &std::path::Path) -> bool {
+    let mut head = [0u8; 2];
+    crate::io::open_regular(path)
+        .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head))
+        .is_ok_and(|_| crate::io::is_rgbe(&head))
+}
+
 /// Reads an `<emitter>` nested in a shape: it must be `area`.
 pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<AreaEmitterDesc> {
     let ty = plugin_type(ctx, e)?;
@@ -99,7 +107,10 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
                     SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
                 )
             })?;
-            let filename = ctx.readable_file(e, &name, Some(&EXR_MAGIC))?;
+            // OpenEXR or Radiance RGBE (`.hdr`): the OpenEXR magic is asked for unless the
+            // file starts as an RGBE one.
+            let rgbe = ctx.readable_file(e, &name, None).is_ok_and(|f| starts_rgbe(&f));
+            let filename = ctx.readable_file(e, &name, (!rgbe).then_some(&EXR_MAGIC[..]))?;
             let scale = p.float("scale")?.unwrap_or(1.0);
             EmitterDesc::EnvMap {
                 filename,

@@ -1,4 +1,4 @@
-//! `<shape>`: `rectangle`, `cube`, `disk`, `sphere` and the mesh files `obj`, `ply` and
+//! `<shape>`: `rectangle`, `cube`, `disk`, `sphere`, `cylinder` and the mesh files `obj`, `ply` and
 //! `serialized`, each with an optional BSDF (or `<ref>`) and an optional `area` emitter.
 
 use super::bsdf::read_bsdf_or_ref;
@@ -58,6 +58,13 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
                 return Err(p.invalid("radius", e, "must be positive"));
             }
             ShapeKind::Sphere { center, radius }
+        }
+        "cylinder" => {
+            // Mitsuba 3's defaults: the unit-radius tube from the origin to (0, 0, 1).
+            let p0 = p.point("p0")?.unwrap_or(Vec3::ZERO);
+            let p1 = p.point("p1")?.unwrap_or(Vec3::Z);
+            let radius = p.float("radius")?.unwrap_or(1.0);
+            ShapeKind::Cylinder { p0, p1, radius }
         }
         "obj" | "ply" | "serialized" => mesh_file(ctx, e, ty, &mut p)?,
         other => return Err(unknown_plugin(ctx, e, other)),

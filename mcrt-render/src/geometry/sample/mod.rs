@@ -106,6 +106,7 @@ impl Geometry {
             Some(ShapeData::Mesh(m)) => m.area,
             Some(ShapeData::Sphere { radius, .. }) => 4.0 * PI * radius * radius,
             Some(ShapeData::Disk(d)) => d.area,
+            Some(ShapeData::Cylinder(c)) => c.area(),
             None => 0.0,
         }
     }
@@ -136,6 +137,7 @@ impl Geometry {
                     + d.to_world.matrix3.y_axis.length_squared())
                 .sqrt(),
             )),
+            ShapeData::Cylinder(c) => Some(c.bounding_sphere()),
         }
     }
 
@@ -177,6 +179,11 @@ impl Geometry {
                     pdf,
                 })
             }
+            ShapeData::Cylinder(c) => {
+                let s = c.sample_area(u);
+                let pdf = area_to_solid_angle(s.pdf, reference, s.p, s.n)?;
+                Some(ShapeSample { pdf, ..s })
+            }
         }
     }
 
@@ -202,6 +209,10 @@ impl Geometry {
             ShapeData::Disk(d) => {
                 let q = UniformDiskConcentric.sample(u);
                 (d.to_world.transform_point3(q.extend(0.0)), d.normal)
+            }
+            ShapeData::Cylinder(c) => {
+                let s = c.sample_area(u);
+                (s.p, s.n)
             }
         };
         p.is_finite().then_some(ShapeSample {
@@ -230,6 +241,9 @@ impl Geometry {
                 sphere::pdf(center, radius, reference, at.0)
             }
             Some(ShapeData::Disk(d)) => area_to_solid_angle(1.0 / d.area, reference, at.0, at.1),
+            Some(ShapeData::Cylinder(c)) => {
+                area_to_solid_angle(1.0 / c.area(), reference, at.0, at.1)
+            }
             None => None,
         };
         pdf.unwrap_or(0.0)
