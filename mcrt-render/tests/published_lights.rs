@@ -32,9 +32,20 @@ fn data(name: &str) -> PathBuf {
 
 /// The largest `(|mean − ref| − ALLOWANCE·ref) / σ` over bright blocks and channels (the
 /// blocks and σ of `compare_blocks`).
-fn worst_z_beyond(img: &[Vec3], var: &[Vec3], reference: &[Vec3], ref_var: &[Vec3], w: u32, h: u32) -> f64 {
+fn worst_z_beyond(
+    img: &[Vec3],
+    var: &[Vec3],
+    reference: &[Vec3],
+    ref_var: &[Vec3],
+    w: u32,
+    h: u32,
+) -> f64 {
     let n = img.len() as f64;
-    let ref_mean = reference.iter().map(|v| f64::from(v.element_sum())).sum::<f64>() / (3.0 * n);
+    let ref_mean = reference
+        .iter()
+        .map(|v| f64::from(v.element_sum()))
+        .sum::<f64>()
+        / (3.0 * n);
     let mut worst = 0.0f64;
     for by in 0..h / BLOCK {
         for bx in 0..w / BLOCK {
@@ -56,7 +67,11 @@ fn worst_z_beyond(img: &[Vec3], var: &[Vec3], reference: &[Vec3], ref_var: &[Vec
             for c in 0..3 {
                 let dev = ((m[c] - r[c]).abs() - ALLOWANCE * r[c].abs()).max(0.0) / k;
                 let z = dev / (v[c] / (k * k)).sqrt();
-                worst = if z.is_nan() { f64::INFINITY } else { worst.max(z) };
+                worst = if z.is_nan() {
+                    f64::INFINITY
+                } else {
+                    worst.max(z)
+                };
             }
         }
     }
@@ -86,7 +101,11 @@ fn check(scene: &str, reference: &str, min_blocks: usize) {
     let ref_var: Vec<Vec3> = var.iter().map(|v| *v * scale).collect();
     let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, BLOCK, 0.05, 0.01);
     assert_eq!(r.non_finite, 0, "{scene}: NaN or infinite pixels");
-    assert!(r.blocks >= min_blocks, "{scene}: only {} blocks compared", r.blocks);
+    assert!(
+        r.blocks >= min_blocks,
+        "{scene}: only {} blocks compared",
+        r.blocks
+    );
     let worst_z = worst_z_beyond(&img, &var, &rf, &ref_var, w, h);
     println!(
         "{scene}: worst |z| beyond 1% {worst_z:.2} (critical {:.2}), worst block {:.1}%, mean ratio {}",
@@ -124,4 +143,17 @@ fn cylinders_match_mitsuba() {
 #[test]
 fn rgbe_envmap_and_bitmap_match_mitsuba() {
     check("hdr.xml", "hdr.exr", 30);
+}
+
+/// Textured `area` emission: a checkerboard `radiance` on a rectangle and a PNG (through
+/// `<ref name="radiance">`) on a cube, seen directly and lighting the floor.
+#[test]
+fn textured_area_emission_matches_mitsuba() {
+    check("textured-area.xml", "textured-area.exr", 20);
+}
+
+/// A `spot` with a `texture` and a `projector` (its image, `scale`, `fov` along `y`).
+#[test]
+fn textured_spot_and_projector_match_mitsuba() {
+    check("spot-projector.xml", "spot-projector.exr", 20);
 }

@@ -471,6 +471,12 @@ pub struct ShapeDesc {
     pub bsdf: BsdfDesc,
     /// The area emitter on the shape's front side, if any.
     pub emitter: Option<AreaEmitterDesc>,
+    /// The area emitter's radiance as a texture (`bitmap` or `checkerboard`), looked up at
+    /// the texture coordinates of each point ([`Geometry::tex_coords`]); then
+    /// `emitter.radiance` holds the texture's mean, for the choice among lights.
+    ///
+    /// [`Geometry::tex_coords`]: crate::geometry::Geometry::tex_coords
+    pub emission_texture: Option<Texture>,
 }
 
 impl ShapeDesc {
@@ -484,6 +490,7 @@ impl ShapeDesc {
             flip_normals: false,
             bsdf: BsdfDesc::default(),
             emitter: None,
+            emission_texture: None,
         }
     }
 }
@@ -772,6 +779,29 @@ pub enum EmitterDesc {
         irradiance: Vec3,
         /// Unit direction the light travels along, world space (default +z).
         direction: Vec3,
+    },
+    /// `projector`: a pinhole that projects an image (Mitsuba 3's `projector`), a light
+    /// with a position and no area.
+    Projector {
+        /// The image: `irradiance` on the virtual image plane at distance 1 (before the
+        /// direction-dependent factor that makes a constant image light a plane evenly).
+        irradiance: Texture,
+        /// Scale on the irradiance (default 1).
+        scale: f32,
+        /// Field of view in degrees across the image's width (`fov` along `fov_axis`
+        /// converted as Mitsuba's `perspective` converts it).
+        x_fov: f32,
+        /// Light-to-world transform: the pinhole at its origin, looking along its +z, its
+        /// +x toward the image's left edge (as Mitsuba's cameras).
+        to_world: Mat4,
+    },
+    /// An emitter some of whose parameters are textures: a `spot` with a `texture`, its
+    /// image spread over the cutoff cone and multiplying the intensity.
+    Textured {
+        /// The emitter (a [`EmitterDesc::Spot`]).
+        inner: Box<EmitterDesc>,
+        /// The spot's `texture`.
+        texture: Texture,
     },
 }
 

@@ -196,12 +196,20 @@ mod tests {
         assert_eq!(t, Some(4.0));
         let t = c.hit(Vec3::new(0.0, 0.0, 0.5), Vec3::X * 2.0, f32::INFINITY);
         assert_eq!(t, Some(0.5));
-        assert_eq!(c.hit(Vec3::new(-5.0, 0.0, 1.5), Vec3::X, f32::INFINITY), None);
-        assert_eq!(c.hit(Vec3::new(0.0, 0.5, -3.0), Vec3::Z, f32::INFINITY), None);
+        assert_eq!(
+            c.hit(Vec3::new(-5.0, 0.0, 1.5), Vec3::X, f32::INFINITY),
+            None
+        );
+        assert_eq!(
+            c.hit(Vec3::new(0.0, 0.5, -3.0), Vec3::Z, f32::INFINITY),
+            None
+        );
         assert_eq!(c.hit(Vec3::new(-5.0, 0.0, 0.5), Vec3::X, 4.0), None);
         // Through the open end: misses the near wall (z < 0 there), hits the far one inside.
         let d = Vec3::new(1.0, 0.0, 0.4);
-        let t = c.hit(Vec3::new(-1.5, 0.0, -0.25), d, f32::INFINITY).unwrap();
+        let t = c
+            .hit(Vec3::new(-1.5, 0.0, -0.25), d, f32::INFINITY)
+            .unwrap();
         assert!(t.is_finite() && (t - 2.5).abs() < 1e-6, "{t}");
     }
 
@@ -226,7 +234,9 @@ mod tests {
         assert!((s.n - Vec3::X).length() < 1e-6);
         assert!((s.pdf * TAU * 0.5 * 2.0 - 1.0).abs() < 1e-6);
         let (sc, sr) = c.bounding_sphere();
-        assert!((sc - Vec3::new(1.0, 2.0, 4.0)).length() < 1e-6 && (sr - 1.25f32.sqrt()).abs() < 1e-6);
+        assert!(
+            (sc - Vec3::new(1.0, 2.0, 4.0)).length() < 1e-6 && (sr - 1.25f32.sqrt()).abs() < 1e-6
+        );
     }
 
     #[test]

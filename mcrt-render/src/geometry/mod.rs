@@ -243,21 +243,14 @@ impl Geometry {
                 let n = (p - center).normalize_or(Vec3::Z);
                 p = center + radius * n;
                 let ng = if flip { -n } else { n };
-                // (φ, θ) of the object-space normal, as Mitsuba 3.
-                let frame = self.uv_frames.get(id.shape as usize);
-                let n = frame.map_or(n, |f| (*f * n).normalize_or(n));
-                let phi = n.y.atan2(n.x);
-                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-                uv = Vec2::new(phi / (2.0 * PI), n.z.clamp(-1.0, 1.0).acos() / PI);
+                uv = self.sphere_uv(id.shape, n);
                 (ng, ng)
             }
             ShapeData::Disk(d) => {
                 let local = d.to_object.transform_point3(p);
                 let local = Vec3::new(local.x, local.y, 0.0);
                 p = d.to_world.transform_point3(local);
-                let phi = local.y.atan2(local.x);
-                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-                uv = Vec2::new(local.truncate().length(), phi / (2.0 * PI));
+                uv = disk_uv(local);
                 (d.normal, d.normal)
             }
             ShapeData::Cylinder(c) => {
@@ -276,6 +269,27 @@ impl Geometry {
             uv,
         }
     }
+}
+
+impl Geometry {
+    /// A sphere's surface coordinates: (φ/2π, θ/π) of the object-space normal of the world
+    /// normal `n` of shape `shape`, as Mitsuba 3.
+    #[inline(always)]
+    fn sphere_uv(&self, shape: u32, n: Vec3) -> Vec2 {
+        let frame = self.uv_frames.get(shape as usize);
+        let n = frame.map_or(n, |f| (*f * n).normalize_or(n));
+        let phi = n.y.atan2(n.x);
+        let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+        Vec2::new(phi / (2.0 * PI), n.z.clamp(-1.0, 1.0).acos() / PI)
+    }
+}
+
+/// A disk's surface coordinates (r, φ/2π) of the object-space point `local` (z = 0).
+#[inline(always)]
+fn disk_uv(local: Vec3) -> Vec2 {
+    let phi = local.y.atan2(local.x);
+    let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+    Vec2::new(local.truncate().length(), phi / (2.0 * PI))
 }
 
 /// The unit front normal of a triangle (zero for other primitives), as hits report it.

@@ -10,5 +10,5 @@ mod rgbe;
 pub(crate) use exr::err;
 pub use exr::{read_exr, read_exr_at_most, ImageError};
 pub(crate) use file::{canonical, open_regular, read_capped};
-pub(crate) use rgbe::{is_rgbe, read_rgbe};
 pub use file::{MAX_OBJ_BYTES, MAX_SCENE_BYTES};
+pub(crate) use rgbe::{is_rgbe, read_rgbe};

@@ -65,7 +65,12 @@ mod tests {
     /// exponent 0 is black whatever the mantissas.
     #[test]
     fn values_and_layout() {
-        let px = [[128, 64, 255, 129], [7, 7, 7, 0], [128, 0, 0, 128], [0, 1, 2, 140]];
+        let px = [
+            [128, 64, 255, 129],
+            [7, 7, 7, 0],
+            [128, 0, 0, 128],
+            [0, 1, 2, 140],
+        ];
         let (w, h, got) = read_rgbe(&flat(2, 2, &px), 100, |_, _, _| Ok(())).unwrap();
         assert_eq!((w, h), (2, 2));
         let want = [
@@ -82,7 +87,9 @@ mod tests {
     #[test]
     fn refusals() {
         let f = flat(2, 2, &[[1, 1, 1, 128]; 4]);
-        assert!(read_rgbe(&f, 3, |_, _, _| Ok(())).unwrap_err().contains("more than"));
+        assert!(read_rgbe(&f, 3, |_, _, _| Ok(()))
+            .unwrap_err()
+            .contains("more than"));
         let no = read_rgbe(&f, 100, |_, _, _| Err("over budget".into()));
         assert_eq!(no.unwrap_err(), "over budget");
         assert!(read_rgbe(&f[..f.len() - 3], 100, |_, _, _| Ok(())).is_err());

@@ -73,11 +73,15 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
     shape.id = e.attr("id").map(str::to_string);
     shape.to_world = p.transform("to_world")?.unwrap_or(shape.to_world);
     shape.flip_normals = p.bool("flip_normals")?.unwrap_or(false);
-    let (mut bsdf, mut emitter) = (None, None);
+    let (mut bsdf, mut emitter, mut emission_texture) = (None, None, None);
     for o in &p.objects {
         let first = match o.tag.as_str() {
             "bsdf" | "ref" => bsdf.replace(read_bsdf_or_ref(ctx, o)?).is_none(),
-            "emitter" => emitter.replace(read_area(ctx, o)?).is_none(),
+            "emitter" => {
+                let (desc, tex) = read_area(ctx, o)?;
+                emission_texture = tex;
+                emitter.replace(desc).is_none()
+            }
             _ => {
                 return Err(ctx.err(
                     o,
@@ -100,6 +104,7 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
         None => BsdfDesc::default(),
     });
     shape.emitter = emitter;
+    shape.emission_texture = emission_texture;
     validate::shape(&shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(shape)
