@@ -1,8 +1,8 @@
 //! Scene geometry in world space: ray casting, occlusion, and sampling points on shapes.
 //!
 //! [`Geometry::new`] turns the scene's [`ShapeDesc`]s into primitives: meshes, rectangles and
-//! cubes become triangles (two per rectangle or cube face, as in Mitsuba 3), spheres and
-//! disks stay analytic. An acceleration structure ([`AccelKind`]) sits on top. With the BVH,
+//! cubes become triangles (two per rectangle or cube face, as in Mitsuba 3), spheres,
+//! disks and cylinders (`cylinder.rs`) stay analytic. An acceleration structure ([`AccelKind`]) sits on top. With the BVH,
 //! two triangles of a mesh that form a planar parallelogram (every rectangle and cube face)
 //! are stored and intersected as one quad; hits still report the triangle and its
 //! barycentrics (`docs/geometry.md`, "Quads").
@@ -21,15 +21,15 @@
 //!   normals where it has them, else equals `ng`; it is negated by `flip_normals` too.
 //! - [`SurfacePoint::uv`]: barycentric weights (b₁, b₂) of vertices 1 and 2 for triangles; for spheres
 //!   (φ/2π, θ/π) of the object-space normal (the `to_world` rotation undone); for disks
-//!   (r, φ/2π).
+//!   (r, φ/2π); for cylinders (φ/2π, z/L) in their local frame.
 //!
 //! # Shape sampling
 //! See [`Geometry::sample_shape`]: densities are per unit solid angle at the reference point.
 //! Spheres are sampled by the cone they subtend
 //! ([`UniformCone`](mcrt::sampling::warp::UniformCone)), mesh triangles (chosen by area)
 //! by [`SphericalTriangle`](mcrt::sampling::warp::SphericalTriangle), rectangles by
-//! [`SphericalRectangle`](mcrt::sampling::warp::SphericalRectangle), disks uniformly by
-//! area; uniform area sampling converted to solid angle is the fallback for tiny or sliver
+//! [`SphericalRectangle`](mcrt::sampling::warp::SphericalRectangle), disks and cylinders
+//! uniformly by area; uniform area sampling converted to solid angle is the fallback for tiny or sliver
 //! solid angles, references inside spheres and sheared rectangles (`docs/geometry.md`).
 //!
 //! ```
