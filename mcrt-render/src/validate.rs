@@ -488,6 +488,33 @@ pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
             colour("irradiance", *irradiance)?;
             emission_power("irradiance", *irradiance, PI64)
         }
+        EmitterDesc::Textured { inner, .. } => {
+            if !matches!(**inner, EmitterDesc::Spot { .. }) {
+                return Err(invalid("texture", "is a parameter of spot lights only"));
+            }
+            emitter(inner)
+        }
+        EmitterDesc::Projector {
+            scale,
+            x_fov,
+            to_world,
+            ..
+        } => {
+            if !(x_fov.is_finite() && *x_fov > 0.0 && *x_fov < 180.0) {
+                return Err(invalid("fov", "must lie in (0, 180) degrees"));
+            }
+            if !(scale.is_finite() && *scale >= 0.0) {
+                return Err(invalid("scale", "must be finite and non-negative"));
+            }
+            transform("to_world", to_world)?;
+            if !is_similarity(to_world) {
+                return Err(invalid(
+                    "to_world",
+                    "must be a rotation, uniform scale and translation for a projector",
+                ));
+            }
+            Ok(())
+        }
     }
 }
 
@@ -517,6 +544,17 @@ pub fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
     if let ShapeKind::Sphere { center, radius } = s.kind {
         if !center.is_finite() {
             return Err(invalid("center", "must be finite"));
+        }
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(invalid("radius", "must be finite and positive"));
+        }
+    }
+    if let ShapeKind::Cylinder { p0, p1, radius } = s.kind {
+        if !(p0.is_finite() && p1.is_finite()) {
+            return Err(invalid("p0", "and p1 must be finite"));
+        }
+        if p0 == p1 {
+            return Err(invalid("p1", "must differ from p0"));
         }
         if !(radius.is_finite() && radius > 0.0) {
             return Err(invalid("radius", "must be finite and positive"));

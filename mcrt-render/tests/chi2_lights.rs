@@ -2,7 +2,7 @@
 //! from a shading point toward an emitting shape, drawn with `Geometry::sample_shape` and
 //! checked against `Geometry::shape_pdf` (per steradian) — a sphere by its cone, the Cornell
 //! box's rectangle light by spherical rectangle and by area, a cube (a 12-triangle mesh: a
-//! triangle by area, then a spherical triangle) and a disk by area.
+//! triangle by area, then a spherical triangle), a disk and a cylinder by area.
 //!
 //! A sample counts only if its point is what a ray from the reference toward it hits first:
 //! points on the far side of the cube are hidden by its near side (the renderer's shadow ray
@@ -152,4 +152,19 @@ fn disk_light_by_area() {
     );
     let g = geometry(ShapeKind::Disk, m, ShapeSampling::SolidAngle);
     check("light-disk", &g, Vec3::new(0.4, -0.5, 0.3));
+}
+
+/// Mitsuba 3's `cylinder` (an open tube), sampled uniformly by area, from a point outside
+/// where the near wall hides most of the far one and the inner wall shows through an open
+/// end.
+#[test]
+fn cylinder_light_by_area() {
+    let m = Mat4::from_rotation_x(0.7) * Mat4::from_translation(Vec3::new(0.0, 0.5, 0.0));
+    let kind = ShapeKind::Cylinder {
+        p0: Vec3::new(0.0, 0.0, -0.5),
+        p1: Vec3::new(0.2, 0.1, 0.8),
+        radius: 0.4,
+    };
+    let g = geometry(kind, m, ShapeSampling::SolidAngle);
+    check("light-cylinder", &g, Vec3::new(1.2, -0.6, 1.6));
 }

@@ -464,8 +464,10 @@ fn texture_errors() {
             3, "<texture type=\"checkerboard\" name=\"alpha\">", "a texture for \"alpha\""),
         ("<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.5\"/>\n<texture type=\"checkerboard\" name=\"reflectance\"/></bsdf>".into(),
             3, "<texture type=\"checkerboard\"", "\"reflectance\" given twice"),
-        ("<shape type=\"cube\"><emitter type=\"area\">\n<texture type=\"checkerboard\" name=\"radiance\"/></emitter></shape>".into(),
-            3, "<texture type=\"checkerboard\" name=\"radiance\">", "a texture for \"radiance\" here"),
+        // (An area emitter's `radiance` takes a texture since issue 25; a point light's
+        // `intensity` does not.)
+        ("<emitter type=\"point\">\n<texture type=\"checkerboard\" name=\"intensity\"/></emitter>".into(),
+            3, "<texture type=\"checkerboard\" name=\"intensity\">", "a texture for \"intensity\" here"),
         ("<texture type=\"checkerboard\">\n<texture type=\"checkerboard\" name=\"color0\"/></texture>".into(),
             3, "<texture type=\"checkerboard\" name=\"color0\">", "a texture for \"color0\" here"),
         ("<bsdf type=\"twosided\">\n<texture type=\"checkerboard\" name=\"reflectance\"/><bsdf type=\"diffuse\"/></bsdf>".into(),

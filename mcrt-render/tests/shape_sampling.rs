@@ -201,6 +201,28 @@ fn disks() {
     check("disk far", &d, Vec3::new(-2.0, 1.0, 3.0), 13);
 }
 
+/// Mitsuba 3's `cylinder`, an open tube: from outside (its inner wall seen through an end),
+/// far away, and from inside, under a rotation, uniform scale and translation.
+#[test]
+fn cylinders() {
+    let c = vec![with(
+        ShapeKind::Cylinder {
+            p0: Vec3::new(0.1, -0.3, 0.0),
+            p1: Vec3::new(-0.2, 0.4, 0.9),
+            radius: 0.35,
+        },
+        Mat4::from_scale_rotation_translation(
+            Vec3::splat(1.3),
+            Quat::from_axis_angle(Vec3::new(1.0, 2.0, 0.5).normalize(), 0.8),
+            Vec3::new(0.2, -0.1, 0.0),
+        ),
+    )];
+    check("cylinder near", &c, Vec3::new(0.9, 0.3, 1.4), 14);
+    check("cylinder far", &c, Vec3::new(-3.0, 2.0, 4.0), 15);
+    let inside = c[0].to_world.transform_point3(Vec3::new(0.0, 0.0, 0.4));
+    check("cylinder inside", &c, inside, 16);
+}
+
 #[test]
 fn extreme_sample_values_stay_finite() {
     let shapes = vec![
@@ -211,10 +233,15 @@ fn extreme_sample_values_stay_finite() {
             center: Vec3::ZERO,
             radius: 1.0,
         }),
+        ShapeDesc::new(ShapeKind::Cylinder {
+            p0: Vec3::ZERO,
+            p1: Vec3::Z,
+            radius: 1.0,
+        }),
     ];
     let g = Geometry::new(&shapes, None, AccelKind::Bvh).unwrap();
     let edge = [0.0, 0.5, 1.0 - 2f32.powi(-24)];
-    for shape in 0..4 {
+    for shape in 0..5 {
         for reference in [Vec3::new(0.3, 2.0, 3.0), Vec3::new(0.0, 0.0, 0.1)] {
             for &a in &edge {
                 for &b in &edge {
@@ -246,10 +273,22 @@ fn areas() {
             radius: 2.0,
         }),
         with(ShapeKind::Disk, Mat4::from_scale(Vec3::new(2.0, 3.0, 5.0))),
+        // Radius 0.5 × 2, length 3 × 2 (the scale along the axis too): 2π · 1 · 6.
+        with(
+            ShapeKind::Cylinder {
+                p0: Vec3::ZERO,
+                p1: Vec3::new(0.0, 3.0, 0.0),
+                radius: 0.5,
+            },
+            Mat4::from_scale(Vec3::splat(2.0)),
+        ),
     ];
     let g = Geometry::new(&shapes, None, AccelKind::Bvh).unwrap();
     let pi = std::f32::consts::PI;
-    for (i, want) in [4.0, 24.0, pi, 16.0 * pi, 6.0 * pi].into_iter().enumerate() {
+    for (i, want) in [4.0, 24.0, pi, 16.0 * pi, 6.0 * pi, 12.0 * pi]
+        .into_iter()
+        .enumerate()
+    {
         let a = g.shape_area(i as u32);
         assert!(
             a.is_finite() && (a - want).abs() < 1e-4 * want,

@@ -412,6 +412,17 @@ pub enum ShapeKind {
         /// Radius (default 1).
         radius: f32,
     },
+    /// `cylinder`: an open tube (no caps) of radius `radius` about the segment from `p0` to
+    /// `p1` (applied before `to_world`), normals pointing outwards. `to_world` may rotate,
+    /// translate, scale uniformly, and scale along the axis; nothing else.
+    Cylinder {
+        /// Start of the axis (default origin).
+        p0: Vec3,
+        /// End of the axis (default (0, 0, 1)).
+        p1: Vec3,
+        /// Radius (default 1).
+        radius: f32,
+    },
     /// `obj`: a triangle mesh read from a Wavefront OBJ file.
     Obj {
         /// The file, as found on the scene's search path (its `<path>` folders, its folder,
@@ -473,6 +484,12 @@ pub struct ShapeDesc {
     pub bsdf: BsdfDesc,
     /// The area emitter on the shape's front side, if any.
     pub emitter: Option<AreaEmitterDesc>,
+    /// The area emitter's radiance as a texture (`bitmap` or `checkerboard`), looked up at
+    /// the texture coordinates of each point ([`Geometry::tex_coords`]); then
+    /// `emitter.radiance` holds the texture's mean, for the choice among lights.
+    ///
+    /// [`Geometry::tex_coords`]: crate::geometry::Geometry::tex_coords
+    pub emission_texture: Option<Texture>,
 }
 
 impl ShapeDesc {
@@ -486,6 +503,7 @@ impl ShapeDesc {
             flip_normals: false,
             bsdf: BsdfDesc::default(),
             emitter: None,
+            emission_texture: None,
         }
     }
 }
@@ -757,6 +775,29 @@ pub enum EmitterDesc {
         irradiance: Vec3,
         /// Unit direction the light travels along, world space (default +z).
         direction: Vec3,
+    },
+    /// `projector`: a pinhole that projects an image (Mitsuba 3's `projector`), a light
+    /// with a position and no area.
+    Projector {
+        /// The image: `irradiance` on the virtual image plane at distance 1 (before the
+        /// direction-dependent factor that makes a constant image light a plane evenly).
+        irradiance: Texture,
+        /// Scale on the irradiance (default 1).
+        scale: f32,
+        /// Field of view in degrees across the image's width (`fov` along `fov_axis`
+        /// converted as Mitsuba's `perspective` converts it).
+        x_fov: f32,
+        /// Light-to-world transform: the pinhole at its origin, looking along its +z, its
+        /// +x toward the image's left edge (as Mitsuba's cameras).
+        to_world: Mat4,
+    },
+    /// An emitter some of whose parameters are textures: a `spot` with a `texture`, its
+    /// image spread over the cutoff cone and multiplying the intensity.
+    Textured {
+        /// The emitter (a [`EmitterDesc::Spot`]).
+        inner: Box<EmitterDesc>,
+        /// The spot's `texture`.
+        texture: Texture,
     },
 }
 

@@ -48,6 +48,7 @@ fn push_prims(out: &mut Built, shape: u32, data: &ShapeData) {
         &ShapeData::Sphere { center, radius, .. } => push(Prim::Sphere { center, radius }, 0),
         ShapeData::Disk(_) => push(Prim::Disk(shape), 0),
         ShapeData::Instance => {}
+        ShapeData::Cylinder(_) => push(Prim::Cylinder(shape), 0),
     }
 }
 
@@ -126,6 +127,9 @@ fn shape_data(
         // Its group is built on its own (`geometry/instances.rs`).
         ShapeKind::Instance(_) => ShapeData::Instance,
         ShapeKind::Disk => disk(m, flip),
+        &ShapeKind::Cylinder { p0, p1, radius } => ShapeData::Cylinder(
+            super::cylinder::CylinderData::new(i, m, p0, p1, radius, flip)?,
+        ),
         // Read by `file_mesh::build` above.
         ShapeKind::Obj { .. } | ShapeKind::Ply { .. } | ShapeKind::Serialized { .. } => {
             return Err(GeometryError::InvalidShape {

@@ -2,6 +2,7 @@
 //! descriptions and as the ray queries (`query/`) and the shape samplers (`sample/`) read
 //! it: primitives, per-shape data, and the packing of a triangle mesh.
 
+use super::cylinder::CylinderData;
 use super::error::GeometryError;
 use super::query::scalar::TriSoa;
 use super::sample::rectangle::RectangleSampler;
@@ -16,8 +17,10 @@ pub(crate) enum Prim {
     Tri(TriSoa),
     /// A sphere.
     Sphere { center: Vec3, radius: f32 },
-    /// A disk: index into `disks`.
+    /// A disk: index of its shape.
     Disk(u32),
+    /// A cylinder: index of its shape.
+    Cylinder(u32),
 }
 
 /// Which shape a primitive belongs to, and its index within that shape.
@@ -69,6 +72,7 @@ pub(crate) enum ShapeData {
     /// An instance of a shape group: no primitives of its own (its group's shapes follow
     /// the scene's in the numbering, `description::instancing`).
     Instance,
+    Cylinder(CylinderData),
 }
 
 /// Everything built from the descriptions, primitives in input order.

@@ -1,8 +1,8 @@
 //! Scene geometry in world space: ray casting, occlusion, and sampling points on shapes.
 //!
 //! [`Geometry::new`] turns the scene's [`ShapeDesc`]s into primitives: meshes, rectangles and
-//! cubes become triangles (two per rectangle or cube face, as in Mitsuba 3), spheres and
-//! disks stay analytic. An acceleration structure ([`AccelKind`]) sits on top. With the BVH,
+//! cubes become triangles (two per rectangle or cube face, as in Mitsuba 3), spheres,
+//! disks and cylinders (`cylinder.rs`) stay analytic. An acceleration structure ([`AccelKind`]) sits on top. With the BVH,
 //! two triangles of a mesh that form a planar parallelogram (every rectangle and cube face)
 //! are stored and intersected as one quad; hits still report the triangle and its
 //! barycentrics (`docs/geometry.md`, "Quads").
@@ -21,15 +21,15 @@
 //!   normals where it has them, else equals `ng`; it is negated by `flip_normals` too.
 //! - [`SurfacePoint::uv`]: barycentric weights (b₁, b₂) of vertices 1 and 2 for triangles; for spheres
 //!   (φ/2π, θ/π) of the object-space normal (the `to_world` rotation undone); for disks
-//!   (r, φ/2π).
+//!   (r, φ/2π); for cylinders (φ/2π, z/L) in their local frame.
 //!
 //! # Shape sampling
 //! See [`Geometry::sample_shape`]: densities are per unit solid angle at the reference point.
 //! Spheres are sampled by the cone they subtend
 //! ([`UniformCone`](mcrt::sampling::warp::UniformCone)), mesh triangles (chosen by area)
 //! by [`SphericalTriangle`](mcrt::sampling::warp::SphericalTriangle), rectangles by
-//! [`SphericalRectangle`](mcrt::sampling::warp::SphericalRectangle), disks uniformly by
-//! area; uniform area sampling converted to solid angle is the fallback for tiny or sliver
+//! [`SphericalRectangle`](mcrt::sampling::warp::SphericalRectangle), disks and cylinders
+//! uniformly by area; uniform area sampling converted to solid angle is the fallback for tiny or sliver
 //! solid angles, references inside spheres and sheared rectangles (`docs/geometry.md`).
 //!
 //! ```
@@ -49,6 +49,7 @@
 //! ```
 
 mod build;
+mod cylinder;
 mod data;
 mod error;
 mod file_mesh;
@@ -313,25 +314,23 @@ impl Geometry {
                 let n = (p - center).normalize_or(Vec3::Z);
                 p = center + radius * n;
                 let ng = if flip { -n } else { n };
-                // (φ, θ) of the object-space normal, as Mitsuba 3.
-                let frame = self.uv_frames.get(id.shape as usize);
-                let n = frame.map_or(n, |f| (*f * n).normalize_or(n));
-                let phi = n.y.atan2(n.x);
-                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-                uv = Vec2::new(phi / (2.0 * PI), n.z.clamp(-1.0, 1.0).acos() / PI);
+                uv = self.sphere_uv(id.shape, n);
                 (ng, ng)
             }
             ShapeData::Disk(d) => {
                 let local = d.to_object.transform_point3(p);
                 let local = Vec3::new(local.x, local.y, 0.0);
                 p = d.to_world.transform_point3(local);
-                let phi = local.y.atan2(local.x);
-                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-                uv = Vec2::new(local.truncate().length(), phi / (2.0 * PI));
+                uv = disk_uv(local);
                 (d.normal, d.normal)
             }
             // Never stored as a primitive.
             ShapeData::Instance => (Vec3::Z, Vec3::Z),
+            ShapeData::Cylinder(c) => {
+                let (q, n, st) = c.surface(p);
+                (p, uv) = (q, st);
+                (n, n)
+            }
         };
         SurfacePoint {
             p,
@@ -343,4 +342,25 @@ impl Geometry {
             uv,
         }
     }
+}
+
+impl Geometry {
+    /// A sphere's surface coordinates: (φ/2π, θ/π) of the object-space normal of the world
+    /// normal `n` of shape `shape`, as Mitsuba 3.
+    #[inline(always)]
+    fn sphere_uv(&self, shape: u32, n: Vec3) -> Vec2 {
+        let frame = self.uv_frames.get(shape as usize);
+        let n = frame.map_or(n, |f| (*f * n).normalize_or(n));
+        let phi = n.y.atan2(n.x);
+        let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+        Vec2::new(phi / (2.0 * PI), n.z.clamp(-1.0, 1.0).acos() / PI)
+    }
+}
+
+/// A disk's surface coordinates (r, φ/2π) of the object-space point `local` (z = 0).
+#[inline(always)]
+fn disk_uv(local: Vec3) -> Vec2 {
+    let phi = local.y.atan2(local.x);
+    let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+    Vec2::new(local.truncate().length(), phi / (2.0 * PI))
 }

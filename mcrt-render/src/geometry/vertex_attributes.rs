@@ -2,7 +2,7 @@
 
 use super::data::ShapeData;
 use super::Geometry;
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 use mcrt::integrator::SurfacePoint;
 
 impl Geometry {
@@ -42,6 +42,52 @@ impl Geometry {
             }
             _ => uv,
         }
+    }
+
+    /// The texture coordinates ([`Geometry::tex_coords`]) of the point `p` that
+    /// [`Geometry::sample_shape`] or [`Geometry::sample_area`] returned for shape `shape`
+    /// with `u_pick` (which chose the triangle of a mesh): for textured emission at sampled
+    /// points. `Vec2::ZERO` for an index out of range.
+    pub fn sample_tex_coords(&self, shape: u32, u_pick: f32, p: Vec3) -> Vec2 {
+        match self.shapes.get(shape as usize) {
+            Some(ShapeData::Mesh(m)) if m.rectangle.is_some() && m.positions.len() == 4 => {
+                // Mitsuba's rectangle: uv = (s, t) of p = p₀ + s (p₁ − p₀) + t (p₃ − p₀).
+                let [a, b, _, d] = [0, 1, 2, 3].map(|i| m.positions[i]);
+                barycentric(p - a, b - a, d - a)
+            }
+            Some(ShapeData::Mesh(m)) => {
+                let Some(k) = m.pick.as_ref().map(|t| t.sample_with_pmf(u_pick).0) else {
+                    return Vec2::ZERO;
+                };
+                let [a, b, c] = m.indices[k].map(|v| m.positions[v as usize]);
+                let w = barycentric(p - a, b - a, c - a);
+                self.tex_coords_at(shape, k as u32, w)
+            }
+            Some(&ShapeData::Sphere { center, .. }) => {
+                self.sphere_uv(shape, (p - center).normalize_or(Vec3::Z))
+            }
+            Some(ShapeData::Disk(d)) => {
+                let local = d.to_object.transform_point3(p);
+                super::disk_uv(Vec3::new(local.x, local.y, 0.0))
+            }
+            Some(ShapeData::Cylinder(c)) => c.surface_uv(p),
+            // An instance emits nothing (emitters in shape groups are refused).
+            Some(ShapeData::Instance) | None => Vec2::ZERO,
+        }
+    }
+}
+
+/// The coordinates `(s, t)` of `v = s e₁ + t e₂` (least squares, for `v` in the plane of the
+/// edges); zero for degenerate edges.
+fn barycentric(v: Vec3, e1: Vec3, e2: Vec3) -> Vec2 {
+    let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let (d20, d21) = (v.dot(e1), v.dot(e2));
+    let det = d00 * d11 - d01 * d01;
+    let st = Vec2::new(d11 * d20 - d01 * d21, d00 * d21 - d01 * d20) / det;
+    if st.is_finite() {
+        st
+    } else {
+        Vec2::ZERO
     }
 }
 

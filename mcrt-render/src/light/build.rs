@@ -2,7 +2,7 @@
 //! choice of lights and the sampling plan.
 
 use super::choice::{LightChoice, LightPlace};
-use super::{mean, EnvMap, Light, LightError, Lights, SamplePlan, Spot};
+use super::{mean, EnvMap, Light, LightError, Lights, Projector, SamplePlan, Spot};
 use crate::description::{EmitterDesc, SceneDescription};
 use crate::geometry::{Geometry, RectangleSampler, ShapeSampling};
 use std::f32::consts::PI;
@@ -14,6 +14,18 @@ impl Lights {
         let mut lights = Vec::new();
         let mut power = Vec::new();
         let mut shape_light = vec![None; desc.shapes.len()];
+        let shape_texture: Vec<Option<crate::texture::Texture>> = if desc
+            .shapes
+            .iter()
+            .any(|s| s.emitter.is_some() && s.emission_texture.is_some())
+        {
+            desc.shapes
+                .iter()
+                .map(|s| s.emitter.and(s.emission_texture.clone()))
+                .collect()
+        } else {
+            Vec::new()
+        };
         for (i, s) in desc.shapes.iter().enumerate() {
             if let Some(e) = &s.emitter {
                 shape_light[i] = Some(lights.len() as u32);
@@ -49,6 +61,36 @@ impl Lights {
                     has_delta = true;
                     power.push(spot.power());
                     lights.push(Light::Spot(Box::new(spot)));
+                }
+                EmitterDesc::Textured { inner, texture } => {
+                    let EmitterDesc::Spot {
+                        intensity,
+                        cutoff_angle,
+                        beam_width,
+                        to_world,
+                    } = **inner
+                    else {
+                        return Err(LightError::Spot(
+                            "only a spot light takes a texture here".into(),
+                        ));
+                    };
+                    let spot = Spot::new(intensity, cutoff_angle, beam_width, to_world)?
+                        .with_texture(texture.clone(), to_world);
+                    has_delta = true;
+                    power.push(spot.power());
+                    lights.push(Light::Spot(Box::new(spot)));
+                }
+                EmitterDesc::Projector {
+                    irradiance,
+                    scale,
+                    x_fov,
+                    to_world,
+                } => {
+                    let aspect = texture_aspect(irradiance);
+                    let p = Projector::new(irradiance.clone(), aspect, *scale, *x_fov, *to_world)?;
+                    has_delta = true;
+                    power.push(p.power());
+                    lights.push(Light::Projector(Box::new(p)));
                 }
                 EmitterDesc::Directional {
                     irradiance,
@@ -115,11 +157,18 @@ impl Lights {
                     center: s.position(),
                     radius: 0.0,
                 }),
+                Light::Projector(ref p) => Some(LightPlace {
+                    center: p.position(),
+                    radius: 0.0,
+                }),
                 Light::Constant { .. } | Light::EnvMap(_) | Light::Directional { .. } => None,
             })
             .collect();
         let picker = LightChoice::new(&power, &places);
-        let lone_rectangle = single && picker.is_some() && matches!(rectangles[..], [Some(_)]);
+        let lone_rectangle = single
+            && picker.is_some()
+            && matches!(rectangles[..], [Some(_)])
+            && shape_texture.is_empty();
         let plan = match (picker.is_some(), lone_rectangle, geo.shape_sampling()) {
             (false, _, _) => SamplePlan::Nothing,
             (true, true, ShapeSampling::Area) => SamplePlan::LoneRectangleByArea,
@@ -138,6 +187,7 @@ impl Lights {
             .collect();
         Ok(Self {
             shape_radiance,
+            shape_texture,
             picker,
             plan,
             reads_pick: lights.iter().any(on_mesh),
@@ -147,6 +197,15 @@ impl Lights {
             env,
             has_delta,
         })
+    }
+}
+
+/// The width over height of a texture's image (Mitsuba's `resolution()`; 1 for a
+/// checkerboard, which has none).
+pub(crate) fn texture_aspect(t: &crate::texture::Texture) -> f32 {
+    match t {
+        crate::texture::Texture::Bitmap(b) => b.image.width() as f32 / b.image.height() as f32,
+        crate::texture::Texture::Checkerboard(_) => 1.0,
     }
 }
 
@@ -183,6 +242,7 @@ fn check_power(desc: &SceneDescription, lights: &[Light], power: &[f32]) -> Resu
             let kind = match l {
                 Light::Point { .. } => "point",
                 Light::Spot(_) => "spot",
+                Light::Projector(_) => "projector",
                 Light::Directional { .. } => "directional",
                 Light::Constant { .. } => "constant",
                 _ => "envmap",

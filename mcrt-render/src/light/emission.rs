@@ -5,6 +5,8 @@
 //!   cosine-distributed about the front normal (`pdf = cos θ / π`);
 //! - point lights: the position, a direction uniform over the sphere (`1/(4π)`);
 //! - spot lights: the position, a direction uniform in the cutoff cone;
+//! - projectors: the position, a direction through a point uniform on the image;
+//! - textured area lights: as area lights, their radiance the texture's at the point;
 //! - directional lights: the ray origin uniform on the disk of the scene's bounding
 //!   sphere's radius perpendicular to the light's direction, one radius out against it
 //!   (`1/(πR²)` per unit area), travelling along it (the choice probability alone for its
@@ -52,11 +54,12 @@ impl Lights {
         self.env
     }
 
-    /// Intensity (W/sr) that light `light`, a spot light, sends along the unit direction
+    /// Intensity (W/sr) that light `light`, a spot light or a projector, sends along the unit direction
     /// `dir`; `None` for every other light.
     pub(crate) fn spot_intensity(&self, light: u32, dir: Vec3) -> Option<Vec3> {
         match self.lights.get(light as usize)? {
             Light::Spot(spot) => Some(spot.intensity_toward(dir)),
+            Light::Projector(p) => Some(p.intensity_toward(dir)),
             _ => None,
         }
     }
@@ -79,6 +82,7 @@ impl Lights {
         match &self.lights[i] {
             &Light::Area { shape, radiance } => {
                 let s = geo.sample_area(shape, u_pick.y, u_pos)?;
+                let radiance = self.area_radiance_at(geo, shape, radiance, u_pick.y, s.p);
                 let local = CosineHemisphere.sample(u_dir);
                 let frame = mcrt::sampling::Frame::from_normal(s.n);
                 let dir = frame.to_world(local);
@@ -107,12 +111,16 @@ impl Lights {
                 pdf_pos: pick,
                 pdf_dir: 1.0 / (4.0 * PI),
             }),
-            Light::Spot(spot) => {
-                let (dir, intensity, pdf_dir) = spot.sample_direction(u_dir);
+            Light::Spot(_) | Light::Projector(_) => {
+                let ((dir, intensity, pdf_dir), position) = match &self.lights[i] {
+                    Light::Spot(s) => (s.sample_direction(u_dir), s.position()),
+                    Light::Projector(p) => (p.sample_direction(u_dir), p.position()),
+                    _ => return None,
+                };
                 Some(EmissionSample {
                     light,
                     kind: EmitterKind::Point,
-                    point: bare(spot.position(), Vec3::ZERO, u32::MAX),
+                    point: bare(position, Vec3::ZERO, u32::MAX),
                     dir,
                     radiance: intensity,
                     pdf_pos: pick,
@@ -177,6 +185,7 @@ impl Lights {
             }
             Some(Light::Point { .. }) => (pick, 1.0 / (4.0 * PI)),
             Some(Light::Spot(spot)) => (pick, spot.pdf_direction(dir)),
+            Some(Light::Projector(p)) => (pick, p.pdf_direction(dir)),
             Some(Light::Directional { .. }) => (pick, disk_pdf(world)),
             Some(Light::EnvMap(m)) => (pick * m.pdf(-dir), disk_pdf(world)),
             Some(Light::Constant { .. }) => (pick / (4.0 * PI), disk_pdf(world)),

@@ -70,6 +70,23 @@ pub struct EnvMap {
     to_local: Mat3,
 }
 
+/// The pixels of a Radiance RGBE file, within the memory budget.
+fn read_rgbe_file(path: &Path) -> Result<(u32, u32, Vec<Vec3>), String> {
+    let cap = 1 << 30;
+    let len = crate::io::open_regular(path)
+        .and_then(|f| f.metadata())
+        .map_err(|e| e.to_string())?
+        .len();
+    crate::memory::check("reading this image file", len.min(cap))?;
+    let bytes = crate::io::read_capped(path, cap).map_err(|e| e.to_string())?;
+    let file = bytes.len() as u64;
+    crate::io::read_rgbe(&bytes, MAX_TEXTURE_PIXELS, |w, h, per| {
+        // The pixels, the file, and the map's own copy and sampling table made from them.
+        let need = crate::memory::bytes(u64::from(w) * u64::from(h), 3 * per).saturating_add(file);
+        crate::memory::check(&format!("decoding this {w} × {h} environment map"), need)
+    })
+}
+
 fn luminance(c: Vec3) -> f32 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
 }
@@ -88,10 +105,22 @@ fn wrap_unit(x: f32) -> f32 {
 type Lerp = (usize, usize, f32);
 
 impl EnvMap {
-    /// Reads the map from an EXR file, with a scale on its radiance and a map-to-world
-    /// rotation.
+    /// Reads the map from an OpenEXR or a Radiance RGBE (`.hdr`) file, told apart by their
+    /// first bytes, with a scale on its radiance and a map-to-world rotation. An RGBE
+    /// file's size is checked against the memory budget ([`crate::memory`]) before its
+    /// pixels are decoded.
     pub fn load(path: &Path, scale: f32, to_world: Mat4) -> Result<Self, String> {
-        let (w, h, px) = read_exr_at_most(path, MAX_TEXTURE_PIXELS).map_err(|e| e.to_string())?;
+        let (w, h, px) = if crate::io::open_regular(path)
+            .and_then(|mut f| {
+                let mut head = [0u8; 2];
+                std::io::Read::read_exact(&mut f, &mut head).map(|_| head)
+            })
+            .is_ok_and(|head| crate::io::is_rgbe(&head))
+        {
+            read_rgbe_file(path)?
+        } else {
+            read_exr_at_most(path, MAX_TEXTURE_PIXELS).map_err(|e| e.to_string())?
+        };
         let texels: Vec<Vec3> = px.iter().map(|p| *p * scale).collect();
         Self::from_texels(w as usize, h as usize, texels, to_world)
     }

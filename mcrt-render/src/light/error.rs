@@ -18,6 +18,8 @@ pub enum LightError {
     },
     /// A spot light's parameters are out of range (the message says which).
     Spot(String),
+    /// A projector's parameters are out of range (the message says which).
+    Projector(String),
     /// A light's power (its emission times its area or solid angle, or the scene's disk for
     /// lights at infinity), or the lights' total power, is not a finite `f32`: the light
     /// could not be chosen, and would have been dropped.
@@ -39,6 +41,7 @@ impl fmt::Display for LightError {
                 write!(f, "light setup: {}: {reason}", path.display())
             }
             LightError::Spot(what) => write!(f, "light setup: spot light: {what}"),
+            LightError::Projector(what) => write!(f, "light setup: projector: {what}"),
             LightError::PowerOverflow { light, power } => write!(
                 f,
                 "light setup: {light}: its power, {power}, or the lights' total power, exceeds \

@@ -8,17 +8,21 @@ mod choice;
 mod emission;
 mod envmap;
 mod error;
+mod projector;
 mod spot;
 #[cfg(test)]
 mod tests;
 
+pub(crate) use build::texture_aspect;
 use choice::LightChoice;
 
 pub use envmap::EnvMap;
 pub use error::LightError;
+pub use projector::Projector;
 pub use spot::Spot;
 
 use crate::geometry::{Geometry, RectangleSampler, ShapeSample, ShapeSampling};
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
 use mcrt::integrator::{is_positive, LightSample, SurfacePoint};
 use mcrt::sampling::warp::{UniformSphere, Warp};
@@ -50,6 +54,8 @@ pub enum Light {
     EnvMap(Box<EnvMap>),
     /// A spot light: a point light whose intensity falls off in a cone.
     Spot(Box<Spot>),
+    /// A projector: a point light that projects an image.
+    Projector(Box<Projector>),
     /// Light arriving along one direction everywhere: a Dirac delta in direction.
     Directional {
         /// Unit direction the light travels along.
@@ -68,6 +74,9 @@ pub struct Lights {
     shape_light: Vec<Option<u32>>,
     /// Per shape: its emitted radiance if it is an area light (one load per hit).
     shape_radiance: Vec<Option<Vec3>>,
+    /// Per shape: the texture of its textured area emission (empty when no area light is
+    /// textured).
+    shape_texture: Vec<Option<Texture>>,
     env: Option<u32>,
     has_delta: bool,
     /// Per light: the sampler of an area light on a rectangle (the geometry's own), so that
@@ -156,6 +165,29 @@ impl Lights {
     /// it (see [`Lights::sample`]), so it needs no value of its own.
     pub(crate) fn reads_pick(&self) -> bool {
         self.reads_pick
+    }
+
+    /// The texture of the area light on shape `shape`, if its emission is textured.
+    #[inline]
+    pub(crate) fn area_texture(&self, shape: u32) -> Option<&Texture> {
+        self.shape_texture.get(shape as usize)?.as_ref()
+    }
+
+    /// The radiance of the area light on shape `shape` at the point `p` that sampling it
+    /// with `u_pick` gave: the constant, or the texture at the point's coordinates.
+    #[inline]
+    fn area_radiance_at(
+        &self,
+        geo: &Geometry,
+        shape: u32,
+        radiance: Vec3,
+        u_pick: f32,
+        p: Vec3,
+    ) -> Vec3 {
+        match self.area_texture(shape) {
+            Some(t) => t.eval(geo.sample_tex_coords(shape, u_pick, p)),
+            None => radiance,
+        }
     }
 
     /// Whether any light is a Dirac delta (point, spot or directional light).
@@ -265,6 +297,7 @@ impl Lights {
                     Some(r) => r.sample(geo.shape_sampling(), from.p, u)?,
                     None => geo.sample_shape(shape, from.p, u_pick.y, u)?,
                 };
+                let radiance = self.area_radiance_at(geo, shape, radiance, u_pick.y, s.p);
                 toward_area_light(s, radiance, from.p, pick)
             }
             Light::Point {
@@ -285,15 +318,21 @@ impl Lights {
                     delta: true,
                 })
             }
-            Light::Spot(ref spot) => {
-                let d = spot.position() - from.p;
+            Light::Spot(_) | Light::Projector(_) => {
+                let (position, intensity_toward): (Vec3, &dyn Fn(Vec3) -> Vec3) =
+                    match &self.lights[i] {
+                        Light::Spot(s) => (s.position(), &|w| s.intensity_toward(w)),
+                        Light::Projector(p) => (p.position(), &|w| p.intensity_toward(w)),
+                        _ => return None,
+                    };
+                let d = position - from.p;
                 let d2 = d.length_squared();
                 if !is_positive(d2) {
                     return None;
                 }
                 let dist = d2.sqrt();
                 let wi = d / dist;
-                let intensity = spot.intensity_toward(-wi);
+                let intensity = intensity_toward(-wi);
                 if intensity == Vec3::ZERO {
                     return None;
                 }

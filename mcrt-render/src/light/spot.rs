@@ -15,8 +15,9 @@
 //! leave it uniformly in the cone `θ ≤ γ`, as Mitsuba's `sample_ray` does.
 
 use super::LightError;
+use crate::texture::Texture;
 use crate::validate::is_similarity;
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3};
 use mcrt::sampling::warp::{UniformCone, Warp};
 use mcrt::sampling::Frame;
 use std::f32::consts::PI;
@@ -35,6 +36,9 @@ pub struct Spot {
     cos_beam: f32,
     /// Directions of light subpaths: uniform in the cutoff cone.
     cone: UniformCone,
+    /// The `texture` multiplying the intensity, if any, and world-to-light directions
+    /// (its image coordinates are in the frame of `to_world`, not of `frame`).
+    texture: Option<(Texture, Mat3)>,
 }
 
 impl Spot {
@@ -74,7 +78,19 @@ impl Spot {
             cos_cutoff: cutoff.cos(),
             cos_beam: beam.cos(),
             cone,
+            texture: None,
         })
+    }
+
+    /// This spot with Mitsuba 3's `texture`: an image spread over the cutoff cone,
+    /// multiplying the intensity. A direction `d` of the light's frame (`to_world`'s axes)
+    /// looks it up at `u = ½ + ½ d_x/(d_z tan γ)`, `v = ½ + ½ d_y/(d_z tan γ)` (γ the cutoff),
+    /// as Mitsuba's `spot` does.
+    #[must_use]
+    pub fn with_texture(mut self, texture: Texture, to_world: Mat4) -> Self {
+        let to_local = Mat3::from_mat4(to_world).inverse();
+        self.texture = Some((texture, to_local));
+        self
     }
 
     /// The light's position.
@@ -98,7 +114,21 @@ impl Spot {
 
     /// Intensity (W/sr) along the unit world direction `dir` leaving the light.
     pub fn intensity_toward(&self, dir: Vec3) -> Vec3 {
-        self.intensity * self.falloff(self.frame.n.dot(dir))
+        let f = self.falloff(self.frame.n.dot(dir));
+        match &self.texture {
+            Some((t, to_local)) if f > 0.0 => {
+                let d = *to_local * dir;
+                let k = 0.5 / (d.z * self.cutoff.tan());
+                let uv = Vec2::new(0.5 + d.x * k, 0.5 + d.y * k);
+                let i = self.intensity * t.eval(uv) * f;
+                if i.is_finite() {
+                    i
+                } else {
+                    Vec3::ZERO
+                }
+            }
+            _ => self.intensity * f,
+        }
     }
 
     /// Emitted power's channel mean, `mean(I₀) ∫ f dω`.
@@ -109,7 +139,11 @@ impl Spot {
         } else {
             self.cone.solid_angle()
         };
-        super::mean(self.intensity).max(0.0) * solid
+        let texture = self
+            .texture
+            .as_ref()
+            .map_or(1.0, |(t, _)| t.mean().max(0.0));
+        super::mean(self.intensity).max(0.0) * solid * texture
     }
 
     /// A direction of a light subpath, uniform in the cutoff cone: the unit world

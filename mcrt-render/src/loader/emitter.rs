@@ -5,20 +5,58 @@ use super::context::{Ctx, Res};
 use super::props::Props;
 use super::spectrum::SpectrumUse;
 use super::tree::Elem;
-use super::{no_objects, plugin_type, unknown_plugin};
+use super::{no_objects, plugin_type, texture, unknown_plugin};
 use crate::description::{AreaEmitterDesc, EmitterDesc};
 use crate::scene_error::SceneErrorKind;
+use crate::texture::Texture;
 use crate::validate;
 use glam::{Mat4, Vec3};
 
 /// The first bytes of every OpenEXR file.
 const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 
-/// Reads an `<emitter>` nested in a shape: it must be `area`.
-pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<AreaEmitterDesc> {
+/// Whether the file at `path` starts as a Radiance RGBE image.
+fn starts_rgbe(path: &std::path::Path) -> bool {
+    let mut head = [0u8; 2];
+    crate::io::open_regular(path)
+        .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head))
+        .is_ok_and(|_| crate::io::is_rgbe(&head))
+}
+
+/// Takes the texture named `name` (nested, or `<ref name="…" id="…"/>`) out of `p`'s nested
+/// objects; any other nested object is an error, as is the parameter given twice.
+fn take_texture<'a>(ctx: &Ctx<'a>, p: &mut Props<'_, 'a>, name: &str) -> Res<Option<Texture>> {
+    let mut found = None;
+    let mut rest = Vec::new();
+    for &o in &p.objects {
+        let target = texture::texture_elem(ctx, o);
+        match target {
+            Some(t) if o.attr("name") == Some(name) => {
+                if found.is_some() || p.has(name) {
+                    return Err(ctx.err(o, SceneErrorKind::DuplicateParameter(name.into())));
+                }
+                if o.tag == "ref" {
+                    super::transform::check_attrs(ctx, o, &["id", "name"], &["id"])?;
+                }
+                found = Some(texture::read_texture(ctx, t)?);
+            }
+            _ => rest.push(o),
+        }
+    }
+    p.objects = rest;
+    no_objects(ctx, p)?;
+    Ok(found)
+}
+
+/// Reads an `<emitter>` nested in a shape: it must be `area`; its `radiance` may be a
+/// texture (returned beside it; the description's radiance is then the texture's mean).
+pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<(AreaEmitterDesc, Option<Texture>)> {
     let ty = plugin_type(ctx, e)?;
     if ty != "area" {
-        let msg = if matches!(ty, "point" | "spot" | "directional" | "constant" | "envmap") {
+        let msg = if matches!(
+            ty,
+            "point" | "spot" | "directional" | "constant" | "envmap" | "projector"
+        ) {
             format!("a \"{ty}\" emitter inside a <shape> (only \"area\" belongs there)")
         } else {
             return Err(unknown_plugin(ctx, e, ty));
@@ -26,20 +64,31 @@ pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<AreaEmitterDesc> {
         return Err(ctx.err(e, SceneErrorKind::Misplaced(msg)));
     }
     let mut p = Props::new(ctx, e)?;
-    no_objects(ctx, &p)?;
-    let radiance = non_negative(e, &mut p, "radiance")?;
+    let tex = take_texture(ctx, &mut p, "radiance")?;
+    let radiance = match &tex {
+        Some(t) => texture::stand_in(t),
+        None => non_negative(e, &mut p, "radiance")?,
+    };
     // The power of a unit area (the shape's area multiplies it: `Lights::new` checks that).
     validate::emission_power("radiance", radiance, std::f64::consts::PI)
         .map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
-    Ok(AreaEmitterDesc { radiance })
+    Ok((AreaEmitterDesc { radiance }, tex))
 }
 
 /// Reads a top-level `<emitter>`: `point`, `spot`, `directional`, `constant` or `envmap`.
 pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
     let ty = plugin_type(ctx, e)?;
     let mut p = Props::new(ctx, e)?;
-    no_objects(ctx, &p)?;
+    // The textures a spot (`texture`) and a projector (`irradiance`) take.
+    let tex = match ty {
+        "spot" => take_texture(ctx, &mut p, "texture")?,
+        "projector" => take_texture(ctx, &mut p, "irradiance")?,
+        _ => {
+            no_objects(ctx, &p)?;
+            None
+        }
+    };
     let desc = match ty {
         "point" => {
             let intensity = non_negative(e, &mut p, "intensity")?;
@@ -63,13 +112,21 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
                 .unwrap_or(EmitterDesc::SPOT_CUTOFF_ANGLE);
             // Mitsuba 3's default beam width: three quarters of the cutoff angle.
             let beam_width = p.float("beam_width")?.unwrap_or(0.75 * cutoff_angle);
-            EmitterDesc::Spot {
+            let spot = EmitterDesc::Spot {
                 intensity,
                 cutoff_angle,
                 beam_width,
                 to_world: p.transform("to_world")?.unwrap_or(Mat4::IDENTITY),
+            };
+            match tex {
+                Some(texture) => EmitterDesc::Textured {
+                    inner: Box::new(spot),
+                    texture,
+                },
+                None => spot,
             }
         }
+        "projector" => read_projector(ctx, e, &mut p, tex)?,
         "directional" => {
             let irradiance = non_negative(e, &mut p, "irradiance")?;
             // The light travels along +z of its to_world (Mitsuba 3's `directional`).
@@ -99,7 +156,12 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
                     SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
                 )
             })?;
-            let filename = ctx.readable_file(e, &name, Some((&EXR_MAGIC, "an OpenEXR")))?;
+            // OpenEXR or Radiance RGBE (`.hdr`): the OpenEXR magic is asked for unless the
+            // file starts as an RGBE one.
+            let rgbe = ctx
+                .readable_file(e, &name, None)
+                .is_ok_and(|f| starts_rgbe(&f));
+            let filename = ctx.readable_file(e, &name, (!rgbe).then_some((&EXR_MAGIC[..], "an OpenEXR")))?;
             let scale = p.float("scale")?.unwrap_or(1.0);
             EmitterDesc::EnvMap {
                 filename,
@@ -118,6 +180,66 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
     validate::emitter(&desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(desc)
+}
+
+/// A `projector`: its `irradiance` a texture (`tex`) or a colour (a one-pixel image), `fov`
+/// along `fov_axis` (`x`, `y`, `smaller`, `larger` or `diagonal`, converted to the image
+/// width's as Mitsuba's cameras convert it).
+fn read_projector(ctx: &Ctx, e: &Elem, p: &mut Props, tex: Option<Texture>) -> Res<EmitterDesc> {
+    let irradiance = match tex {
+        Some(t) => t,
+        None => {
+            let c = non_negative(e, p, "irradiance")?;
+            let image = crate::texture::Image::new(1, 1, vec![c])
+                .ok_or_else(|| p.invalid("irradiance", e, "unusable"))?;
+            Texture::Bitmap(crate::texture::Bitmap {
+                image: std::sync::Arc::new(image),
+                filter: crate::texture::FilterType::Nearest,
+                wrap: crate::texture::WrapMode::Clamp,
+                to_uv: glam::Affine2::IDENTITY,
+            })
+        }
+    };
+    let aspect = f64::from(crate::light::texture_aspect(&irradiance));
+    if p.has("focal_length") {
+        return Err(ctx.err(
+            e,
+            SceneErrorKind::Unsupported(
+                "\"focal_length\" on a projector (not supported yet: give \"fov\")".into(),
+            ),
+        ));
+    }
+    let Some(fov) = p.float("fov")? else {
+        return Err(ctx.err(
+            e,
+            SceneErrorKind::MissingAttribute("parameter \"fov\" (of the projector)".into()),
+        ));
+    };
+    let axis = p.string("fov_axis")?.unwrap_or_else(|| "x".into());
+    let half_tan = (0.5 * f64::from(fov).to_radians()).tan();
+    // Mitsuba 3's `parse_fov`: every axis converted to the width's.
+    let x_half_tan = match axis.to_ascii_lowercase().as_str() {
+        "x" => half_tan,
+        "y" => half_tan * aspect,
+        "smaller" if aspect > 1.0 => half_tan * aspect,
+        "smaller" => half_tan,
+        "larger" if aspect > 1.0 => half_tan,
+        "larger" => half_tan * aspect,
+        "diagonal" => half_tan / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
+        other => {
+            return Err(p.invalid(
+                "fov_axis",
+                e,
+                &format!("\"{other}\" is not x, y, smaller, larger or diagonal"),
+            ))
+        }
+    };
+    Ok(EmitterDesc::Projector {
+        irradiance,
+        scale: p.float("scale")?.unwrap_or(1.0),
+        x_fov: (2.0 * x_half_tan.atan()).to_degrees() as f32,
+        to_world: p.transform("to_world")?.unwrap_or(Mat4::IDENTITY),
+    })
 }
 
 /// An emitted colour with default 1 whose channels must be finite and non-negative (a

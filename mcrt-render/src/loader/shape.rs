@@ -1,4 +1,4 @@
-//! `<shape>`: `rectangle`, `cube`, `disk`, `sphere` and the mesh files `obj`, `ply` and
+//! `<shape>`: `rectangle`, `cube`, `disk`, `sphere`, `cylinder` and the mesh files `obj`, `ply` and
 //! `serialized`, each with an optional BSDF (or `<ref>`) and an optional `area` emitter.
 
 use super::bsdf::read_bsdf_or_ref;
@@ -59,6 +59,13 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
             }
             ShapeKind::Sphere { center, radius }
         }
+        "cylinder" => {
+            // Mitsuba 3's defaults: the unit-radius tube from the origin to (0, 0, 1).
+            let p0 = p.point("p0")?.unwrap_or(Vec3::ZERO);
+            let p1 = p.point("p1")?.unwrap_or(Vec3::Z);
+            let radius = p.float("radius")?.unwrap_or(1.0);
+            ShapeKind::Cylinder { p0, p1, radius }
+        }
         "obj" | "ply" | "serialized" => mesh_file(ctx, e, ty, &mut p)?,
         "sdfgrid" => {
             let m = "shape \"sdfgrid\" (signed distance fields are not rendered)".to_string();
@@ -70,11 +77,15 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
     shape.id = e.attr("id").map(str::to_string);
     shape.to_world = p.transform("to_world")?.unwrap_or(shape.to_world);
     shape.flip_normals = p.bool("flip_normals")?.unwrap_or(false);
-    let (mut bsdf, mut emitter) = (None, None);
+    let (mut bsdf, mut emitter, mut emission_texture) = (None, None, None);
     for o in &p.objects {
         let first = match o.tag.as_str() {
             "bsdf" | "ref" => bsdf.replace(read_bsdf_or_ref(ctx, o)?).is_none(),
-            "emitter" => emitter.replace(read_area(ctx, o)?).is_none(),
+            "emitter" => {
+                let (desc, tex) = read_area(ctx, o)?;
+                emission_texture = tex;
+                emitter.replace(desc).is_none()
+            }
             _ => {
                 return Err(ctx.err(
                     o,
@@ -97,6 +108,7 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
         None => BsdfDesc::default(),
     });
     shape.emitter = emitter;
+    shape.emission_texture = emission_texture;
     validate::shape(&shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(shape)

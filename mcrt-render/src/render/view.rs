@@ -69,7 +69,10 @@ impl<B: Material, const DELTA: bool, const ENV: bool> Scene for SceneView<'_, B,
     #[inline]
     fn emitted(&self, sp: &SurfacePoint, wo: Vec3) -> Vec3 {
         match self.lights.area_radiance(sp.shape) {
-            Some(l) if sp.ng.dot(wo) > 0.0 => l,
+            Some(l) if sp.ng.dot(wo) > 0.0 => match self.lights.area_texture(sp.shape) {
+                Some(t) => t.eval(self.geometry.tex_coords(sp)),
+                None => l,
+            },
             _ => Vec3::ZERO,
         }
     }

@@ -1,7 +1,7 @@
-//! Image files for `bitmap` textures: PNG, JPEG and OpenEXR, told apart by their first
-//! bytes, decoded to linear RGB as Mitsuba 3 decodes them: 8- and 16-bit PNG and JPEG
-//! values are sRGB-encoded and go through the sRGB curve unless `raw` is set; EXR values
-//! are linear as stored. Grey images are replicated to three channels; alpha is ignored
+//! Image files for `bitmap` textures: PNG, JPEG, OpenEXR and Radiance RGBE (`.hdr`), told
+//! apart by their first bytes, decoded to linear RGB as Mitsuba 3 decodes them: 8- and
+//! 16-bit PNG and JPEG values are sRGB-encoded and go through the sRGB curve unless `raw`
+//! is set; EXR and RGBE values are linear as stored. Grey images are replicated to three channels; alpha is ignored
 //! (Mitsuba 3's `bitmap` evaluates colour only).
 
 use super::image::Image;
@@ -62,12 +62,18 @@ pub fn read_image_beside(path: &Path, raw: bool, used: u64) -> Result<Image, Str
         return read_exr_texture(path, |w, h, per_pixel| room(w, h, per_pixel, 0));
     }
     let file = bytes.len() as u64;
+    if crate::io::is_rgbe(&bytes) {
+        let (w, h, px) = crate::io::read_rgbe(&bytes, MAX_TEXTURE_PIXELS, |w, h, per| {
+            room(w, h, per, file)
+        })?;
+        return Image::new(w, h, px).ok_or_else(|| "an empty image".to_string());
+    }
     let (w, h, channels, values) = if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
         png_values(&bytes, |w, h, per| room(w, h, per, file))?
     } else if bytes.starts_with(&[0xff, 0xd8, 0xff]) {
         jpeg_values(&bytes, |w, h, per| room(w, h, per, file))?
     } else {
-        return Err("not a PNG, JPEG or OpenEXR image".into());
+        return Err("not a PNG, JPEG or OpenEXR image (nor a Radiance RGBE one)".into());
     };
     let decode = |x: f32| if raw { x } else { srgb_to_linear(x) };
     let texels = match values {

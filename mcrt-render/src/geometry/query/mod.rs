@@ -59,6 +59,10 @@ impl Stored<'_> {
                 }
                 _ => None,
             },
+            &Prim::Cylinder(s) => match &self.shapes[s as usize] {
+                ShapeData::Cylinder(c) => c.hit(ray.origin, ray.dir, t_max).map(|t| (t, 0.0, 0.0)),
+                _ => None,
+            },
         }
     }
 }
@@ -191,6 +195,10 @@ fn prim_bounds(p: &Prim, shapes: &[ShapeData]) -> Aabb {
                     .map(|(x, y)| d.to_world.transform_point3(glam::Vec3::new(x, y, 0.0)));
                 Aabb::from_points(&corners)
             }
+            _ => Aabb::EMPTY,
+        },
+        &Prim::Cylinder(s) => match &shapes[s as usize] {
+            ShapeData::Cylinder(c) => c.bounds(),
             _ => Aabb::EMPTY,
         },
     }

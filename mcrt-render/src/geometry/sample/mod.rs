@@ -106,6 +106,7 @@ impl Geometry {
             Some(ShapeData::Mesh(m)) => m.area,
             Some(ShapeData::Sphere { radius, .. }) => 4.0 * PI * radius * radius,
             Some(ShapeData::Disk(d)) => d.area,
+            Some(ShapeData::Cylinder(c)) => c.area(),
             Some(ShapeData::Instance) | None => 0.0,
         }
     }
@@ -137,6 +138,7 @@ impl Geometry {
                 .sqrt(),
             )),
             ShapeData::Instance => None,
+            ShapeData::Cylinder(c) => Some(c.bounding_sphere()),
         }
     }
 
@@ -179,6 +181,11 @@ impl Geometry {
                 })
             }
             ShapeData::Instance => None,
+            ShapeData::Cylinder(c) => {
+                let s = c.sample_area(u);
+                let pdf = area_to_solid_angle(s.pdf, reference, s.p, s.n)?;
+                Some(ShapeSample { pdf, ..s })
+            }
         }
     }
 
@@ -206,6 +213,10 @@ impl Geometry {
                 (d.to_world.transform_point3(q.extend(0.0)), d.normal)
             }
             ShapeData::Instance => return None,
+            ShapeData::Cylinder(c) => {
+                let s = c.sample_area(u);
+                (s.p, s.n)
+            }
         };
         p.is_finite().then_some(ShapeSample {
             p,
@@ -233,6 +244,9 @@ impl Geometry {
                 sphere::pdf(center, radius, reference, at.0)
             }
             Some(ShapeData::Disk(d)) => area_to_solid_angle(1.0 / d.area, reference, at.0, at.1),
+            Some(ShapeData::Cylinder(c)) => {
+                area_to_solid_angle(1.0 / c.area(), reference, at.0, at.1)
+            }
             Some(ShapeData::Instance) | None => None,
         };
         pdf.unwrap_or(0.0)
