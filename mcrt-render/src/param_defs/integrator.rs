@@ -1,4 +1,4 @@
-//! The parameters of the integrators `path`, `direct`, `bdpt` and `mlt`, and the check of
+//! The parameters of the integrators `path`, `direct`, `bdpt`, `mlt` and `ptracer`, and the check of
 //! an [`IntegratorDesc`] against them (for a description built in code; the loader checks
 //! each value as it reads it).
 
