@@ -238,6 +238,7 @@ fn main() {
                 max_depth,
                 rr_depth: 5,
                 strategy,
+                hide_emitters: false,
             };
             let (mean, se) = estimate(&scene, &pt, 100_000, 7);
             println!(

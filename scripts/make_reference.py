@@ -30,6 +30,9 @@ def main() -> None:
     ap.add_argument("--variant", default="llvm_ad_rgb")
     ap.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME=VALUE")
     ap.add_argument("--out", type=Path)
+    ap.add_argument("--all-channels", action="store_true",
+                    help="keep every channel of the film (AOVs such as the moment "
+                         "integrator's), named as Mitsuba names them")
     a = ap.parse_args()
     if a.spp % a.pass_spp:
         ap.error("--spp must be a multiple of --pass-spp")
@@ -46,11 +49,16 @@ def main() -> None:
         img = np.array(mi.render(scene, spp=a.pass_spp, seed=i), dtype=np.float64)
         acc = img if acc is None else acc + img
     seconds = time.perf_counter() - start
-    mean = (acc / passes).astype(np.float32)[:, :, :3]
+    mean = (acc / passes).astype(np.float32)
     out = a.out or a.scene.with_suffix(".exr")
-    mi.Bitmap(mean).write(str(out))
+    if a.all_channels:
+        names = [f.name for f in scene.sensors()[0].film().bitmap().struct_()]
+        mi.Bitmap(mean, mi.Bitmap.PixelFormat.MultiChannel, names).write(str(out))
+    else:
+        mean = mean[:, :, :3]
+        mi.Bitmap(mean).write(str(out))
     h, w = mean.shape[:2]
-    m = mean.reshape(-1, 3).mean(axis=0)
+    m = mean[:, :, :3].reshape(-1, 3).mean(axis=0)
     print(f"{out}: {w}x{h}, {a.spp} spp in {passes} passes, {seconds:.1f} s "
           f"({w * h * a.spp / seconds / 1e6:.2f} M samples/s); "
           f"mean {m[0]:.5f}, {m[1]:.5f}, {m[2]:.5f}")

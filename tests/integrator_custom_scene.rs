@@ -183,6 +183,7 @@ fn furnace_with_every_strategy() {
             max_depth: -1,
             rr_depth: 5,
             strategy,
+            hide_emitters: false,
         };
         let (m, se) = estimate(
             |o, d, r| pt.li(&scene, o, d, f32::INFINITY, r).radiance,
@@ -197,6 +198,7 @@ fn furnace_with_every_strategy() {
             emitter_samples: 2,
             bsdf_samples: 1,
             strategy,
+            hide_emitters: false,
         };
         let (m, se) = estimate(
             |o, d, r| di.li(&scene, o, d, f32::INFINITY, r).radiance,
@@ -251,6 +253,7 @@ fn direct_integrator_draws_only_what_is_read() {
         emitter_samples: 2,
         bsdf_samples: 3,
         strategy: Strategy::MisPower,
+        hide_emitters: false,
     };
     let o = Vec3::new(0.0, 0.0, 5.0);
     let mut rng = Counting(Lcg(5), 0);
@@ -284,6 +287,7 @@ fn glowing_sphere_matches_its_analytic_radiance() {
                 max_depth,
                 rr_depth: 2,
                 strategy,
+                hide_emitters: false,
             };
             let (mean, se) = custom_scene::estimate(&scene, &pt, 20_000, 11);
             let want = scene.analytic(max_depth);
@@ -342,6 +346,7 @@ fn glowing_sphere_check_rejects_a_wrong_light_pdf() {
         max_depth: 2,
         rr_depth: 2,
         strategy: Strategy::MisPower,
+        hide_emitters: false,
     };
     let (mean, se) = custom_scene::estimate_in(&WrongPdf(sphere), &pt, 2_000, 11);
     assert!(mean.is_finite() && se.is_finite());

@@ -97,6 +97,7 @@ fn path_tracer_matches_the_analytic_shell() {
                 max_depth,
                 rr_depth: 5,
                 strategy,
+                hide_emitters: false,
             };
             // One seed per case, so that the 12 z-tests are independent.
             let (mean, se) = estimate(&scene, &pt, 17 + (4 * d + k) as u64);

@@ -104,6 +104,7 @@ pub fn cornell_box_with(spp: u32, res: u32, max_depth: i32) -> SceneDescription 
         shapes,
         emitters: Vec::new(),
         source: None,
+        ..SceneDescription::default()
     }
 }
 

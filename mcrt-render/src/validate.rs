@@ -200,7 +200,9 @@ pub fn work(pixels: u64, spp: u32, i: &IntegratorDesc) -> Result<(), Invalid> {
             emitter_samples,
             bsdf_samples,
         } => (emitter_samples as u64 + bsdf_samples as u64).max(1),
-        IntegratorDesc::Path { .. } | IntegratorDesc::Bdpt { .. } => 1,
+        IntegratorDesc::Path { .. }
+        | IntegratorDesc::Bdpt { .. }
+        | IntegratorDesc::Ptracer { .. } => 1,
         // The bootstrap's paths and normalisation samples, spread over the pixels.
         IntegratorDesc::Mlt {
             bootstrap_samples,

@@ -253,6 +253,7 @@ fn furnace(bsdf: BsdfDesc, integrator: IntegratorDesc) -> SceneDescription {
             radiance: Vec3::ONE,
         }],
         source: None,
+        ..SceneDescription::default()
     }
 }
 

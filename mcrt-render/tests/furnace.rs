@@ -80,6 +80,7 @@ fn furnace_with(bsdf: BsdfDesc, spp: u32, env: EmitterDesc) -> (Vec3, Vec3) {
         shapes: vec![sphere],
         emitters: vec![env],
         source: None,
+        ..SceneDescription::default()
     };
     render(&desc, spp)
 }
@@ -177,6 +178,7 @@ fn check_lit_plane(light: EmitterDesc, integrator: IntegratorDesc, want: Vec3) {
         shapes: vec![floor],
         emitters: vec![light.clone()],
         source: None,
+        ..SceneDescription::default()
     };
     let (m, _) = render(&desc, 4);
     for c in 0..3 {

@@ -18,6 +18,9 @@ pub struct DirectIntegrator {
     pub bsdf_samples: u32,
     /// Sampling strategy.
     pub strategy: Strategy,
+    /// Hide emitters seen directly (Mitsuba 3's `hide_emitters`), as
+    /// [`PathTracer::hide_emitters`](super::PathTracer::hide_emitters) does.
+    pub hide_emitters: bool,
 }
 
 impl Default for DirectIntegrator {
@@ -26,6 +29,7 @@ impl Default for DirectIntegrator {
             emitter_samples: 1,
             bsdf_samples: 1,
             strategy: Strategy::MisPower,
+            hide_emitters: false,
         }
     }
 }
@@ -50,12 +54,10 @@ impl DirectIntegrator {
         t_max: f32,
         samples: &mut R,
     ) -> PathResult {
-        let mut out = PathResult {
-            radiance: Vec3::ZERO,
-            rays: 1,
-        };
-        let Some(sp) = scene.intersect(origin, dir, t_max) else {
-            if scene.has_environment() {
+        let mut out = PathResult::default();
+        let hit = super::camera_hit(scene, origin, dir, t_max, self.hide_emitters, &mut out.rays);
+        let Some(sp) = hit else {
+            if scene.has_environment() && !self.hide_emitters {
                 out.radiance = scene.environment(dir);
             }
             return out;

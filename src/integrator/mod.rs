@@ -16,7 +16,12 @@
 //! ```
 //! use mcrt::integrator::{PathTracer, Strategy};
 //!
-//! let pt = PathTracer { max_depth: 2, rr_depth: 5, strategy: Strategy::MisPower };
+//! let pt = PathTracer {
+//!     max_depth: 2,
+//!     rr_depth: 5,
+//!     strategy: Strategy::MisPower,
+//!     hide_emitters: false,
+//! };
 //! assert_eq!(pt.strategy.name(), "power");
 //! ```
 
@@ -64,6 +69,39 @@ pub(crate) fn occluded<S: Scene + ?Sized>(
         f32::INFINITY
     };
     scene.occluded(from, dir, t_max)
+}
+
+/// Most emitter surfaces a camera ray passes through when emitters are hidden (a guard
+/// against a scene whose `trace` keeps returning the same point).
+const MAX_HIDDEN_EMITTERS: u32 = 64;
+
+/// The first hit of the camera ray from `origin` along `dir` (up to `t_max`) that is not an
+/// emitter: with `hide_emitters`, the ray passes through every emitter surface, as Mitsuba
+/// 3's `hide_emitters` does for the sampling integrators (and `None` then means the ray sees
+/// only the hidden sky). Rays cast are added to `rays`.
+#[inline]
+pub(crate) fn camera_hit<S: Scene + ?Sized>(
+    scene: &S,
+    origin: glam::Vec3,
+    dir: glam::Vec3,
+    t_max: f32,
+    hide_emitters: bool,
+    rays: &mut u32,
+) -> Option<SurfacePoint> {
+    let mut hit = scene.intersect(origin, dir, t_max);
+    *rays += 1;
+    if hide_emitters {
+        let mut passed = 0;
+        while let Some(sp) = hit.filter(|sp| scene.is_emitter(sp)) {
+            passed += 1;
+            if passed > MAX_HIDDEN_EMITTERS {
+                return None;
+            }
+            hit = scene.trace(&sp, dir);
+            *rays += 1;
+        }
+    }
+    hit
 }
 
 /// `x > 0`, false for NaN: the guard in front of every division by a density.

@@ -23,6 +23,10 @@ pub struct PathTracer {
     pub rr_depth: u32,
     /// Sampling strategy at every vertex.
     pub strategy: Strategy,
+    /// Hide emitters seen directly (Mitsuba 3's `hide_emitters`): the camera ray passes
+    /// through emitter surfaces, and where it then leaves the scene the sample is zero (the
+    /// environment is not seen). Light the emitters cast is unchanged.
+    pub hide_emitters: bool,
 }
 
 impl Default for PathTracer {
@@ -31,6 +35,7 @@ impl Default for PathTracer {
             max_depth: -1,
             rr_depth: 5,
             strategy: Strategy::MisPower,
+            hide_emitters: false,
         }
     }
 }
@@ -138,8 +143,11 @@ impl PathTracer {
         let mut eta = 1.0f32;
         let mut ray_dir = dir;
         let mut prev: Option<PrevVertex> = None;
-        let mut hit = scene.intersect(origin, dir, t_max);
-        out.rays += 1;
+        let mut hit =
+            super::camera_hit(scene, origin, dir, t_max, self.hide_emitters, &mut out.rays);
+        if self.hide_emitters && hit.is_none() {
+            return out;
+        }
         let mut depth = 0u32;
         loop {
             let Some(sp) = hit else {

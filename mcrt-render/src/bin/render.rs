@@ -6,7 +6,7 @@
 //!     [--strategy bsdf|light|balance|power]
 //!     [--sampler independent|stratified|sobol|sobol4d|halton|r2|cmj]
 //!     [--accel bvh|grid|kdtree] [--light-sampling auto|solid-angle|area]
-//!     [--integrator path|direct|bdpt|mlt] [--bdpt-strategy s,t]
+//!     [--integrator path|direct|bdpt|mlt|ptracer] [--bdpt-strategy s,t]
 //!     [--samples START..END] [--crop x0,y0,x1,y1]
 //! ```
 //!
@@ -207,14 +207,13 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "integrator",
         short: None,
-        value: Some("path|direct|bdpt|mlt"),
+        value: Some("path|direct|bdpt|mlt|ptracer"),
         help: "estimator, overriding the scene's <integrator> (its max_depth and rr_depth carry \
                over; mlt counts --spp as mutations per pixel) [default: the scene's]",
         apply: |a, v| {
-            a.opts.integrator =
-                Some(IntegratorKind::parse(v).ok_or_else(|| {
-                    format!("--integrator {v}: expected path, direct, bdpt or mlt")
-                })?);
+            a.opts.integrator = Some(IntegratorKind::parse(v).ok_or_else(|| {
+                format!("--integrator {v}: expected path, direct, bdpt, mlt or ptracer")
+            })?);
             Ok(())
         },
     },

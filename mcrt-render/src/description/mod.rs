@@ -22,6 +22,13 @@ use std::path::PathBuf;
 pub struct SceneDescription {
     /// How light transport is estimated.
     pub integrator: IntegratorDesc,
+    /// The integrator's `hide_emitters` (Mitsuba 3's meaning; default `false`): `path` and
+    /// `direct` see through emitters and not the sky from the camera; `bdpt`, `mlt` and
+    /// `ptracer` leave out paths of one segment, so emitters in view look black.
+    pub hide_emitters: bool,
+    /// The `moment` integrator around the integrator, if any: its outputs are added to the
+    /// image.
+    pub moment: Option<MomentDesc>,
     /// The camera, its film and its sampler.
     pub sensor: SensorDesc,
     /// Every shape, in file order.
@@ -77,6 +84,27 @@ pub enum IntegratorDesc {
         /// value (default 0.01).
         sigma: f32,
     },
+    /// Mitsuba 3's `ptracer`: particle tracing, i.e. light tracing alone (bidirectional path
+    /// tracing's `t = 1` strategies at unit weight), emitters in view included by
+    /// connecting points sampled on them to the camera.
+    Ptracer {
+        /// Longest path in segments: −1 unlimited, 1 emitters seen directly.
+        max_depth: i32,
+        /// Bounces after which Russian roulette applies (Mitsuba's default 5; our light
+        /// subpaths play it from their first bounce, which changes the noise only).
+        rr_depth: u32,
+    },
+}
+
+/// Mitsuba 3's `moment` integrator around a sampling integrator (`path` or `direct`): the
+/// image is the nested integrator's, and the EXR gains the per-pixel mean and second moment
+/// of its samples in CIE XYZ, as channels `NAME.X`, `NAME.Y`, `NAME.Z` and `m2_NAME.X`,
+/// `m2_NAME.Y`, `m2_NAME.Z`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct MomentDesc {
+    /// The nested integrator's name: its `name` attribute, else `_arg_0` (Mitsuba's name
+    /// for the first unnamed nested object).
+    pub name: String,
 }
 
 /// The integrator types, for overriding a scene file's choice (`--integrator`).
@@ -90,16 +118,19 @@ pub enum IntegratorKind {
     Bdpt,
     /// `mlt`.
     Mlt,
+    /// `ptracer`.
+    Ptracer,
 }
 
 impl IntegratorKind {
-    /// Parses `path`, `direct`, `bdpt` or `mlt`.
+    /// Parses `path`, `direct`, `bdpt`, `mlt` or `ptracer`.
     pub fn parse(s: &str) -> Option<Self> {
         Some(match s {
             "path" => Self::Path,
             "direct" => Self::Direct,
             "bdpt" => Self::Bdpt,
             "mlt" => Self::Mlt,
+            "ptracer" => Self::Ptracer,
             _ => return None,
         })
     }
@@ -111,6 +142,7 @@ impl IntegratorKind {
             Self::Direct => "direct",
             Self::Bdpt => "bdpt",
             Self::Mlt => "mlt",
+            Self::Ptracer => "ptracer",
         }
     }
 }
@@ -149,6 +181,7 @@ impl IntegratorDesc {
             Self::Direct { .. } => IntegratorKind::Direct,
             Self::Bdpt { .. } => IntegratorKind::Bdpt,
             Self::Mlt { .. } => IntegratorKind::Mlt,
+            Self::Ptracer { .. } => IntegratorKind::Ptracer,
         }
     }
 
@@ -157,7 +190,8 @@ impl IntegratorDesc {
         match *self {
             Self::Path { max_depth, .. }
             | Self::Bdpt { max_depth, .. }
-            | Self::Mlt { max_depth, .. } => Some(max_depth),
+            | Self::Mlt { max_depth, .. }
+            | Self::Ptracer { max_depth, .. } => Some(max_depth),
             Self::Direct { .. } => None,
         }
     }
@@ -171,7 +205,9 @@ impl IntegratorDesc {
         }
         let depth = self.max_depth().unwrap_or(-1);
         let rr = match *self {
-            Self::Path { rr_depth, .. } | Self::Bdpt { rr_depth, .. } => rr_depth,
+            Self::Path { rr_depth, .. }
+            | Self::Bdpt { rr_depth, .. }
+            | Self::Ptracer { rr_depth, .. } => rr_depth,
             _ => 5,
         };
         match kind {
@@ -184,6 +220,10 @@ impl IntegratorDesc {
                 bsdf_samples: 1,
             },
             IntegratorKind::Bdpt => Self::Bdpt {
+                max_depth: depth,
+                rr_depth: rr,
+            },
+            IntegratorKind::Ptracer => Self::Ptracer {
                 max_depth: depth,
                 rr_depth: rr,
             },

@@ -13,10 +13,13 @@
 mod compare;
 mod filter;
 mod merge;
+mod moment;
 mod output;
 mod part;
 mod window;
 mod write;
+
+pub(crate) use moment::xyz_squared;
 
 pub use crate::io::{read_exr, read_exr_at_most, ImageError};
 pub use compare::{compare_blocks, z_two_sided, BlockReport};
@@ -25,7 +28,7 @@ pub use merge::{merge_parts, MergeError};
 pub use output::{OutputError, OutputPlan, DEFAULT_FOLDER, EXIT_INTERRUPTED};
 pub use part::{read_part, write_part, Part, PartInfo};
 pub use window::{Crop, SampleRange, WindowError};
-pub use write::{write_exr, write_png};
+pub use write::{write_exr, write_exr_with_channels, write_png};
 
 use glam::Vec3;
 
@@ -53,6 +56,8 @@ pub struct Film {
     /// summed per pixel; the image adds them times `splat_scale`.
     splat: Vec<[f64; 3]>,
     splat_scale: f64,
+    /// The `moment` integrator's sums, if the scene asks for its channels.
+    moment: Option<moment::Moment>,
 }
 
 /// [`Film::merge`] was given a pixel index past the end of the film.
@@ -112,7 +117,27 @@ impl Film {
             count: vec![0; n],
             splat: Vec::new(),
             splat_scale: 0.0,
+            moment: None,
         }
+    }
+
+    /// This film, keeping the sums for Mitsuba 3's `moment` channels (named after the nested
+    /// integrator `name`: `NAME.X` … `m2_NAME.Z`), which the EXR then holds beside the image.
+    pub fn with_moment(mut self, name: &str) -> Self {
+        self.moment = Some(moment::Moment {
+            name: name.to_string(),
+            sum_sq_xyz: vec![[0.0; 3]; self.count.len()],
+        });
+        self
+    }
+
+    /// The `moment` channels beside the image `mean` (the pixel estimates), `unsampled`
+    /// where a pixel has no sample; none unless the film was made [`with_moment`](Self::with_moment).
+    pub fn extra_channels(&self, mean: &[Vec3], unsampled: f32) -> Vec<(String, Vec<f32>)> {
+        self.moment
+            .as_ref()
+            .map(|m| m.channels(mean, &self.count, unsampled))
+            .unwrap_or_default()
     }
 
     /// The bytes a film of `width × height` pixels takes at most (sums, squares, counts and
@@ -198,6 +223,20 @@ impl Film {
         }
         *count = count.saturating_add(a.count);
         Ok(())
+    }
+
+    /// Adds to pixel `index` a sum of the squared XYZ samples ([`xyz_squared`]) for the
+    /// `moment` channels (ignored past the end, or if the film keeps no moment sums).
+    pub(crate) fn add_moment(&mut self, index: usize, sum_sq_xyz: [f64; 3]) {
+        if let Some(s) = self
+            .moment
+            .as_mut()
+            .and_then(|m| m.sum_sq_xyz.get_mut(index))
+        {
+            for (s, x) in s.iter_mut().zip(sum_sq_xyz) {
+                *s += x;
+            }
+        }
     }
 
     /// Samples in pixel `index`.

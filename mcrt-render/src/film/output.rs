@@ -7,7 +7,7 @@
 //! `NAME.partial.exr` / `NAME.partial.png` instead of replacing a complete image.
 
 use super::part::{write_part, PartInfo};
-use super::write::{write_exr, write_png};
+use super::write::{write_exr, write_exr_with_channels, write_png};
 use super::Film;
 use crate::io::ImageError;
 use glam::Vec3;
@@ -182,7 +182,8 @@ impl OutputPlan {
         let unsampled = if interrupted { Vec3::NAN } else { Vec3::ZERO };
         let (w, h) = (film.width(), film.height());
         let image = film.mean_or(unsampled);
-        write_exr(&plan.exr, w, h, &image)?;
+        let extra = film.extra_channels(&image, unsampled.x);
+        write_exr_with_channels(&plan.exr, w, h, &image, &extra)?;
         write_png(&plan.png, w, h, &image)?;
         if let Some(v) = &plan.variance {
             write_exr(v, w, h, &film.variance())?;

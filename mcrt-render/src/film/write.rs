@@ -78,6 +78,59 @@ pub fn write_exr(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Resul
     })
 }
 
+/// Writes linear float RGB pixels with the named `extra` channels (each a full image,
+/// row-major) beside them, as [`write_exr`] does; with no extra channel, exactly the file of
+/// [`write_exr`].
+pub fn write_exr_with_channels(
+    path: &Path,
+    width: u32,
+    height: u32,
+    pixels: &[Vec3],
+    extra: &[(String, Vec<f32>)],
+) -> Result<(), ImageError> {
+    use exr::prelude::traits::WritableImage;
+    use exr::prelude::{
+        AnyChannel, AnyChannels, Encoding, FlatSamples, Image, Layer, LayerAttributes, LineOrder,
+        SmallVec, Text,
+    };
+    if extra.is_empty() {
+        return write_exr(path, width, height, pixels);
+    }
+    check_len(path, width, height, pixels)?;
+    let n = pixels.len();
+    let mut channels = Vec::with_capacity(3 + extra.len());
+    for (c, name) in ["R", "G", "B"].into_iter().enumerate() {
+        let v = pixels.iter().map(|p| p[c]).collect();
+        channels.push(AnyChannel::new(Text::from(name), FlatSamples::F32(v)));
+    }
+    for (name, v) in extra {
+        if v.len() != n {
+            return Err(err(
+                path,
+                format!("channel \"{name}\": {} values for {n} pixels", v.len()),
+            ));
+        }
+        let text = Text::new_or_none(name.as_str())
+            .ok_or_else(|| err(path, format!("channel name \"{name}\" is not ASCII")))?;
+        channels.push(AnyChannel::new(text, FlatSamples::F32(v.clone())));
+    }
+    let encoding = Encoding {
+        line_order: LineOrder::Increasing,
+        ..Encoding::FAST_LOSSLESS
+    };
+    let size = (width as usize, height as usize);
+    let channels = AnyChannels::sort(SmallVec::from_vec(channels));
+    let image = Image::from_layer(Layer::new(
+        size,
+        LayerAttributes::default(),
+        encoding,
+        channels,
+    ));
+    write_atomically(path, |f| {
+        image.write().to_unbuffered(&*f).map_err(|e| e.to_string())
+    })
+}
+
 /// The sRGB transfer function of a linear value, clamped to `[0, 1]`.
 fn srgb(x: f32) -> u8 {
     let x = if x.is_finite() {

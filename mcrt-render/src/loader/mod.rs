@@ -133,7 +133,10 @@ pub fn parse_scene_with_warnings(
         match c.tag.as_str() {
             "integrator" => {
                 once(&ctx, &mut integrator, c)?;
-                desc.integrator = integrator::read_integrator(&ctx, c)?;
+                let read = integrator::read_integrator(&ctx, c)?;
+                desc.integrator = read.integrator;
+                desc.hide_emitters = read.hide_emitters;
+                desc.moment = read.moment;
             }
             "sensor" => {
                 once(&ctx, &mut sensor, c)?;

@@ -1,4 +1,4 @@
-//! The parameters of the integrators `path`, `direct`, `bdpt` and `mlt`, and the check of
+//! The parameters of the integrators `path`, `direct`, `bdpt`, `mlt` and `ptracer`, and the check of
 //! an [`IntegratorDesc`] against them (for a description built in code; the loader checks
 //! each value as it reads it).
 
@@ -26,11 +26,22 @@ pub(crate) const RR_DEPTH: IntParam = IntParam {
           subpaths play it from their first bounce)",
 };
 
-/// `hide_emitters` (only `false`, the default, is rendered).
+/// `hide_emitters` of every integrator.
 pub(crate) const HIDE_EMITTERS: BoolParam = BoolParam {
     name: "hide_emitters",
     default: false,
-    doc: "only `false` is supported",
+    doc: "hide emitters seen directly: `path` and `direct` see through emitters and not the \
+          sky; `bdpt`, `mlt` and `ptracer` leave out paths of one segment (emitters look black)",
+};
+
+/// `samples_per_pass` of `ptracer` (accepted; it only splits Mitsuba's work into passes).
+pub(crate) const SAMPLES_PER_PASS: IntParam = IntParam {
+    name: "samples_per_pass",
+    default: -1,
+    min: -1,
+    max: i32::MAX as i64,
+    doc: "accepted and ignored: Mitsuba splits its work into passes of this many samples per \
+          pixel, which changes the noise only",
 };
 
 /// `shading_samples` of `direct`.
@@ -148,6 +159,18 @@ pub(crate) const BDPT: PluginParams = PluginParams {
     ],
 };
 
+/// `ptracer`.
+pub(crate) const PTRACER: PluginParams = PluginParams {
+    category: "integrator",
+    plugin: "ptracer",
+    params: &[
+        ParamDef::Int(&MAX_DEPTH),
+        ParamDef::Int(&RR_DEPTH),
+        ParamDef::Bool(&HIDE_EMITTERS),
+        ParamDef::Int(&SAMPLES_PER_PASS),
+    ],
+};
+
 /// `mlt`.
 pub(crate) const MLT: PluginParams = PluginParams {
     category: "integrator",
@@ -193,6 +216,10 @@ pub(crate) fn check(i: &IntegratorDesc) -> Result<(), Invalid> {
             rr_depth,
         }
         | IntegratorDesc::Bdpt {
+            max_depth,
+            rr_depth,
+        }
+        | IntegratorDesc::Ptracer {
             max_depth,
             rr_depth,
         } => {

@@ -211,6 +211,7 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     integrator::DIRECT,
     integrator::BDPT,
     integrator::MLT,
+    integrator::PTRACER,
     sampler::INDEPENDENT,
     sampler::STRATIFIED,
     sampler::LDSAMPLER,

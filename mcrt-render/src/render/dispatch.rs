@@ -36,6 +36,7 @@ impl Renderer {
             t_max: f32::INFINITY,
             progress,
             cancel,
+            moment: self.moment.as_deref(),
         };
         let (film, stats) = on_threads(self.threads, || self.dispatch(&params));
         RenderOutput {

@@ -30,7 +30,9 @@ impl Renderer {
         // area: their other strategies cover what solid-angle sampling adds near a light,
         // at a fraction of its cost (spheres keep cone sampling either way).
         let shape_sampling = match resolved.integrator.kind() {
-            IntegratorKind::Bdpt | IntegratorKind::Mlt => ShapeSampling::Area,
+            IntegratorKind::Bdpt | IntegratorKind::Mlt | IntegratorKind::Ptracer => {
+                ShapeSampling::Area
+            }
             _ => opts.light_sampling,
         };
         // The loader has resolved mesh file names against the scene file's folder already
@@ -61,8 +63,21 @@ impl Renderer {
                 .collect::<Vec<_>>()
         });
         let strategy = opts.strategy.unwrap_or_default();
-        let integrator = integrator(&resolved.integrator, strategy, opts.bdpt_only);
+        let integrator = integrator(
+            &resolved.integrator,
+            strategy,
+            opts.bdpt_only,
+            desc.hide_emitters,
+        );
         check_bidirectional(&integrator, &camera, strategy)?;
+        if desc.moment.is_some()
+            && !matches!(integrator, Integrator::Path(_) | Integrator::Direct(_))
+        {
+            return Err(RenderError::Unsupported {
+                integrator: integrator.name(),
+                reason: "the moment integrator wraps only path and direct, which sample per pixel",
+            });
+        }
         if film.width == 0 || film.height == 0 {
             return Err(RenderError::EmptyFilm {
                 width: film.width,
@@ -131,13 +146,20 @@ impl Renderer {
             samples,
             crop,
             identity,
+            moment: desc.moment.as_ref().map(|m| m.name.clone()),
         })
     }
 }
 
 /// The library's integrator for description `d`, sampling with `strategy` (and, for `bdpt`,
-/// only strategy `only` if given).
-fn integrator(d: &IntegratorDesc, strategy: Strategy, only: Option<(u32, u32)>) -> Integrator {
+/// only strategy `only` if given), hiding emitters seen directly if `hide_emitters`.
+/// `ptracer` is bidirectional path tracing with the light-tracing strategies alone.
+fn integrator(
+    d: &IntegratorDesc,
+    strategy: Strategy,
+    only: Option<(u32, u32)>,
+    hide_emitters: bool,
+) -> Integrator {
     match *d {
         IntegratorDesc::Path {
             max_depth,
@@ -146,6 +168,7 @@ fn integrator(d: &IntegratorDesc, strategy: Strategy, only: Option<(u32, u32)>) 
             max_depth,
             rr_depth,
             strategy,
+            hide_emitters,
         }),
         IntegratorDesc::Direct {
             emitter_samples,
@@ -154,6 +177,7 @@ fn integrator(d: &IntegratorDesc, strategy: Strategy, only: Option<(u32, u32)>) 
             emitter_samples,
             bsdf_samples,
             strategy,
+            hide_emitters,
         }),
         IntegratorDesc::Bdpt {
             max_depth,
@@ -163,6 +187,17 @@ fn integrator(d: &IntegratorDesc, strategy: Strategy, only: Option<(u32, u32)>) 
             rr_depth,
             strategy,
             only,
+            hide_emitters,
+        }),
+        IntegratorDesc::Ptracer {
+            max_depth,
+            rr_depth,
+        } => Integrator::Bdpt(Bdpt {
+            max_depth,
+            rr_depth,
+            strategy: Strategy::LightOnly,
+            only: None,
+            hide_emitters,
         }),
         IntegratorDesc::Mlt {
             max_depth,
@@ -179,6 +214,7 @@ fn integrator(d: &IntegratorDesc, strategy: Strategy, only: Option<(u32, u32)>) 
             large_step_prob,
             sigma,
             strategy,
+            hide_emitters,
         }),
     }
 }

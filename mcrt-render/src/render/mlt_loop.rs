@@ -81,6 +81,7 @@ fn brightness_per_length<S: BidirectionalScene + Sync>(
         rr_depth: 5,
         strategy: mlt.strategy,
         only: None,
+        hide_emitters: mlt.hide_emitters,
     };
     // Cranley–Patterson rotation of the lattice from the seed.
     let key = combine(mix64(seed), 0x6272);

@@ -73,6 +73,8 @@ pub struct Renderer {
     samples: SampleRange,
     crop: Crop,
     identity: u64,
+    /// The `moment` integrator's nested name, if the scene has one.
+    moment: Option<String>,
 }
 
 /// A stop flag that is never set.

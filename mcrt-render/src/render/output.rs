@@ -1,6 +1,6 @@
 //! A finished render and its images.
 
-use crate::film::{write_exr, write_png, Film, ImageError};
+use crate::film::{write_exr, write_exr_with_channels, write_png, Film, ImageError};
 use glam::Vec3;
 use std::path::Path;
 
@@ -27,9 +27,12 @@ impl RenderOutput {
         self.film.mean()
     }
 
-    /// Writes the image as linear float RGB EXR.
+    /// Writes the image as linear float RGB EXR, with the `moment` integrator's channels
+    /// if the scene has it.
     pub fn write_exr(&self, path: &Path) -> Result<(), ImageError> {
-        write_exr(path, self.film.width(), self.film.height(), &self.image())
+        let image = self.image();
+        let extra = self.film.extra_channels(&image, 0.0);
+        write_exr_with_channels(path, self.film.width(), self.film.height(), &image, &extra)
     }
 
     /// Writes the image as sRGB PNG.

@@ -7,7 +7,7 @@
 //! once it is set, so cancelling takes effect within one ray.
 
 use crate::camera::Camera;
-use crate::film::{Crop, Film, PixelAccum, PixelFilter, SampleRange};
+use crate::film::{xyz_squared, Crop, Film, PixelAccum, PixelFilter, SampleRange};
 use glam::Vec2;
 use mcrt::integrator::{Integrator, Scene};
 use mcrt::sampling::sampler::{AnySampler, Sampler};
@@ -36,10 +36,14 @@ pub(crate) struct LoopParams<'a> {
     pub t_max: f32,
     pub progress: &'a (dyn Fn(u64, u64) + Sync),
     pub cancel: &'a AtomicBool,
+    /// The `moment` integrator's nested name, if the film keeps its sums.
+    pub moment: Option<&'a str>,
 }
 
 /// One tile's per-pixel accumulators, its ray count and its count of non-finite samples.
-type TileResult = (Vec<(usize, PixelAccum)>, u64, u64);
+/// (With each pixel's sum of squared XYZ samples, for the `moment` channels: zero unless the
+/// film keeps them.)
+type TileResult = (Vec<(usize, PixelAccum, [f64; 3])>, u64, u64);
 
 /// Counters of the work done.
 #[derive(Debug, Clone, Default)]
@@ -102,9 +106,10 @@ fn render_tile_with<S: Scene, R: Sampler>(
         for x in x0..x1 {
             let index = (y * p.width + x) as usize;
             let mut acc = PixelAccum::default();
+            let mut moment = [0.0f64; 3];
             for s in s0..s1 {
                 if p.cancel.load(Ordering::Relaxed) {
-                    out.push((index, acc));
+                    out.push((index, acc, moment));
                     return (out, rays, nonfinite);
                 }
                 rng.start_pixel_sample([x, y], s);
@@ -122,19 +127,24 @@ fn render_tile_with<S: Scene, R: Sampler>(
                     .li(scene, ray.origin, ray.dir, t_max.min(p.t_max), &mut rng);
                 if p.cancel.load(Ordering::Relaxed) {
                     // The path may have been cut short by the cancel (`SceneView::stop`).
-                    out.push((index, acc));
+                    out.push((index, acc, moment));
                     return (out, rays, nonfinite);
                 }
                 rays += r.rays as u64;
                 let v = r.radiance;
                 if v.is_finite() {
                     acc.add(v);
+                    if p.moment.is_some() {
+                        for (m, x) in moment.iter_mut().zip(xyz_squared(v)) {
+                            *m += x;
+                        }
+                    }
                 } else {
                     nonfinite += 1;
                     acc.add(glam::Vec3::ZERO);
                 }
             }
-            out.push((index, acc));
+            out.push((index, acc, moment));
         }
     }
     (out, rays, nonfinite)
@@ -143,6 +153,9 @@ fn render_tile_with<S: Scene, R: Sampler>(
 /// Renders the sample range in the window (fewer samples if cancelled) into a film.
 pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Film, LoopStats) {
     let mut film = Film::new(p.width, p.height);
+    if let Some(name) = p.moment {
+        film = film.with_moment(name);
+    }
     let mut stats = LoopStats::default();
     let tiles = tiles(p.window);
     let total = p.samples.len() as u64 * p.window.area();
@@ -167,11 +180,12 @@ pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Fi
         for (px, rays, nonfinite) in results.into_iter().flatten() {
             stats.rays += rays;
             stats.nonfinite += nonfinite;
-            for (i, a) in &px {
+            for (i, a, m) in &px {
                 stats.samples += a.count as u64;
                 // Indices come from `tiles`, which lie inside the film.
                 let merged = film.merge(*i, a);
                 debug_assert!(merged.is_ok());
+                film.add_moment(*i, *m);
             }
         }
         s0 = s1;

@@ -44,7 +44,13 @@ const LIGHT_RR_DEPTH: u32 = 1;
 /// ```
 /// use mcrt::integrator::{Bdpt, Strategy};
 ///
-/// let b = Bdpt { max_depth: 5, rr_depth: 5, strategy: Strategy::MisPower, only: None };
+/// let b = Bdpt {
+///     max_depth: 5,
+///     rr_depth: 5,
+///     strategy: Strategy::MisPower,
+///     only: None,
+///     hide_emitters: false,
+/// };
 /// assert_eq!(b.max_vertices(), (6, 5)); // camera subpath, light subpath
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,6 +66,11 @@ pub struct Bdpt {
     /// Only this strategy `(s, t)`, with unit weight (for tests and pictures of one
     /// strategy); `None` for all of them.
     pub only: Option<(u32, u32)>,
+    /// Hide emitters seen directly: paths of one segment (camera to emitter, by every
+    /// strategy that makes them) are left out, so that emitters in view and the sky look
+    /// black. (Mitsuba 3's `ptracer` does this with its `hide_emitters`; its `path` lets the
+    /// camera see through emitters instead, which light tracing cannot do.)
+    pub hide_emitters: bool,
 }
 
 impl Default for Bdpt {
@@ -69,6 +80,7 @@ impl Default for Bdpt {
             rr_depth: 5,
             strategy: Strategy::MisPower,
             only: None,
+            hide_emitters: false,
         }
     }
 }
@@ -172,7 +184,11 @@ impl Bdpt {
         };
         for t in 1..=buf.camera.len() {
             for s in 0..=buf.light.len() {
-                if s + t < 2 || s + t - 1 > segments || !self.runs(s, t) {
+                if s + t < 2
+                    || s + t - 1 > segments
+                    || !self.runs(s, t)
+                    || (self.hide_emitters && s + t == 2)
+                {
                     continue;
                 }
                 let Some(c) = connect(

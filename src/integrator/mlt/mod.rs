@@ -49,6 +49,9 @@ pub struct Mlt {
     pub sigma: f32,
     /// The MIS heuristic among the strategies of one path (balance or power).
     pub strategy: Strategy,
+    /// Hide emitters seen directly: paths of one segment carry nothing, as with
+    /// [`Bdpt::hide_emitters`](super::Bdpt::hide_emitters).
+    pub hide_emitters: bool,
 }
 
 impl Mlt {
@@ -63,6 +66,7 @@ impl Mlt {
         large_step_prob: 0.3,
         sigma: 0.01,
         strategy: Strategy::MisPower,
+        hide_emitters: false,
     };
 }
 
@@ -120,6 +124,9 @@ impl Mlt {
         };
         // Strategy choice: uniform over the k + 1 strategies of k segments (the camera
         // seeing an emitter directly has only s = 0).
+        if self.hide_emitters && segments == 1 {
+            return out;
+        }
         let k = segments as usize;
         let n = if k == 1 { 1 } else { k + 1 };
         let s = if k == 1 {

@@ -1,0 +1,149 @@
+//! The loader on the integrator features of issue 25: `hide_emitters` on every integrator,
+//! `ptracer` with Mitsuba 3's parameters, `moment` around `path` or `direct`, and located
+//! errors for what is refused (an outer integrator other than `moment`, a nested one that
+//! does not sample per pixel, several nested ones).
+
+use mcrt_render::description::{IntegratorDesc, MomentDesc, SceneDescription};
+use mcrt_render::loader::{parse_scene, SceneError};
+use std::path::Path;
+
+const FILE: &str = "tests/data/integrators-test.xml";
+
+fn scene(body: &str) -> String {
+    format!("<scene version=\"3.0.0\">\n{body}\n</scene>")
+}
+
+fn load(body: &str) -> SceneDescription {
+    parse_scene(&scene(body), Some(Path::new(FILE)), &[]).expect("scene loads")
+}
+
+fn err(body: &str) -> SceneError {
+    match parse_scene(&scene(body), Some(Path::new(FILE)), &[]) {
+        Ok(d) => panic!("expected an error, got {d:?}"),
+        Err(e) => e,
+    }
+}
+
+/// The error names the file, the line, the element and `words`.
+fn check(e: &SceneError, line: u32, element: &str, words: &str) {
+    let msg = e.to_string();
+    assert_eq!(e.line, Some(line), "{msg}");
+    assert!(msg.contains(FILE), "{msg}");
+    assert!(msg.contains(element), "{msg}");
+    assert!(msg.contains(words), "{msg}");
+}
+
+#[test]
+fn hide_emitters_is_read_on_every_integrator() {
+    for ty in ["path", "direct", "bdpt", "mlt", "ptracer"] {
+        let shown = load(&format!("<integrator type=\"{ty}\"/>"));
+        assert!(!shown.hide_emitters, "{ty}");
+        let hidden = load(&format!(
+            "<integrator type=\"{ty}\"><boolean name=\"hide_emitters\" value=\"true\"/></integrator>"
+        ));
+        assert!(hidden.hide_emitters, "{ty}");
+        assert_eq!(hidden.integrator.kind().name(), ty);
+    }
+    assert!(!load("").hide_emitters);
+}
+
+#[test]
+fn ptracer_reads_mitsubas_parameters() {
+    let d = load(
+        "<integrator type=\"ptracer\"><integer name=\"max_depth\" value=\"8\"/>\n\
+         <integer name=\"rr_depth\" value=\"3\"/><integer name=\"samples_per_pass\" value=\"4\"/>\n\
+         </integrator>",
+    );
+    assert_eq!(
+        d.integrator,
+        IntegratorDesc::Ptracer {
+            max_depth: 8,
+            rr_depth: 3
+        }
+    );
+    assert_eq!(
+        load("<integrator type=\"ptracer\"/>").integrator,
+        IntegratorDesc::Ptracer {
+            max_depth: -1,
+            rr_depth: 5
+        }
+    );
+    let e = err(
+        "<integrator type=\"ptracer\">\n<integer name=\"max_depth\" value=\"-2\"/></integrator>",
+    );
+    check(&e, 3, "<integer name=\"max_depth\">", "max_depth");
+    let e = err("<integrator type=\"ptracer\">\n<float name=\"sigma\" value=\"1\"/></integrator>");
+    check(&e, 3, "sigma", "sigma");
+}
+
+#[test]
+fn moment_wraps_path_or_direct_and_is_named_after_it() {
+    let d = load(
+        "<integrator type=\"moment\">\n<integrator type=\"path\" name=\"nested\">\
+         <integer name=\"max_depth\" value=\"4\"/>\
+         <boolean name=\"hide_emitters\" value=\"true\"/></integrator></integrator>",
+    );
+    assert_eq!(
+        d.integrator,
+        IntegratorDesc::Path {
+            max_depth: 4,
+            rr_depth: 5
+        }
+    );
+    assert!(d.hide_emitters);
+    assert_eq!(
+        d.moment,
+        Some(MomentDesc {
+            name: "nested".into()
+        })
+    );
+    // Unnamed, it is Mitsuba's first automatic name.
+    let d = load("<integrator type=\"moment\"><integrator type=\"direct\"/></integrator>");
+    assert_eq!(d.moment.map(|m| m.name).as_deref(), Some("_arg_0"));
+    assert!(load("<integrator type=\"path\"/>").moment.is_none());
+}
+
+#[test]
+fn what_moment_cannot_hold_is_a_located_error() {
+    let e = err("<integrator type=\"moment\">\n<integrator type=\"bdpt\"/></integrator>");
+    check(
+        &e,
+        3,
+        "<integrator type=\"bdpt\">",
+        "only \"path\" and \"direct\"",
+    );
+    let e = err("<integrator type=\"moment\">\n<integrator type=\"moment\"/></integrator>");
+    check(&e, 3, "<integrator type=\"moment\">", "inside \"moment\"");
+    let e = err("<integrator type=\"moment\"><integrator type=\"path\"/>\n<integrator type=\"path\"/></integrator>");
+    check(&e, 3, "<integrator type=\"path\">", "exactly one nested");
+    let e = err("<integrator type=\"moment\">\n</integrator>");
+    check(&e, 2, "<integrator type=\"moment\">", "exactly one nested");
+    let e = err("<integrator type=\"moment\">\n<bsdf type=\"diffuse\"/></integrator>");
+    check(&e, 3, "<bsdf type=\"diffuse\">", "cannot be nested");
+    let e = err("<integrator type=\"moment\"><integrator type=\"path\"/>\n<integer name=\"x\" value=\"1\"/></integrator>");
+    check(&e, 3, "<integer name=\"x\">", "x");
+    // A nested integrator's own parameters are checked where they are.
+    let e = err("<integrator type=\"moment\"><integrator type=\"path\">\n<integer name=\"rr_depth\" value=\"0\"/></integrator></integrator>");
+    check(&e, 3, "<integer name=\"rr_depth\">", "rr_depth");
+}
+
+#[test]
+fn an_outer_integrator_we_do_not_support_is_named() {
+    for ty in ["aov", "stokes"] {
+        let e = err(&format!(
+            "<integrator type=\"{ty}\">\n<integrator type=\"path\"/></integrator>"
+        ));
+        check(
+            &e,
+            2,
+            &format!("<integrator type=\"{ty}\">"),
+            "only \"moment\"",
+        );
+    }
+    // An unknown one with something nested: the outer element is named, not the inner.
+    let e = err("<integrator type=\"volpathmis\">\n<integrator type=\"path\"/></integrator>");
+    check(&e, 2, "<integrator type=\"volpathmis\">", "volpathmis");
+    // A known integrator still refuses a nested one where it stands.
+    let e = err("<integrator type=\"path\">\n<integrator type=\"path\"/></integrator>");
+    check(&e, 3, "<integrator type=\"path\">", "cannot be nested here");
+}
