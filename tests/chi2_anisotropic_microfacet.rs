@@ -49,17 +49,41 @@ fn anisotropic_microfacet_normals() {
         let g = GgxAnisotropic::new(au, av).expect("valid alphas");
         let b = BeckmannAnisotropic::new(au, av).expect("valid alphas");
         let d = || lobe_domain(au, av);
-        run(&mut f, &format!("GgxAnisotropic-{au}-{av}"), &g, d(), common::SAMPLES);
-        run(&mut f, &format!("BeckmannAnisotropic-{au}-{av}"), &b, d(), common::SAMPLES);
+        run(
+            &mut f,
+            &format!("GgxAnisotropic-{au}-{av}"),
+            &g,
+            d(),
+            common::SAMPLES,
+        );
+        run(
+            &mut f,
+            &format!("BeckmannAnisotropic-{au}-{av}"),
+            &b,
+            d(),
+            common::SAMPLES,
+        );
         for theta in [45.0f32, 80.0] {
             let wi = incident(theta);
             let gv = GgxAnisotropicVisible::new(g, wi).expect("valid");
             let bv = BeckmannAnisotropicVisible::new(b, wi).expect("valid");
             let n = format!("{au}-{av}-{theta}deg");
-            run(&mut f, &format!("GgxAnisotropicVisible-{n}"), &gv, d(), common::SAMPLES);
+            run(
+                &mut f,
+                &format!("GgxAnisotropicVisible-{n}"),
+                &gv,
+                d(),
+                common::SAMPLES,
+            );
             // Beckmann visible normals are slow (a Newton inversion): a quarter of the samples.
             let quarter = common::SAMPLES / 4;
-            run(&mut f, &format!("BeckmannAnisotropicVisible-{n}"), &bv, d(), quarter);
+            run(
+                &mut f,
+                &format!("BeckmannAnisotropicVisible-{n}"),
+                &bv,
+                d(),
+                quarter,
+            );
         }
     }
     assert!(f.is_empty(), "{} failed:\n{}", f.len(), f.join("\n"));

@@ -55,6 +55,7 @@ mod file_mesh;
 mod offset;
 mod query;
 mod sample;
+mod tangent;
 mod vertex_attributes;
 
 pub use crate::accel::AccelKind;

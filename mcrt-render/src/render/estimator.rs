@@ -48,7 +48,9 @@ impl Renderer {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let textured = desc.shapes.iter().any(|s| s.bsdf.is_textured()).then(|| {
+        let per_hit =
+            |s: &crate::description::ShapeDesc| s.bsdf.is_textured() || s.bsdf.needs_tangent();
+        let textured = desc.shapes.iter().any(per_hit).then(|| {
             bsdfs
                 .iter()
                 .zip(&desc.shapes)

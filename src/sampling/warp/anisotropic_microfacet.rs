@@ -394,7 +394,11 @@ mod tests {
     use super::*;
     use crate::sampling::warp::MicrofacetDistribution;
 
-    const NORMALS: [Vec3; 3] = [Vec3::Z, Vec3::new(0.2, 0.1, 0.97), Vec3::new(-0.5, 0.3, 0.8)];
+    const NORMALS: [Vec3; 3] = [
+        Vec3::Z,
+        Vec3::new(0.2, 0.1, 0.97),
+        Vec3::new(-0.5, 0.3, 0.8),
+    ];
 
     /// With αᵤ = αᵥ the anisotropic distributions are the isotropic ones.
     #[test]

@@ -42,6 +42,7 @@
 
 use glam::Vec2;
 
+mod anisotropic_microfacet;
 mod bilinear_patch;
 mod cone;
 mod disk;
@@ -51,7 +52,6 @@ mod henyey_greenstein;
 mod lat_long;
 pub(crate) mod linear;
 mod logistic;
-mod anisotropic_microfacet;
 mod microfacet;
 mod normal;
 pub mod polar;
@@ -66,6 +66,7 @@ mod triangle;
 mod visible_normals;
 mod von_mises_fisher;
 
+pub use anisotropic_microfacet::*;
 pub use bilinear_patch::*;
 pub use cone::*;
 pub use disk::*;
@@ -75,7 +76,6 @@ pub use henyey_greenstein::*;
 pub use lat_long::LatLong;
 pub use linear::*;
 pub use logistic::*;
-pub use anisotropic_microfacet::*;
 pub use microfacet::*;
 pub use normal::*;
 pub use power_cosine::*;
