@@ -124,9 +124,9 @@ fn bad_values_are_refused_where_they_are() {
     );
     check(&one("metallic", "-0.1"), 4, "\"metallic\"");
     check(
-        &one("anisotropic", "0.5"),
+        &one("anisotropic", "1.5"),
         4,
-        "\"anisotropic\" must be 0 (anisotropy is unsupported",
+        "\"anisotropic\" must be in [0, 1]",
     );
     check(&one("eta", "0"), 4, "\"eta\" must be finite and > 0");
     check(

@@ -5,7 +5,8 @@
 use crate::description::{Microfacet, MicrofacetKind};
 use glam::{Vec2, Vec3};
 use mcrt::sampling::warp::{
-    Beckmann, BeckmannVisible, Ggx, GgxVisible, MicrofacetDistribution, Warp,
+    Beckmann, BeckmannAnisotropic, BeckmannAnisotropicVisible, BeckmannVisible, Ggx,
+    GgxAnisotropic, GgxAnisotropicVisible, GgxVisible, MicrofacetDistribution, Warp,
 };
 use mcrt::sampling::SamplingError;
 
@@ -20,6 +21,10 @@ pub enum Ndf {
     GgxAll(Ggx),
     /// Beckmann, sampled from the whole distribution (`sample_visible = false`).
     BeckmannAll(Beckmann),
+    /// Anisotropic GGX (αᵤ ≠ αᵥ); `true`: sampled by its visible normals.
+    GgxAnisotropic(GgxAnisotropic, bool),
+    /// Anisotropic Beckmann (αᵤ ≠ αᵥ); `true`: sampled by its visible normals.
+    BeckmannAnisotropic(BeckmannAnisotropic, bool),
 }
 
 impl Ndf {
@@ -44,6 +49,9 @@ impl Ndf {
     /// more noise).
     pub fn of(m: &Microfacet) -> Self {
         let (kind, sample_visible) = (m.distribution, m.sample_visible);
+        if m.is_anisotropic() {
+            return Self::anisotropic(m);
+        }
         // A `Roughness` lies in [10⁻⁴, 10], inside the warps' [10⁻⁴, 10⁴].
         let a = m.alpha.get();
         let ggx = || Ggx::new(a).unwrap_or_else(|e| unreachable!("Roughness {a}: {e}"));
@@ -54,6 +62,30 @@ impl Ndf {
             (MicrofacetKind::Ggx, false) => Ndf::GgxAll(ggx()),
             (MicrofacetKind::Beckmann, false) => Ndf::BeckmannAll(beckmann()),
         }
+    }
+
+    /// The anisotropic distribution of `m` (αᵤ along the local x axis).
+    fn anisotropic(m: &Microfacet) -> Self {
+        let (au, av) = (m.alpha.get(), m.alpha_v.get());
+        // A `Roughness` lies in [10⁻⁴, 10], inside the warps' [10⁻⁴, 10⁴].
+        match m.distribution {
+            MicrofacetKind::Ggx => Ndf::GgxAnisotropic(
+                GgxAnisotropic::new(au, av)
+                    .unwrap_or_else(|e| unreachable!("Roughness ({au}, {av}): {e}")),
+                m.sample_visible,
+            ),
+            MicrofacetKind::Beckmann => Ndf::BeckmannAnisotropic(
+                BeckmannAnisotropic::new(au, av)
+                    .unwrap_or_else(|e| unreachable!("Roughness ({au}, {av}): {e}")),
+                m.sample_visible,
+            ),
+        }
+    }
+
+    /// Whether the distribution is anisotropic (it turns with the shading tangent).
+    #[inline]
+    pub fn is_anisotropic(&self) -> bool {
+        matches!(self, Ndf::GgxAnisotropic(..) | Ndf::BeckmannAnisotropic(..))
     }
 
     /// The normals visible from `wo` (above the surface); `None` if `wo` is not a valid
@@ -67,6 +99,14 @@ impl Ndf {
             }
             Ndf::GgxAll(g) => VisibleNdf::GgxAll(*g),
             Ndf::BeckmannAll(b) => VisibleNdf::BeckmannAll(*b),
+            Ndf::GgxAnisotropic(g, true) => {
+                VisibleNdf::GgxAnisotropic(GgxAnisotropicVisible::new(*g, wo).ok()?)
+            }
+            Ndf::BeckmannAnisotropic(b, true) => VisibleNdf::BeckmannAnisotropic(Box::new(
+                BeckmannAnisotropicVisible::new(*b, wo).ok()?,
+            )),
+            Ndf::GgxAnisotropic(g, false) => VisibleNdf::GgxAnisotropicAll(*g),
+            Ndf::BeckmannAnisotropic(b, false) => VisibleNdf::BeckmannAnisotropicAll(*b),
         })
     }
 
@@ -76,6 +116,8 @@ impl Ndf {
         match self {
             Ndf::Ggx(g) | Ndf::GgxAll(g) => g.d(m),
             Ndf::Beckmann(b) | Ndf::BeckmannAll(b) => b.d(m),
+            Ndf::GgxAnisotropic(g, _) => g.d(m),
+            Ndf::BeckmannAnisotropic(b, _) => b.d(m),
         }
     }
 
@@ -85,6 +127,8 @@ impl Ndf {
         match self {
             Ndf::Ggx(g) | Ndf::GgxAll(g) => g.g1(w, m),
             Ndf::Beckmann(b) | Ndf::BeckmannAll(b) => b.g1(w, m),
+            Ndf::GgxAnisotropic(g, _) => g.g1(w, m),
+            Ndf::BeckmannAnisotropic(b, _) => b.g1(w, m),
         }
     }
 
@@ -94,6 +138,8 @@ impl Ndf {
         match self {
             Ndf::Ggx(g) | Ndf::GgxAll(g) => g.g(wo, wi, m),
             Ndf::Beckmann(b) | Ndf::BeckmannAll(b) => b.g(wo, wi, m),
+            Ndf::GgxAnisotropic(g, _) => g.g(wo, wi, m),
+            Ndf::BeckmannAnisotropic(b, _) => b.g(wo, wi, m),
         }
     }
 
@@ -123,6 +169,14 @@ pub enum VisibleNdf {
     GgxAll(Ggx),
     /// All Beckmann normals, density `D(m) cos θ_m` whatever the direction.
     BeckmannAll(Beckmann),
+    /// Visible anisotropic GGX normals.
+    GgxAnisotropic(GgxAnisotropicVisible),
+    /// Visible anisotropic Beckmann normals (boxed: the isotropic variants stay small).
+    BeckmannAnisotropic(Box<BeckmannAnisotropicVisible>),
+    /// All anisotropic GGX normals, density `D(m) cos θ_m`.
+    GgxAnisotropicAll(GgxAnisotropic),
+    /// All anisotropic Beckmann normals, density `D(m) cos θ_m`.
+    BeckmannAnisotropicAll(BeckmannAnisotropic),
 }
 
 impl VisibleNdf {
@@ -134,6 +188,10 @@ impl VisibleNdf {
             Self::Beckmann(v) => v.sample(u),
             Self::GgxAll(v) => v.sample(u),
             Self::BeckmannAll(v) => v.sample(u),
+            Self::GgxAnisotropic(v) => v.sample(u),
+            Self::BeckmannAnisotropic(v) => v.sample(u),
+            Self::GgxAnisotropicAll(v) => v.sample(u),
+            Self::BeckmannAnisotropicAll(v) => v.sample(u),
         }
     }
 
@@ -145,6 +203,10 @@ impl VisibleNdf {
             Self::Beckmann(v) => v.pdf(m),
             Self::GgxAll(v) => v.pdf(m),
             Self::BeckmannAll(v) => v.pdf(m),
+            Self::GgxAnisotropic(v) => v.pdf(m),
+            Self::BeckmannAnisotropic(v) => v.pdf(m),
+            Self::GgxAnisotropicAll(v) => v.pdf(m),
+            Self::BeckmannAnisotropicAll(v) => v.pdf(m),
         }
     }
 
@@ -156,6 +218,10 @@ impl VisibleNdf {
             Self::Beckmann(v) => v.sample_with_pdf(u),
             Self::GgxAll(v) => v.sample_with_pdf(u),
             Self::BeckmannAll(v) => v.sample_with_pdf(u),
+            Self::GgxAnisotropic(v) => v.sample_with_pdf(u),
+            Self::BeckmannAnisotropic(v) => v.sample_with_pdf(u),
+            Self::GgxAnisotropicAll(v) => v.sample_with_pdf(u),
+            Self::BeckmannAnisotropicAll(v) => v.sample_with_pdf(u),
         }
     }
 }

@@ -82,6 +82,8 @@ pub struct TexturedBsdf {
     /// The material with the textures' means in their parameters.
     pub base: Sided<AnyBsdf>,
     slots: Vec<Slot>,
+    /// Whether the material turns with the shading tangent (anisotropic roughness).
+    tangent: bool,
 }
 
 impl TexturedBsdf {
@@ -98,7 +100,18 @@ impl TexturedBsdf {
     pub fn with_base(base: Sided<AnyBsdf>, desc: &BsdfDesc) -> Self {
         let mut slots = Vec::new();
         collect(desc, &mut Vec::new(), &mut slots);
-        Self { base, slots }
+        Self {
+            base,
+            slots,
+            tangent: desc.needs_tangent(),
+        }
+    }
+
+    /// Whether the material turns with the shading tangent `dp/du` (anisotropic
+    /// roughness): its hits then need Mitsuba's shading frame.
+    #[inline]
+    pub fn needs_tangent(&self) -> bool {
+        self.tangent
     }
 
     /// Whether any parameter is textured.

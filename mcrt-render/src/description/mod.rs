@@ -727,6 +727,22 @@ impl BsdfDesc {
         }
     }
 
+    /// Whether this material or one nested in it turns with the shading tangent `dp/du`
+    /// (anisotropic roughness, αᵤ ≠ αᵥ), so that its hits need the tangent.
+    pub fn needs_tangent(&self) -> bool {
+        match self {
+            Self::RoughConductor { microfacet, .. }
+            | Self::RoughDielectric { microfacet, .. }
+            | Self::RoughPlastic { microfacet, .. } => microfacet.is_anisotropic(),
+            Self::Principled(p) => p.anisotropic > 0.0,
+            Self::TwoSided(inner) | Self::Mask { inner, .. } | Self::Textured { inner, .. } => {
+                inner.needs_tangent()
+            }
+            Self::Blend { first, second, .. } => first.needs_tangent() || second.needs_tangent(),
+            _ => false,
+        }
+    }
+
     /// Whether this material (not looking into nested ones) has the parameter `p`, which
     /// a texture may then drive.
     pub fn has_param(&self, p: TextureParam) -> bool {

@@ -58,6 +58,7 @@ mod level;
 mod offset;
 mod query;
 mod sample;
+mod tangent;
 mod vertex_attributes;
 
 pub use crate::accel::AccelKind;

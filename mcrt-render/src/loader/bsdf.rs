@@ -125,7 +125,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
         },
         "roughconductor" => BsdfDesc::RoughConductor {
-            microfacet: microfacet(e, &mut p)?,
+            microfacet: microfacet(e, &mut p, Anisotropy::Allowed)?,
             fresnel: fresnel(e, &mut p)?,
             specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
         },
@@ -136,7 +136,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             specular_transmittance: p.get_rgb(&SPECULAR_TRANSMITTANCE)?,
         },
         "roughdielectric" => BsdfDesc::RoughDielectric {
-            microfacet: microfacet(e, &mut p)?,
+            microfacet: microfacet(e, &mut p, Anisotropy::Allowed)?,
             int_ior: ior(e, &mut p, &INT_IOR)?,
             ext_ior: ior(e, &mut p, &EXT_IOR)?,
             specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
@@ -156,7 +156,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             nonlinear: p.get_bool(&NONLINEAR)?,
         },
         "roughplastic" => BsdfDesc::RoughPlastic {
-            microfacet: microfacet(e, &mut p)?,
+            microfacet: microfacet(e, &mut p, Anisotropy::Refused)?,
             int_ior: ior(e, &mut p, &COATING_IOR)?,
             ext_ior: ior(e, &mut p, &EXT_IOR)?,
             diffuse_reflectance: p.get_rgb(&DIFFUSE_REFLECTANCE)?,
@@ -246,40 +246,48 @@ fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>, depth: u32) -> Res
 
 /// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`], and
 /// `sample_visible`, which only changes the noise, never the expected value.
-fn microfacet(e: &Elem, p: &mut Props) -> Res<Microfacet> {
+fn microfacet(e: &Elem, p: &mut Props, anisotropy: Anisotropy) -> Res<Microfacet> {
+    let distribution = match p.get_choice(&DISTRIBUTION)? {
+        "ggx" => MicrofacetKind::Ggx,
+        _ => MicrofacetKind::Beckmann,
+    };
+    let (alpha_u, alpha_v) = roughness(e, p, anisotropy)?;
     Ok(Microfacet {
-        distribution: match p.get_choice(&DISTRIBUTION)? {
-            "ggx" => MicrofacetKind::Ggx,
-            _ => MicrofacetKind::Beckmann,
-        },
-        alpha: roughness(e, p)?,
         sample_visible: p.get_bool(&SAMPLE_VISIBLE)?,
+        ..Microfacet::anisotropic(distribution, alpha_u, alpha_v)
     })
 }
 
-/// The isotropic roughness: `alpha` ([`ALPHA`]: values in [0, 10⁻⁴) are raised to 10⁻⁴, as
-/// Mitsuba 3 does; negative values and values above 10 are refused), or `alpha_u` =
-/// `alpha_v`, checked the same way.
-fn roughness(e: &Elem, p: &mut Props) -> Res<Roughness> {
+/// Whether a material takes `alpha_u` ≠ `alpha_v` (Mitsuba 3's `roughplastic` refuses it).
+#[derive(Clone, Copy, PartialEq)]
+enum Anisotropy {
+    Allowed,
+    Refused,
+}
+
+/// The roughness (αᵤ, αᵥ): `alpha` ([`ALPHA`]: values in [0, 10⁻⁴) are raised to 10⁻⁴, as
+/// Mitsuba 3 does; negative values and values above 10 are refused) for both, or `alpha_u`
+/// and `alpha_v`, each checked the same way; unequal only where `anisotropy` allows.
+fn roughness(e: &Elem, p: &mut Props, anisotropy: Anisotropy) -> Res<(Roughness, Roughness)> {
     if !p.has(ALPHA_U.name) && !p.has(ALPHA_V.name) {
-        return p.get_float(&ALPHA);
+        let alpha = p.get_float(&ALPHA)?;
+        return Ok((alpha, alpha));
     }
     let alpha = p.float(ALPHA.name)?;
     let (au, av) = (p.float(ALPHA_U.name)?, p.float(ALPHA_V.name)?);
-    let alpha = match (alpha, au, av) {
-        (None, Some(u), Some(v)) if u == v => u,
+    let (u, v) = match (alpha, au, av) {
+        (None, Some(u), Some(v)) if u == v || anisotropy == Anisotropy::Allowed => (u, v),
         (None, Some(_), Some(_)) => {
             return Err(p.invalid(
                 ALPHA_U.name,
                 e,
-                "differs from alpha_v (anisotropy is unsupported)",
+                "differs from alpha_v (Mitsuba 3's roughplastic has no anisotropy)",
             ))
         }
         _ => return Err(p.invalid("alpha", e, "give either alpha or both alpha_u and alpha_v")),
     };
-    ALPHA
-        .check(alpha)
-        .map_err(|i| p.invalid(i.param, e, &i.message))
+    let check = |name: &str, a: f32| ALPHA.check(a).map_err(|i| p.invalid(name, e, &i.message));
+    Ok((check(ALPHA_U.name, u)?, check(ALPHA_V.name, v)?))
 }
 
 /// Mitsuba's conductor rule: `material = "none"` (the default) without `eta` or `k` is a

@@ -35,16 +35,6 @@ pub(crate) fn principled(e: &Elem, p: &mut Props) -> Res<BsdfDesc> {
         )?,
         clearcoat_sampling_rate: f("clearcoat_sampling_rate", d.clearcoat_sampling_rate)?,
     };
-    // Mitsuba stretches the lobe along dp/du; our shading tangent is built from the normal
-    // alone, so an anisotropic highlight would point elsewhere: refused, as the other rough
-    // materials refuse alpha_u ≠ alpha_v.
-    if params.anisotropic != 0.0 {
-        return Err(p.invalid(
-            "anisotropic",
-            e,
-            "must be 0 (anisotropy is unsupported: the shading tangent is not Mitsuba's dp/du)",
-        ));
-    }
     if let Some(c) = p.rgb("base_color")? {
         params.base_color = c;
     }

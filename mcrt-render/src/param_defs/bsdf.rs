@@ -25,15 +25,34 @@ pub(crate) const ALPHA: FloatParam<Roughness> = FloatParam {
     doc: "the roughness; below 10⁻⁴ (0 included) it is raised to 10⁻⁴",
 };
 
-/// `alpha_u`: with an equal `alpha_v`, the roughness (anisotropy is unsupported).
+/// `alpha_u` of `roughconductor` and `roughdielectric`: the roughness along the shading
+/// tangent (Mitsuba's `dp/du`), read with [`ALPHA`]'s range; with [`ALPHA_V`] instead of
+/// `alpha`.
 pub(crate) const ALPHA_U: OtherParam = OtherParam {
     name: "alpha_u",
     kind: "float",
-    doc: "instead of `alpha`, with an equal `alpha_v` (anisotropy is an error)",
+    doc: "instead of `alpha`, with `alpha_v`: the roughness along the shading tangent `dp/du` \
+          (anisotropic when they differ)",
 };
 
 /// `alpha_v`: see [`ALPHA_U`].
 pub(crate) const ALPHA_V: OtherParam = OtherParam {
+    name: "alpha_v",
+    kind: "float",
+    doc: "the roughness along the bitangent; see `alpha_u`",
+};
+
+/// `alpha_u` of `roughplastic`, which is isotropic in Mitsuba 3: only with an equal
+/// `alpha_v`.
+pub(crate) const ALPHA_U_ISOTROPIC: OtherParam = OtherParam {
+    name: "alpha_u",
+    kind: "float",
+    doc: "instead of `alpha`, with an equal `alpha_v` (Mitsuba 3's `roughplastic` is \
+          isotropic: anisotropy is an error)",
+};
+
+/// `alpha_v` of `roughplastic`: see [`ALPHA_U_ISOTROPIC`].
+pub(crate) const ALPHA_V_ISOTROPIC: OtherParam = OtherParam {
     name: "alpha_v",
     kind: "float",
     doc: "see `alpha_u`",
@@ -197,8 +216,8 @@ pub(crate) const ROUGHPLASTIC: PluginParams = PluginParams {
     params: &[
         ParamDef::Choice(&DISTRIBUTION),
         ParamDef::Roughness(&ALPHA),
-        ParamDef::Other(&ALPHA_U),
-        ParamDef::Other(&ALPHA_V),
+        ParamDef::Other(&ALPHA_U_ISOTROPIC),
+        ParamDef::Other(&ALPHA_V_ISOTROPIC),
         ParamDef::Bool(&SAMPLE_VISIBLE),
         ParamDef::Ior(&COATING_IOR),
         ParamDef::Ior(&EXT_IOR),

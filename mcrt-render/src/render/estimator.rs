@@ -55,7 +55,9 @@ impl Renderer {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let textured = all_shapes.iter().any(|s| s.bsdf.is_textured()).then(|| {
+        let per_hit =
+            |s: &crate::description::ShapeDesc| s.bsdf.is_textured() || s.bsdf.needs_tangent();
+        let textured = all_shapes.iter().any(|s| per_hit(s)).then(|| {
             bsdfs
                 .iter()
                 .zip(&all_shapes)

@@ -34,10 +34,15 @@ impl Material for TexturedBsdf {
 
     #[inline]
     fn at<'a>(&'a self, geometry: &Geometry, sp: &SurfacePoint) -> HitBsdf<'a> {
-        if self.is_textured() {
+        let formed = if self.is_textured() {
             HitBsdf::Formed(self.at(geometry.tex_coords_at(sp.shape, sp.prim, sp.uv)))
         } else {
             HitBsdf::Stored(&self.base)
+        };
+        if self.needs_tangent() {
+            HitBsdf::Turned(Box::new(formed), geometry.tangent_turn(sp))
+        } else {
+            formed
         }
     }
 }
@@ -49,6 +54,9 @@ pub(crate) enum HitBsdf<'a> {
     Stored(&'a Sided<AnyBsdf>),
     /// A textured material at the hit's texture coordinates.
     Formed(Sided<AnyBsdf>),
+    /// An anisotropic material in Mitsuba's shading frame, turned about the normal from
+    /// the hit's frame by (cos γ, sin γ) (`Geometry::tangent_turn`).
+    Turned(Box<HitBsdf<'a>>, Vec2),
 }
 
 impl HitBsdf<'_> {
@@ -57,8 +65,30 @@ impl HitBsdf<'_> {
         match self {
             Self::Stored(b) => b,
             Self::Formed(b) => b,
+            Self::Turned(b, _) => b.get(),
         }
     }
+
+    /// The turn (cos γ, sin γ) into the material's frame; (1, 0) when not turned.
+    #[inline(always)]
+    fn turn(&self) -> Option<Vec2> {
+        match self {
+            Self::Turned(_, t) => Some(*t),
+            _ => None,
+        }
+    }
+}
+
+/// Local direction `w` of the hit's frame in the frame turned by `t` = (cos γ, sin γ).
+#[inline]
+fn into_turned(t: Vec2, w: Vec3) -> Vec3 {
+    Vec3::new(t.x * w.x + t.y * w.y, -t.y * w.x + t.x * w.y, w.z)
+}
+
+/// Local direction `w` of the turned frame back in the hit's frame.
+#[inline]
+fn from_turned(t: Vec2, w: Vec3) -> Vec3 {
+    Vec3::new(t.x * w.x - t.y * w.y, t.y * w.x + t.x * w.y, w.z)
 }
 
 impl Bsdf for HitBsdf<'_> {
@@ -68,23 +98,44 @@ impl Bsdf for HitBsdf<'_> {
     }
     #[inline]
     fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        self.get().eval(wo, wi)
+        match self.turn() {
+            None => self.get().eval(wo, wi),
+            Some(t) => self.get().eval(into_turned(t, wo), into_turned(t, wi)),
+        }
     }
     #[inline]
     fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.get().pdf(wo, wi)
+        match self.turn() {
+            None => self.get().pdf(wo, wi),
+            Some(t) => self.get().pdf(into_turned(t, wo), into_turned(t, wi)),
+        }
     }
     #[inline]
     fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
-        self.get().eval_pdf(wo, wi)
+        match self.turn() {
+            None => self.get().eval_pdf(wo, wi),
+            Some(t) => self.get().eval_pdf(into_turned(t, wo), into_turned(t, wi)),
+        }
     }
     #[inline]
     fn sample(&self, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
-        self.get().sample(wo, u1, u2)
+        match self.turn() {
+            None => self.get().sample(wo, u1, u2),
+            Some(t) => {
+                let mut s = self.get().sample(into_turned(t, wo), u1, u2)?;
+                s.wi = from_turned(t, s.wi);
+                Some(s)
+            }
+        }
     }
     #[inline]
     fn eval_adjoint(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        self.get().eval_adjoint(wo, wi)
+        match self.turn() {
+            None => self.get().eval_adjoint(wo, wi),
+            Some(t) => self
+                .get()
+                .eval_adjoint(into_turned(t, wo), into_turned(t, wi)),
+        }
     }
     #[inline]
     fn samples_component(&self) -> bool {

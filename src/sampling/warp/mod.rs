@@ -42,6 +42,7 @@
 
 use glam::Vec2;
 
+mod anisotropic_microfacet;
 mod bilinear_patch;
 mod cone;
 mod disk;
@@ -65,6 +66,7 @@ mod triangle;
 mod visible_normals;
 mod von_mises_fisher;
 
+pub use anisotropic_microfacet::*;
 pub use bilinear_patch::*;
 pub use cone::*;
 pub use disk::*;

@@ -19,7 +19,7 @@ use crate::sampling::unit::ONE_MINUS_EPSILON;
 
 /// Checks that `wi` is finite, unit length within 1e-3, and above the horizon; returns it
 /// normalised.
-fn check_wi(wi: Vec3) -> Result<Vec3, SamplingError> {
+pub(super) fn check_wi(wi: Vec3) -> Result<Vec3, SamplingError> {
     let len = wi.length();
     if !wi.is_finite() || (len - 1.0).abs() > 1e-3 {
         return Err(SamplingError::InvalidDirection {
