@@ -2,7 +2,7 @@
 //! already make, and the bounds that keep any scene's memory and work finite. The XML loader
 //! applies them to each element as it reads it (so its errors name file, line and element),
 //! and [`Renderer::new`](crate::render::Renderer::new) applies them to descriptions built in
-//! code. A roughness ([`Roughness`](crate::description::Roughness)) and a sample count
+//! code. A roughness ([`Roughness`]) and a sample count
 //! ([`SampleCount`]) are checked when they are made, and never again; the integrators'
 //! parameters are checked against their one definition each (`param_defs`).
 //!
@@ -14,7 +14,7 @@
 //! | `sample_count` | [`MAX_SAMPLE_COUNT`] = 2²⁴ |
 //! | `emitter_samples`, `bsdf_samples` | [`MAX_SHADING_SAMPLES`] = 2¹⁶ each |
 //! | pixels × spp × max(1, emitter + bsdf samples) | [`MAX_WORK`] = 2⁴² |
-//! | roughness α | [[`MIN_ROUGHNESS`], 10] ([`Roughness`](crate::description::Roughness)); the loader clamps smaller α to 10⁻⁴ as Mitsuba 3 does |
+//! | roughness α | [[`MIN_ROUGHNESS`], 10] ([`Roughness`]); the loader clamps smaller α to 10⁻⁴ as Mitsuba 3 does |
 
 use crate::description::{
     BsdfDesc, ConductorFresnel, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc, Roughness,

@@ -171,7 +171,7 @@ fn solve_quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
         return None;
     }
     let disc = b * b - 4.0 * a * c;
-    if !(disc >= 0.0) {
+    if disc.is_nan() || disc < 0.0 {
         return None;
     }
     let q = -0.5 * (b + disc.sqrt().copysign(b));

@@ -86,7 +86,7 @@ impl Projector {
 
     /// The image coordinates of the local direction `d`, if it passes through the image.
     fn image_uv(&self, d: Vec3) -> Option<Vec2> {
-        if !(d.z > 0.0) {
+        if d.z.is_nan() || d.z <= 0.0 {
             return None;
         }
         let uv = Vec2::new(

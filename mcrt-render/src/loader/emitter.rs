@@ -161,7 +161,8 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
             let rgbe = ctx
                 .readable_file(e, &name, None)
                 .is_ok_and(|f| starts_rgbe(&f));
-            let filename = ctx.readable_file(e, &name, (!rgbe).then_some((&EXR_MAGIC[..], "an OpenEXR")))?;
+            let filename =
+                ctx.readable_file(e, &name, (!rgbe).then_some((&EXR_MAGIC[..], "an OpenEXR")))?;
             let scale = p.float("scale")?.unwrap_or(1.0);
             EmitterDesc::EnvMap {
                 filename,

@@ -1,5 +1,5 @@
 //! The renderer: builds the estimators' view of a [`SceneDescription`] and renders it in
-//! parallel into a [`Film`].
+//! parallel into a [`Film`](crate::film::Film).
 //!
 //! **Simulating only what a scene calls for.** [`Effects::of`] inspects materials, lights and
 //! `max_depth`; [`Renderer::render`] then picks one of eight monomorphised render loops: the
