@@ -106,9 +106,11 @@ fn check_with(
                     assert!(pdf.is_finite(), "{name}: shape_pdf {pdf}");
                     compared += 1;
                     // At grazing angles the pdf ∝ 1/cos magnifies the rounding of the
-                    // point; compare where it is well conditioned.
+                    // point and its normal (about 10⁻⁴ on a curved shape, whose hit is
+                    // projected back onto the surface): compare where it is well
+                    // conditioned, allowing that rounding over cos.
                     let cos = (reference - s.p).normalize().dot(s.n).abs();
-                    if cos > 0.02 && (pdf - s.pdf).abs() > 2e-3 * s.pdf {
+                    if cos > 0.02 && (pdf - s.pdf).abs() > (2e-3 + 1e-4 / cos) * s.pdf {
                         mismatched += 1;
                     }
                     1.0 / f64::from(s.pdf)

@@ -79,7 +79,7 @@ const MAX_HIDDEN_EMITTERS: u32 = 64;
 /// emitter: with `hide_emitters`, the ray passes through every emitter surface, as Mitsuba
 /// 3's `hide_emitters` does for the sampling integrators (and `None` then means the ray sees
 /// only the hidden sky). Rays cast are added to `rays`.
-#[inline]
+#[inline(always)]
 pub(crate) fn camera_hit<S: Scene + ?Sized>(
     scene: &S,
     origin: glam::Vec3,
@@ -88,18 +88,32 @@ pub(crate) fn camera_hit<S: Scene + ?Sized>(
     hide_emitters: bool,
     rays: &mut u32,
 ) -> Option<SurfacePoint> {
-    let mut hit = scene.intersect(origin, dir, t_max);
+    let hit = scene.intersect(origin, dir, t_max);
     *rays += 1;
     if hide_emitters {
-        let mut passed = 0;
-        while let Some(sp) = hit.filter(|sp| scene.is_emitter(sp)) {
-            passed += 1;
-            if passed > MAX_HIDDEN_EMITTERS {
-                return None;
-            }
-            hit = scene.trace(&sp, dir);
-            *rays += 1;
+        return past_emitters(scene, hit, dir, rays);
+    }
+    hit
+}
+
+/// The first hit at or after `hit` along `dir` that is not an emitter (out of line: only
+/// `hide_emitters` renders come here).
+#[cold]
+#[inline(never)]
+fn past_emitters<S: Scene + ?Sized>(
+    scene: &S,
+    mut hit: Option<SurfacePoint>,
+    dir: glam::Vec3,
+    rays: &mut u32,
+) -> Option<SurfacePoint> {
+    let mut passed = 0;
+    while let Some(sp) = hit.filter(|sp| scene.is_emitter(sp)) {
+        passed += 1;
+        if passed > MAX_HIDDEN_EMITTERS {
+            return None;
         }
+        hit = scene.trace(&sp, dir);
+        *rays += 1;
     }
     hit
 }

@@ -176,7 +176,7 @@ impl Bvh4 {
     /// `visit(k, bound)` intersects the primitives of leaf `k` ([`Bvh4::leaf`]) and lowers
     /// `bound` to the distance of any hit nearer than it; leaves entered beyond the bound
     /// are skipped. Returns the final bound.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn closest_leaf(
         &self,
         origin: Vec3,
@@ -194,7 +194,7 @@ impl Bvh4 {
 
     /// True when `visit(k, t_max)` holds for some leaf `k` the ray may meet within
     /// `(0, t_max)`; stops at the first one. Leaves are visited in no particular order.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn any_leaf(
         &self,
         origin: Vec3,

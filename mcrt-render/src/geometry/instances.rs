@@ -146,8 +146,9 @@ impl Instancing {
     }
 
     /// The nearest instance hit with `0 < t < t_max`: the instance, the ray in its
-    /// group's space, `t` and the group's hit record.
-    #[inline]
+    /// group's space, `t` and the group's hit record. Out of line, so that the scene's own
+    /// traversal stays inlined in `Geometry::intersect` (one copy of the generic search).
+    #[inline(never)]
     pub(super) fn closest(
         &self,
         shapes: &[ShapeData],
@@ -167,8 +168,9 @@ impl Instancing {
         Some((k, t, rec))
     }
 
-    /// True when some instance is hit with `0 < t < t_max`.
-    #[inline]
+    /// True when some instance is hit with `0 < t < t_max` (out of line, as
+    /// [`Instancing::closest`]).
+    #[inline(never)]
     pub(super) fn any(&self, shapes: &[ShapeData], ray: &Ray, t_max: f32) -> bool {
         self.accel.any(ray.origin, ray.dir, t_max, |k, bound| {
             let inst = &self.list[k as usize];

@@ -263,13 +263,26 @@ impl Geometry {
             .closest(self.top.stored(&self.shapes), ray, t_max);
         if let Some(inst) = &self.instancing {
             let bound = top.as_ref().map_or(t_max, |h| h.0);
-            if let Some((k, t, rec)) = inst.closest(&self.shapes, ray, bound) {
-                let (group, local) = inst.local(k, ray);
-                return Some(inst.hit_to_world(k, self.make_hit(group, &local, t, rec)));
+            if let Some(sp) = self.intersect_instances(inst, ray, bound) {
+                return Some(sp);
             }
         }
         let (t, rec) = top?;
         Some(self.make_hit(&self.top, ray, t, rec))
+    }
+
+    /// The nearest hit on an instance with `0 < t < bound`, in world space. Out of line:
+    /// a scene without instances never enters it, and its code stays out of `intersect`.
+    #[inline(never)]
+    fn intersect_instances(
+        &self,
+        inst: &instances::Instancing,
+        ray: &Ray,
+        bound: f32,
+    ) -> Option<SurfacePoint> {
+        let (k, t, rec) = inst.closest(&self.shapes, ray, bound)?;
+        let (group, local) = inst.local(k, ray);
+        Some(inst.hit_to_world(k, self.make_hit(group, &local, t, rec)))
     }
 
     /// True when anything is hit with `0 < t < t_max`.

@@ -40,10 +40,10 @@ pub(crate) struct LoopParams<'a> {
     pub moment: Option<&'a str>,
 }
 
-/// One tile's per-pixel accumulators, its ray count and its count of non-finite samples.
-/// (With each pixel's sum of squared XYZ samples, for the `moment` channels: zero unless the
-/// film keeps them.)
-type TileResult = (Vec<(usize, PixelAccum, [f64; 3])>, u64, u64);
+/// One tile's per-pixel accumulators, each pixel's sum of squared XYZ samples for the
+/// `moment` channels (empty unless the film keeps them), its ray count and its count of
+/// non-finite samples.
+type TileResult = (Vec<(usize, PixelAccum)>, Vec<[f64; 3]>, u64, u64);
 
 /// Counters of the work done.
 #[derive(Debug, Clone, Default)]
@@ -101,6 +101,7 @@ fn render_tile_with<S: Scene, R: Sampler>(
     (s0, s1): (u32, u32),
 ) -> TileResult {
     let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+    let mut moments = Vec::new();
     let (mut rays, mut nonfinite) = (0u64, 0u64);
     for y in y0..y1 {
         for x in x0..x1 {
@@ -109,8 +110,11 @@ fn render_tile_with<S: Scene, R: Sampler>(
             let mut moment = [0.0f64; 3];
             for s in s0..s1 {
                 if p.cancel.load(Ordering::Relaxed) {
-                    out.push((index, acc, moment));
-                    return (out, rays, nonfinite);
+                    out.push((index, acc));
+                    if p.moment.is_some() {
+                        moments.push(moment);
+                    }
+                    return (out, moments, rays, nonfinite);
                 }
                 rng.start_pixel_sample([x, y], s);
                 let off = p.filter.sample(rng.next_2d());
@@ -127,8 +131,11 @@ fn render_tile_with<S: Scene, R: Sampler>(
                     .li(scene, ray.origin, ray.dir, t_max.min(p.t_max), &mut rng);
                 if p.cancel.load(Ordering::Relaxed) {
                     // The path may have been cut short by the cancel (`SceneView::stop`).
-                    out.push((index, acc, moment));
-                    return (out, rays, nonfinite);
+                    out.push((index, acc));
+                    if p.moment.is_some() {
+                        moments.push(moment);
+                    }
+                    return (out, moments, rays, nonfinite);
                 }
                 rays += r.rays as u64;
                 let v = r.radiance;
@@ -144,10 +151,13 @@ fn render_tile_with<S: Scene, R: Sampler>(
                     acc.add(glam::Vec3::ZERO);
                 }
             }
-            out.push((index, acc, moment));
+            out.push((index, acc));
+            if p.moment.is_some() {
+                moments.push(moment);
+            }
         }
     }
-    (out, rays, nonfinite)
+    (out, moments, rays, nonfinite)
 }
 
 /// Renders the sample range in the window (fewer samples if cancelled) into a film.
@@ -177,15 +187,17 @@ pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Fi
                 Some(r)
             })
             .collect();
-        for (px, rays, nonfinite) in results.into_iter().flatten() {
+        for (px, moments, rays, nonfinite) in results.into_iter().flatten() {
             stats.rays += rays;
             stats.nonfinite += nonfinite;
-            for (i, a, m) in &px {
+            for (k, (i, a)) in px.iter().enumerate() {
                 stats.samples += a.count as u64;
                 // Indices come from `tiles`, which lie inside the film.
                 let merged = film.merge(*i, a);
                 debug_assert!(merged.is_ok());
-                film.add_moment(*i, *m);
+                if let Some(m) = moments.get(k) {
+                    film.add_moment(*i, *m);
+                }
             }
         }
         s0 = s1;
