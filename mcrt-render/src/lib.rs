@@ -46,6 +46,7 @@ pub mod cornell_box;
 pub mod description;
 pub mod film;
 pub mod geometry;
+mod invalid;
 pub mod io;
 pub mod light;
 pub mod loader;

@@ -21,7 +21,6 @@ use crate::description::{
     SampleCount, SceneDescription, ShapeDesc, ShapeKind,
 };
 use glam::{Mat4, Vec3, Vec4};
-use std::fmt;
 
 /// Largest film, in pixels: 2²⁵ (33.5 M, e.g. 8192 × 4096 or 7680 × 4320). The film keeps
 /// about 64 bytes per pixel (sums, squares, counts and the output image), so at most about
@@ -31,9 +30,7 @@ pub const MAX_FILM_PIXELS: u64 = 1 << 25;
 /// Largest `sample_count` (samples per pixel): 2²⁴ ([`SampleCount::MAX`]).
 pub const MAX_SAMPLE_COUNT: u32 = SampleCount::MAX;
 
-/// Largest `emitter_samples` and `bsdf_samples` of the direct integrator: 2¹⁶ each, so one
-/// pixel sample stays short enough to cancel within a second.
-pub const MAX_SHADING_SAMPLES: u32 = 1 << 16;
+pub use crate::param_defs::integrator::{MAX_MLT_DEPTH, MAX_SHADING_SAMPLES};
 
 /// Largest total work, pixels × spp × max(1, emitter + bsdf samples): 2⁴² (4.4 · 10¹²,
 /// about a day at 50 M samples per second).
@@ -46,35 +43,10 @@ pub const MIN_ROUGHNESS: f32 = Roughness::MIN;
 /// Largest microfacet roughness the renderer takes ([`Roughness::MAX`]).
 pub const MAX_ROUGHNESS: f32 = Roughness::MAX;
 
-/// A value the renderer cannot use: the parameter and what is wrong with it.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Invalid {
-    /// The parameter's name as in the scene format (`reflectance`, `int_ior`, …).
-    pub param: &'static str,
-    /// What is wrong, e.g. `must be finite and non-negative`.
-    pub message: String,
-}
-
-impl fmt::Display for Invalid {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "\"{}\" {}", self.param, self.message)
-    }
-}
-
-impl std::error::Error for Invalid {}
+pub use crate::invalid::Invalid;
 
 /// π in f64, for the bounds on the lights' power.
 const PI64: f64 = std::f64::consts::PI;
-
-impl Invalid {
-    /// Parameter `param` is wrong: `message`.
-    pub fn new(param: &'static str, message: impl Into<String>) -> Self {
-        Self {
-            param,
-            message: message.into(),
-        }
-    }
-}
 
 fn invalid(param: &'static str, message: impl Into<String>) -> Invalid {
     Invalid::new(param, message)
@@ -188,9 +160,6 @@ pub fn film(f: &FilmDesc) -> Result<(), Invalid> {
 pub fn integrator(i: &IntegratorDesc) -> Result<(), Invalid> {
     crate::param_defs::integrator::check(i)
 }
-
-/// Longest `max_depth` of `mlt` (its image keeps one buffer per path length).
-pub const MAX_MLT_DEPTH: i32 = 64;
 
 /// The total work of a render: pixels × spp × max(1, emitter + bsdf samples) at most
 /// [`MAX_WORK`].

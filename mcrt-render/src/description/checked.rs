@@ -4,7 +4,7 @@
 //! The loader makes them from its parameter definitions (`params`); a scene built in code
 //! goes through the same constructors.
 
-use crate::validate::Invalid;
+use crate::invalid::Invalid;
 use std::fmt;
 use std::ops::Deref;
 

@@ -4,8 +4,15 @@
 
 use super::{in_half_open, BoolParam, FloatParam, IntParam, ParamDef, PluginParams};
 use crate::description::{IntegratorDesc, SampleCount};
-use crate::validate::{Invalid, MAX_MLT_DEPTH, MAX_SHADING_SAMPLES};
+use crate::invalid::Invalid;
 use mcrt::integrator::Mlt;
+
+/// Largest `emitter_samples` and `bsdf_samples` of the direct integrator: 2¹⁶ each, so one
+/// pixel sample stays short enough to cancel within a second.
+pub const MAX_SHADING_SAMPLES: u32 = 1 << 16;
+
+/// Longest `max_depth` of `mlt` (its image keeps one buffer per path length).
+pub const MAX_MLT_DEPTH: i32 = 64;
 
 /// `max_depth` of `path` and `bdpt`.
 pub(crate) const MAX_DEPTH: IntParam = IntParam {
