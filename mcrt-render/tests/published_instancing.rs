@@ -31,53 +31,6 @@ fn data(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// The largest `(|mean − ref| − ALLOWANCE·ref) / σ` over bright blocks and channels.
-fn worst_z_beyond(
-    img: &[Vec3],
-    var: &[Vec3],
-    reference: &[Vec3],
-    ref_var: &[Vec3],
-    w: u32,
-    h: u32,
-) -> f64 {
-    let n = img.len() as f64;
-    let ref_mean = reference
-        .iter()
-        .map(|v| v.element_sum() as f64)
-        .sum::<f64>()
-        / (3.0 * n);
-    let mut worst = 0.0f64;
-    for by in 0..h / BLOCK {
-        for bx in 0..w / BLOCK {
-            let (mut m, mut r, mut v) = ([0.0f64; 3], [0.0f64; 3], [0.0f64; 3]);
-            for y in by * BLOCK..(by + 1) * BLOCK {
-                for x in bx * BLOCK..(bx + 1) * BLOCK {
-                    let i = (y * w + x) as usize;
-                    for c in 0..3 {
-                        m[c] += f64::from(img[i][c]);
-                        r[c] += f64::from(reference[i][c]);
-                        v[c] += f64::from(var[i][c] + ref_var[i][c]);
-                    }
-                }
-            }
-            let k = f64::from(BLOCK * BLOCK);
-            if r.iter().sum::<f64>() / (3.0 * k) <= 0.05 * ref_mean {
-                continue;
-            }
-            for c in 0..3 {
-                let dev = ((m[c] - r[c]).abs() - ALLOWANCE * r[c].abs()).max(0.0) / k;
-                let z = dev / (v[c] / (k * k)).sqrt();
-                worst = if z.is_nan() {
-                    f64::INFINITY
-                } else {
-                    worst.max(z)
-                };
-            }
-        }
-    }
-    worst
-}
-
 #[test]
 fn instancing_matches_mitsuba() {
     let desc = mcrt_render::loader::load_scene(&data("instancing.xml"), &[]).expect("loads");
@@ -103,7 +56,7 @@ fn instancing_matches_mitsuba() {
     let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, BLOCK, 0.05, alpha);
     assert_eq!(r.non_finite, 0, "NaN or infinite pixels");
     assert!(r.blocks >= 24, "only {} blocks compared", r.blocks);
-    let worst = worst_z_beyond(&img, &var, &rf, &ref_var, w, h);
+    let worst = common::blocks::worst_z_beyond(&img, &var, &rf, &ref_var, w, h, BLOCK, ALLOWANCE);
     println!(
         "instancing: worst |z| beyond 1% {worst:.2} (critical {:.2}), worst block {:.1}%, \
          mean ratio {}",

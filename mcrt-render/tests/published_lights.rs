@@ -19,6 +19,8 @@ use mcrt_render::render::{RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
+mod common;
+
 const REFERENCE_SPP: u32 = 4096;
 const SPP: u32 = 64;
 const BLOCK: u32 = 16;
@@ -28,54 +30,6 @@ fn data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/data/published/lights")
         .join(name)
-}
-
-/// The largest `(|mean − ref| − ALLOWANCE·ref) / σ` over bright blocks and channels (the
-/// blocks and σ of `compare_blocks`).
-fn worst_z_beyond(
-    img: &[Vec3],
-    var: &[Vec3],
-    reference: &[Vec3],
-    ref_var: &[Vec3],
-    w: u32,
-    h: u32,
-) -> f64 {
-    let n = img.len() as f64;
-    let ref_mean = reference
-        .iter()
-        .map(|v| f64::from(v.element_sum()))
-        .sum::<f64>()
-        / (3.0 * n);
-    let mut worst = 0.0f64;
-    for by in 0..h / BLOCK {
-        for bx in 0..w / BLOCK {
-            let (mut m, mut r, mut v) = ([0.0f64; 3], [0.0f64; 3], [0.0f64; 3]);
-            for y in by * BLOCK..(by + 1) * BLOCK {
-                for x in bx * BLOCK..(bx + 1) * BLOCK {
-                    let i = (y * w + x) as usize;
-                    for c in 0..3 {
-                        m[c] += f64::from(img[i][c]);
-                        r[c] += f64::from(reference[i][c]);
-                        v[c] += f64::from(var[i][c] + ref_var[i][c]);
-                    }
-                }
-            }
-            let k = f64::from(BLOCK * BLOCK);
-            if r.iter().sum::<f64>() / (3.0 * k) <= 0.05 * ref_mean {
-                continue;
-            }
-            for c in 0..3 {
-                let dev = ((m[c] - r[c]).abs() - ALLOWANCE * r[c].abs()).max(0.0) / k;
-                let z = dev / (v[c] / (k * k)).sqrt();
-                worst = if z.is_nan() {
-                    f64::INFINITY
-                } else {
-                    worst.max(z)
-                };
-            }
-        }
-    }
-    worst
 }
 
 /// Renders `scene` and compares it with `reference` (module docs); `min_blocks` bright
@@ -106,7 +60,7 @@ fn check(scene: &str, reference: &str, min_blocks: usize) {
         "{scene}: only {} blocks compared",
         r.blocks
     );
-    let worst_z = worst_z_beyond(&img, &var, &rf, &ref_var, w, h);
+    let worst_z = common::blocks::worst_z_beyond(&img, &var, &rf, &ref_var, w, h, BLOCK, ALLOWANCE);
     println!(
         "{scene}: worst |z| beyond 1% {worst_z:.2} (critical {:.2}), worst block {:.1}%, mean ratio {}",
         r.z_critical,

@@ -26,6 +26,8 @@ use mcrt_render::render::{RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
+mod common;
+
 fn data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests")
@@ -67,57 +69,6 @@ struct Blocks {
     size: u32,
     min_count: usize,
     allowance: f64,
-}
-
-/// The largest `(|mean − ref| − allowance·ref) / σ` over bright blocks and channels (the
-/// blocks and σ of `compare_blocks`).
-#[allow(clippy::too_many_arguments)]
-fn worst_z_beyond(
-    img: &[Vec3],
-    var: &[Vec3],
-    reference: &[Vec3],
-    ref_var: &[Vec3],
-    w: u32,
-    h: u32,
-    b: u32,
-    allowance: f64,
-) -> f64 {
-    let n = img.len() as f64;
-    let ref_mean = reference
-        .iter()
-        .map(|v| v.element_sum() as f64)
-        .sum::<f64>()
-        / (3.0 * n);
-    let mut worst = 0.0f64;
-    for by in 0..h / b {
-        for bx in 0..w / b {
-            let (mut m, mut r, mut v) = ([0.0f64; 3], [0.0f64; 3], [0.0f64; 3]);
-            for y in by * b..(by + 1) * b {
-                for x in bx * b..(bx + 1) * b {
-                    let i = (y * w + x) as usize;
-                    for c in 0..3 {
-                        m[c] += f64::from(img[i][c]);
-                        r[c] += f64::from(reference[i][c]);
-                        v[c] += f64::from(var[i][c] + ref_var[i][c]);
-                    }
-                }
-            }
-            let k = f64::from(b * b);
-            if r.iter().sum::<f64>() / (3.0 * k) <= 0.05 * ref_mean {
-                continue;
-            }
-            for c in 0..3 {
-                let dev = ((m[c] - r[c]).abs() - allowance * r[c].abs()).max(0.0) / k;
-                let z = dev / (v[c] / (k * k)).sqrt();
-                worst = if z.is_nan() {
-                    f64::INFINITY
-                } else {
-                    worst.max(z)
-                };
-            }
-        }
-    }
-    worst
 }
 
 fn run(
@@ -162,7 +113,7 @@ fn run(
         r.blocks
     );
     let worst_z = if allowance > 0.0 {
-        worst_z_beyond(&img, &var, &rf, &ref_var, w, h, block, allowance)
+        common::blocks::worst_z_beyond(&img, &var, &rf, &ref_var, w, h, block, allowance)
     } else {
         r.worst_z
     };

@@ -4,6 +4,7 @@
 //! comparison of the estimator tests.
 #![allow(dead_code)] // each test file uses a different subset
 
+pub mod blocks;
 pub mod replicates;
 #[path = "../../../tests/common/suite.rs"]
 mod suite;
