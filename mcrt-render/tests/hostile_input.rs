@@ -420,7 +420,8 @@ fn crowded_elements_are_refused_before_parsing() {
 
 /// Issue 26: a light whose power overflows `f32` (it was dropped without a word: the image
 /// was dark) is an error at its parameter that names the largest `f32`; where the scene's
-/// size makes the power overflow, the renderer refuses it, naming the light.
+/// size makes the power overflow, the renderer refuses it, naming the light and the element
+/// it was written in.
 #[test]
 fn lights_whose_power_overflows_f32_are_refused_not_dropped() {
     let sky = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/sky.exr");
@@ -445,10 +446,11 @@ fn lights_whose_power_overflows_f32_are_refused_not_dropped() {
     // Below the bound: accepted.
     parse("<scene version=\"3.0.0\"><emitter type=\"point\"><rgb name=\"intensity\" value=\"2e37\"/></emitter></scene>")
         .expect("a power below the largest f32");
-    // 5·10³⁷ W/m² through the disk of a scene of radius 100: refused by the renderer.
+    // 5·10³⁷ W/m² through the disk of a scene of radius 100: refused by the renderer, at
+    // the emitter's element.
     let d = parse(
         "<scene version=\"3.0.0\"><shape type=\"sphere\"><float name=\"radius\" value=\"100\"/>\
-         </shape><emitter type=\"directional\"><rgb name=\"irradiance\" value=\"5e37\"/>\
+         </shape>\n  <emitter type=\"directional\"><rgb name=\"irradiance\" value=\"5e37\"/>\
          </emitter></scene>",
     )
     .expect("finite for a scene of unit size");
@@ -458,6 +460,27 @@ fn lights_whose_power_overflows_f32_are_refused_not_dropped() {
     };
     assert!(
         e.contains("the directional light (emitter 1)") && e.contains("3.4028235e38"),
+        "{e}"
+    );
+    assert!(
+        e.starts_with("hostile.xml, line 2, column 3, in <emitter type=\"directional\">: "),
+        "{e}"
+    );
+    // An area light whose radiance is finite for a unit shape but whose shape is scaled
+    // up: refused at its shape's element.
+    let d = parse(
+        "<scene version=\"3.0.0\">\n<shape type=\"rectangle\" id=\"wall\"><transform name=\"to_world\">\
+         <scale value=\"1e4\"/></transform><emitter type=\"area\">\
+         <rgb name=\"radiance\" value=\"1e31\"/></emitter></shape></scene>",
+    )
+    .expect("finite for a unit rectangle");
+    let e = match Renderer::new(&d, &RenderOptions::default()) {
+        Ok(_) => panic!("an area light of power beyond f32 accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        e.starts_with("hostile.xml, line 2, column 1, in <shape type=\"rectangle\" id=\"wall\">: ")
+            && e.contains("the area light on shape \"wall\""),
         "{e}"
     );
 }

@@ -5,6 +5,7 @@
 mod checked;
 mod instancing;
 mod microfacet;
+mod origin;
 mod principled;
 
 pub use crate::texture::{Texture, TextureParam};
@@ -13,6 +14,7 @@ use glam::{Mat4, Vec3};
 pub(crate) use instancing::groups_of;
 pub use instancing::ShapeGroupDesc;
 pub use microfacet::Microfacet;
+pub use origin::{Origin, Origins};
 pub use principled::{PrincipledParams, MAX_SPECULAR};
 use std::path::PathBuf;
 
@@ -38,6 +40,9 @@ pub struct SceneDescription {
     pub emitters: Vec<EmitterDesc>,
     /// The file the description was read from, if any (for messages and relative paths).
     pub source: Option<PathBuf>,
+    /// Where each top-level shape and emitter was written (filled by the loader; empty for
+    /// a description built in code), for errors found when the scene is prepared.
+    pub origins: Origins,
 }
 
 /// The integrator plugin and its parameters.

@@ -38,7 +38,8 @@ impl Lights {
         }
         let mut env = None;
         let mut has_delta = false;
-        for e in &desc.emitters {
+        for (j, e) in desc.emitters.iter().enumerate() {
+            let at = |error: LightError| locate(desc, j, error);
             match e {
                 EmitterDesc::Point {
                     position,
@@ -57,7 +58,8 @@ impl Lights {
                     beam_width,
                     to_world,
                 } => {
-                    let spot = Spot::new(*intensity, *cutoff_angle, *beam_width, *to_world)?;
+                    let spot =
+                        Spot::new(*intensity, *cutoff_angle, *beam_width, *to_world).map_err(at)?;
                     has_delta = true;
                     power.push(spot.power());
                     lights.push(Light::Spot(Box::new(spot)));
@@ -70,11 +72,12 @@ impl Lights {
                         to_world,
                     } = **inner
                     else {
-                        return Err(LightError::Spot(
+                        return Err(at(LightError::Spot(
                             "only a spot light takes a texture here".into(),
-                        ));
+                        )));
                     };
-                    let spot = Spot::new(intensity, cutoff_angle, beam_width, to_world)?
+                    let spot = Spot::new(intensity, cutoff_angle, beam_width, to_world)
+                        .map_err(at)?
                         .with_texture(texture.clone(), to_world);
                     has_delta = true;
                     power.push(spot.power());
@@ -87,7 +90,8 @@ impl Lights {
                     to_world,
                 } => {
                     let aspect = texture_aspect(irradiance);
-                    let p = Projector::new(irradiance.clone(), aspect, *scale, *x_fov, *to_world)?;
+                    let p = Projector::new(irradiance.clone(), aspect, *scale, *x_fov, *to_world)
+                        .map_err(at)?;
                     has_delta = true;
                     power.push(p.power());
                     lights.push(Light::Projector(Box::new(p)));
@@ -106,7 +110,7 @@ impl Lights {
                 }
                 EmitterDesc::Constant { radiance } => {
                     if env.is_some() {
-                        return Err(LightError::SeveralEnvironments);
+                        return Err(at(LightError::SeveralEnvironments));
                     }
                     env = Some(lights.len() as u32);
                     power.push(4.0 * PI * PI * radius * radius * mean(*radiance).max(0.0));
@@ -120,13 +124,13 @@ impl Lights {
                     to_world,
                 } => {
                     if env.is_some() {
-                        return Err(LightError::SeveralEnvironments);
+                        return Err(at(LightError::SeveralEnvironments));
                     }
                     let map = EnvMap::load(filename, *scale, *to_world).map_err(|reason| {
-                        LightError::EnvMap {
+                        at(LightError::EnvMap {
                             path: filename.clone(),
                             reason,
-                        }
+                        })
                     })?;
                     env = Some(lights.len() as u32);
                     power.push(PI * radius * radius * map.integral());
@@ -209,6 +213,17 @@ pub(crate) fn texture_aspect(t: &crate::texture::Texture) -> f32 {
     }
 }
 
+/// `error`, at the element emitter `j` was written in, if the description knows it.
+fn locate(desc: &SceneDescription, j: usize, error: LightError) -> LightError {
+    match desc.origins.emitter(j) {
+        Some(at) => LightError::Located {
+            at: at.clone(),
+            error: Box::new(error),
+        },
+        None => error,
+    }
+}
+
 /// Refuses a light whose power is not a finite `f32`, or powers whose sum is not (the choice
 /// of lights needs both), naming the brightest such light: it could not be chosen, and was
 /// dropped without a word (issue 26).
@@ -227,16 +242,17 @@ fn check_power(desc: &SceneDescription, lights: &[Light], power: &[f32]) -> Resu
         .iter()
         .filter(|l| matches!(l, Light::Area { .. }))
         .count();
-    let light = match lights.get(i) {
+    let (light, origin) = match lights.get(i) {
         Some(Light::Area { shape, .. }) => {
             let id = desc
                 .shapes
                 .get(*shape as usize)
                 .and_then(|s| s.id.as_deref());
-            match id {
+            let name = match id {
                 Some(id) => format!("the area light on shape \"{id}\""),
                 None => format!("the area light on shape {}", shape + 1),
-            }
+            };
+            (name, desc.origins.shape(*shape as usize))
         }
         Some(l) => {
             let kind = match l {
@@ -247,12 +263,21 @@ fn check_power(desc: &SceneDescription, lights: &[Light], power: &[f32]) -> Resu
                 Light::Constant { .. } => "constant",
                 _ => "envmap",
             };
-            format!("the {kind} light (emitter {})", i - shape_lights + 1)
+            let emitter = i - shape_lights;
+            let name = format!("the {kind} light (emitter {})", emitter + 1);
+            (name, desc.origins.emitter(emitter))
         }
-        None => "a light".into(),
+        None => ("a light".into(), None),
     };
-    Err(LightError::PowerOverflow {
+    let error = LightError::PowerOverflow {
         light,
         power: format!("{:e}", power.get(i).copied().unwrap_or(f32::INFINITY)),
+    };
+    Err(match origin {
+        Some(at) => LightError::Located {
+            at: at.clone(),
+            error: Box::new(error),
+        },
+        None => error,
     })
 }

@@ -1,5 +1,6 @@
 //! Why the lights of a scene could not be set up.
 
+use crate::description::Origin;
 use std::fmt;
 use std::path::PathBuf;
 
@@ -29,6 +30,13 @@ pub enum LightError {
         /// Its power, in f64.
         power: String,
     },
+    /// One of the other errors, at the element of the scene file the light came from.
+    Located {
+        /// Where the light was written.
+        at: Origin,
+        /// What is wrong with it.
+        error: Box<LightError>,
+    },
 }
 
 impl fmt::Display for LightError {
@@ -48,6 +56,7 @@ impl fmt::Display for LightError {
                  the largest f32, {:e}: lower its emission (or the scene's size)",
                 f32::MAX
             ),
+            LightError::Located { at, error } => write!(f, "{at}: {error}"),
         }
     }
 }

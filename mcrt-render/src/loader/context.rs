@@ -109,6 +109,17 @@ impl<'a> Ctx<'a> {
         )
     }
 
+    /// Where element `e` was written, for the description's [`Origins`](
+    /// crate::description::Origins).
+    pub fn origin(&self, e: &Elem) -> crate::description::Origin {
+        crate::description::Origin {
+            file: e.file.as_deref().or(self.file).map(Path::to_path_buf),
+            line: e.line,
+            column: e.column,
+            element: e.describe().into(),
+        }
+    }
+
     /// A warning located at element `e` (given once, however often `e` is read).
     pub fn warn(&self, e: &Elem, message: String) {
         let w = SceneWarning::new(

@@ -145,6 +145,7 @@ pub fn parse_scene_with_warnings(
             "shape" => {
                 if let Some(s) = instance::read_top_shape(&ctx, c, &mut groups)? {
                     desc.shapes.push(s);
+                    desc.origins.shapes.push(Some(ctx.origin(c)));
                 }
             }
             "emitter" => {
@@ -156,6 +157,7 @@ pub fn parse_scene_with_warnings(
                     second_environment(&ctx, &mut environment, c)?;
                 }
                 desc.emitters.push(em);
+                desc.origins.emitters.push(Some(ctx.origin(c)));
             }
             // Declared for `ref`; built here too so that its errors surface even if unused
             // (a volume texture is accepted here: it counts only where a shape uses it).
