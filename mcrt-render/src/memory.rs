@@ -7,6 +7,7 @@
 //! a library user with [`set_max_memory`]); it defaults to [`DEFAULT_MAX_MEMORY`]. A check
 //! that fails says what would have been needed and how to raise the limit.
 
+use std::cell::Cell;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The default budget: 8 GiB. A fixed figure rather than a fraction of the machine's
@@ -26,6 +27,33 @@ pub fn set_max_memory(bytes: u64) {
 /// The process's memory budget in bytes.
 pub fn max_memory() -> u64 {
     MAX_MEMORY.load(Ordering::Relaxed)
+}
+
+thread_local! {
+    /// Bytes this thread's caller holds already for the same scene (the meshes built
+    /// before the one being read): every check inside [`with_held`] sees only the rest of
+    /// the budget.
+    static HELD: Cell<u64> = const { Cell::new(0) };
+}
+
+/// Runs `f` with `bytes` counted as held already, so that [`check`], [`available`] and
+/// [`over_budget`] inside it weigh each new size against what remains of the budget (the
+/// geometry sums its meshes this way, each file's reader unchanged).
+pub fn with_held<R>(bytes: u64, f: impl FnOnce() -> R) -> R {
+    let before = HELD.with(|h| h.replace(bytes));
+    let r = f();
+    HELD.with(|h| h.set(before));
+    r
+}
+
+/// Bytes counted as held by [`with_held`] on this thread (0 outside it).
+pub fn held() -> u64 {
+    HELD.with(Cell::get)
+}
+
+/// What remains of the budget for new allocations: [`max_memory`] less [`held`].
+pub fn available() -> u64 {
+    max_memory().saturating_sub(held())
 }
 
 /// Parses a size such as `4G`, `512M`, `1.5GiB`, `64k` or `100000` (bytes); the suffixes
@@ -90,20 +118,36 @@ fn suggestion(bytes: u64) -> String {
     }
 }
 
-/// The message of a refusal: `what` would need `bytes`, more than the budget.
+/// The message of a refusal: `what` would need `bytes`, more than the budget (or than what
+/// [`held`] leaves of it).
 pub fn over_budget(what: &str, bytes: u64) -> String {
+    let held = held();
+    if held == 0 {
+        return format!(
+            "{what} would need {}, more than the memory budget of {}; raise the limit with \
+             --max-memory {} (or more) if the machine has the memory",
+            format_size(bytes),
+            format_size(max_memory()),
+            suggestion(bytes)
+        );
+    }
+    let total = bytes.saturating_add(held);
     format!(
-        "{what} would need {}, more than the memory budget of {}; raise the limit with \
-         --max-memory {} (or more) if the machine has the memory",
+        "{what} would need {}, beside {} that the scene holds already: {} in all, more than \
+         the memory budget of {}; raise the limit with --max-memory {} (or more) if the \
+         machine has the memory",
         format_size(bytes),
+        format_size(held),
+        format_size(total),
         format_size(max_memory()),
-        suggestion(bytes)
+        suggestion(total)
     )
 }
 
-/// Checks that `bytes` (what `what` would need) fit in the budget.
+/// Checks that `bytes` (what `what` would need) fit in what remains of the budget
+/// ([`available`]).
 pub fn check(what: &str, bytes: u64) -> Result<(), String> {
-    if bytes > max_memory() {
+    if bytes > available() {
         return Err(over_budget(what, bytes));
     }
     Ok(())
@@ -117,6 +161,21 @@ pub fn bytes(count: u64, per_item: usize) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn held_bytes_leave_the_rest_of_the_budget() {
+        let budget = max_memory();
+        assert_eq!(held(), 0);
+        with_held(budget - 100, || {
+            assert_eq!(available(), 100);
+            assert!(check("a mesh", 100).is_ok());
+            let e = check("a mesh", 101).expect_err("past what is left");
+            assert!(e.contains("beside"), "{e}");
+            assert!(e.contains("a mesh would need 101 bytes"), "{e}");
+        });
+        assert_eq!(held(), 0);
+        assert!(check("a mesh", 101).is_ok());
+    }
 
     #[test]
     fn sizes_parse_and_messages_say_how_to_raise() {

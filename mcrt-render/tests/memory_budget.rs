@@ -327,3 +327,62 @@ fn textures_add_up_against_the_budget() {
     ]);
     assert_eq!(code, Some(0), "{err}");
 }
+
+/// Issue 26: meshes are summed, with the acceleration structure their triangles will
+/// need, not checked one at a time: six shapes that each fit refuse together (the third
+/// passes 4 MiB), at the element of the shape where the sum passes the budget.
+#[test]
+fn meshes_add_up_against_the_budget() {
+    let d = scratch("meshsum");
+    // A 32 × 32 grid of quads: 2048 triangles.
+    let mut text = String::new();
+    for j in 0..=32 {
+        for i in 0..=32 {
+            text.push_str(&format!(
+                "v {} {} 0\n",
+                i as f32 / 16.0 - 1.0,
+                j as f32 / 16.0 - 1.0
+            ));
+        }
+    }
+    for j in 0..32 {
+        for i in 0..32 {
+            let v = j * 33 + i + 1;
+            text.push_str(&format!("f {} {} {} {}\n", v, v + 1, v + 34, v + 33));
+        }
+    }
+    std::fs::write(d.join("grid.obj"), text).unwrap();
+    let shapes: String = (0..6)
+        .map(|_| "  <shape type=\"obj\"><string name=\"filename\" value=\"grid.obj\"/></shape>\n")
+        .collect();
+    let xml = format!(
+        r#"<scene version="3.0.0">
+  <sensor type="perspective"><float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0,0,4" target="0,0,0" up="0,1,0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film>
+  </sensor>
+  <emitter type="constant"/>
+{shapes}</scene>"#
+    );
+    let scene = d.join("six.xml");
+    std::fs::write(&scene, xml).unwrap();
+    let (code, err) = render(&[scene.to_str().unwrap(), "--max-memory", "4M"]);
+    assert_refused(
+        code,
+        &err,
+        "six.xml, line 9, column 3, in <shape type=\"obj\">",
+        "the shapes up to this one (6144 primitives) with their acceleration structure would need",
+    );
+    // With room, the same scene renders.
+    let out = d.join("out.exr");
+    let (code, err) = render(&[
+        scene.to_str().unwrap(),
+        "--max-memory",
+        "16M",
+        "--spp",
+        "1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+}

@@ -24,13 +24,47 @@ pub(crate) fn build_refs(
         ids: Vec::new(),
         shapes: Vec::with_capacity(shapes.len()),
     };
+    // Bytes held by the shapes built so far, primitives counted at what building the
+    // structure over them will take: each mesh file's reader sees only the rest of the
+    // budget, and the sum is checked after each shape.
+    let mut held = 0u64;
     for (i, desc) in shapes.iter().enumerate() {
         let m = affine(i, desc)?;
-        let data = shape_data(i, desc, &m, base_dir)?;
+        let data = crate::memory::with_held(held, || shape_data(i, desc, &m, base_dir))?;
         push_prims(&mut out, i as u32, &data);
+        held = held.saturating_add(shape_bytes(&data));
+        let need =
+            held.saturating_add(crate::memory::bytes(out.prims.len() as u64, BYTES_PER_PRIM));
+        crate::memory::check(
+            &format!(
+                "the shapes up to this one ({} primitives) with their acceleration structure",
+                out.prims.len()
+            ),
+            need,
+        )
+        .map_err(|message| GeometryError::Memory { shape: i, message })?;
         out.shapes.push(data);
     }
     Ok(out)
+}
+
+/// Heap bytes per primitive while the geometry is built and after: the primitive and its
+/// id twice (input order, then the structure's slot order), its face normal, and the
+/// acceleration structure's bound on any input (512 bytes, `docs/geometry.md`, "Bounds on
+/// degenerate input").
+const BYTES_PER_PRIM: usize =
+    2 * (std::mem::size_of::<Prim>() + std::mem::size_of::<PrimId>()) + 12 + 512;
+
+/// Heap bytes of a shape's own data: a mesh's vertices, triangles and triangle choice
+/// (an alias table column and a probability per triangle).
+fn shape_bytes(data: &ShapeData) -> u64 {
+    match data {
+        ShapeData::Mesh(m) => {
+            let per_vertex = m.positions.len() * 12 + m.normals.len() * 12 + m.uvs.len() * 8;
+            (per_vertex + m.indices.len() * (12 + 16)) as u64
+        }
+        _ => 0,
+    }
 }
 
 fn push_prims(out: &mut Built, shape: u32, data: &ShapeData) {

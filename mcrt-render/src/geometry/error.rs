@@ -41,6 +41,28 @@ pub enum GeometryError {
         /// The reader's message (naming the file and the place in it).
         message: String,
     },
+    /// The shapes up to this one, with the acceleration structure over them, would need
+    /// more memory than the budget ([`crate::memory`]).
+    Memory {
+        /// Index of the shape at which the sum passed the budget.
+        shape: usize,
+        /// What would have been needed, and how to raise the limit.
+        message: String,
+    },
+}
+
+impl GeometryError {
+    /// The index of the shape the error is about.
+    pub fn shape(&self) -> usize {
+        match self {
+            Self::BadTransform { shape, .. }
+            | Self::NonUniformSphereScale { shape }
+            | Self::InvalidShape { shape, .. }
+            | Self::Obj { shape, .. }
+            | Self::MeshFile { shape, .. }
+            | Self::Memory { shape, .. } => *shape,
+        }
+    }
 }
 
 impl fmt::Display for GeometryError {
@@ -54,7 +76,9 @@ impl fmt::Display for GeometryError {
                 "shape {shape}: a sphere's to_world may only rotate, scale uniformly and translate"
             ),
             Self::InvalidShape { shape, what } => write!(f, "shape {shape}: {what}"),
-            Self::Obj { shape, message } | Self::MeshFile { shape, message } => {
+            Self::Obj { shape, message }
+            | Self::MeshFile { shape, message }
+            | Self::Memory { shape, message } => {
                 write!(f, "shape {shape}: {message}")
             }
         }

@@ -69,7 +69,7 @@ pub fn read_obj(path: &Path) -> Result<ObjMesh, SceneError> {
         let line = line.strip_suffix('\r').unwrap_or(line);
         r.line(line, line_no, Some(path))?;
         let need = r.bytes_after_growth();
-        if need > budget {
+        if need > crate::memory::available() {
             let m = crate::memory::over_budget("the mesh read so far", need);
             return Err(at(line_no, m));
         }

@@ -106,7 +106,7 @@ fn check_memory(header: &Header, len: u64) -> Result<(), (String, String)> {
         };
         let bytes = crate::memory::bytes(def.count as u64, per);
         need = need.saturating_add(bytes);
-        if need > crate::memory::max_memory() {
+        if need > crate::memory::available() {
             let what = format!(
                 "reading this file ({len} bytes, element \"{name}\" of {} items)",
                 def.count

@@ -1,6 +1,7 @@
 //! Why a scene could not be prepared for rendering.
 
 use crate::camera::CameraError;
+use crate::description::Origin;
 use crate::geometry::GeometryError;
 use crate::light::LightError;
 use mcrt::sampling::SamplingError;
@@ -40,6 +41,14 @@ pub enum RenderError {
     },
     /// `--samples` or `--crop` cannot be applied (the message says why).
     Split(String),
+    /// One of the other errors, at the element of the scene file it concerns (a shape
+    /// whose geometry could not be built).
+    Located {
+        /// Where the part was written.
+        at: Origin,
+        /// What is wrong with it.
+        error: Box<RenderError>,
+    },
     /// The film has no pixels.
     EmptyFilm {
         /// Width in pixels.
@@ -61,6 +70,7 @@ impl fmt::Display for RenderError {
             }
             RenderError::Sampler(e) => write!(f, "sampler: {e}"),
             RenderError::Unsupported { integrator, reason } => write!(f, "{integrator}: {reason}"),
+            RenderError::Located { at, error } => write!(f, "{at}: {error}"),
             RenderError::EmptyFilm { width, height } => {
                 write!(f, "film size {width}×{height} is empty")
             }
@@ -75,6 +85,7 @@ impl std::error::Error for RenderError {
             RenderError::Lights(e) => Some(e),
             RenderError::Camera(e) => Some(e),
             RenderError::Material { error, .. } | RenderError::Sampler(error) => Some(error),
+            RenderError::Located { error, .. } => Some(error.as_ref()),
             _ => None,
         }
     }

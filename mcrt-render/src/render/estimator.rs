@@ -38,7 +38,17 @@ impl Renderer {
         // The loader has resolved mesh file names against the scene file's folder already
         // (a description built in code names them relative to the working directory).
         let geo = Geometry::new(&desc.shapes, None, opts.accel)
-            .map_err(RenderError::Geometry)?
+            .map_err(|e| {
+                let at = desc.origins.shape(e.shape()).cloned();
+                let error = RenderError::Geometry(e);
+                match at {
+                    Some(at) => RenderError::Located {
+                        at,
+                        error: Box::new(error),
+                    },
+                    None => error,
+                }
+            })?
             .with_shape_sampling(shape_sampling);
         let lights = Lights::new(desc, &geo, scene_radius(desc)).map_err(RenderError::Lights)?;
         let camera = Camera::new(&desc.sensor).map_err(RenderError::Camera)?;
