@@ -586,3 +586,46 @@ fn non_utf8_arguments_do_not_panic() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Issue 26: SIGINT and SIGTERM after the render has finished, while the image is written,
+/// keep the whole image (not a partial one) and exit 130. The render program's test hook
+/// `MCRT_TEST_HOLD_BEFORE_WRITE` holds the finished image until the signal has arrived, so
+/// the signal falls in that phase on every run.
+#[test]
+fn a_signal_while_writing_keeps_the_whole_image_and_exits_130() {
+    for signal in ["INT", "TERM"] {
+        let dir = scratch(&format!("signal-write-{signal}"));
+        let out = dir.join("box.exr");
+        let mut child = Command::new(render_example())
+            .args(["-D", "spp=4", "-D", "res=16", "--threads", "1", "-o"])
+            .arg(&out)
+            .env("MCRT_TEST_HOLD_BEFORE_WRITE", "1")
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("render starts");
+        let mut stdout = BufReader::new(child.stdout.take().expect("piped stdout"));
+        let mut line = String::new();
+        while line.trim() != "writing" {
+            line.clear();
+            let n = stdout.read_line(&mut line).expect("a line of stdout");
+            assert!(n > 0, "ended before writing");
+        }
+        send(signal, child.id());
+        let code = wait_at_most(&mut child, Duration::from_secs(30), signal);
+        let mut rest = String::new();
+        std::io::Read::read_to_string(&mut stdout, &mut rest).expect("the rest of stdout");
+        assert_eq!(code, i32::from(EXIT_INTERRUPTED), "{signal}: {rest}");
+        assert!(
+            rest.contains("interrupted while writing: the image is complete"),
+            "{signal}: {rest}"
+        );
+        let (w, h, px) = read_exr(&out).expect("the whole image is written");
+        assert_eq!((w, h), (16, 16), "{signal}");
+        // Every pixel has its 4 samples: finite, none NaN as a partial image's unsampled
+        // pixels are.
+        assert!(px.iter().all(|p| p.is_finite()), "{signal}");
+        assert!(!dir.join("box.partial.exr").exists(), "{signal}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}

@@ -495,6 +495,9 @@ fn run(args: Args) -> Result<bool, String> {
             .collect();
         println!("bdpt, by strategy (s,t) (above 0.1%): {}", strat.join(", "));
     }
+    if !interrupted {
+        hold_before_writing(&cancel);
+    }
     let written = if split {
         let info = renderer.part_info(&name);
         vec![plan
@@ -519,6 +522,23 @@ fn run(args: Args) -> Result<bool, String> {
         );
     }
     Ok(interrupted)
+}
+
+/// The test hook for a signal while the finished image is written
+/// (`tests/hostile_output.rs`): with the environment variable `MCRT_TEST_HOLD_BEFORE_WRITE`
+/// set, prints `writing` and waits until a signal sets `cancel` (at most 60 s) before the
+/// image is written, so that the test's signal arrives in that phase for certain.
+fn hold_before_writing(cancel: &AtomicBool) {
+    if std::env::var_os("MCRT_TEST_HOLD_BEFORE_WRITE").is_none() {
+        return;
+    }
+    println!("writing");
+    use std::io::Write as _;
+    std::io::stdout().flush().ok();
+    let start = std::time::Instant::now();
+    while !cancel.load(Ordering::SeqCst) && start.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
 }
 
 /// Installs the SIGINT/SIGTERM/SIGHUP handler, before the scene is loaded: it returns the
