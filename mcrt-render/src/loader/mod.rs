@@ -32,6 +32,7 @@
 mod bsdf;
 mod cie_tables;
 mod context;
+mod elem;
 mod emitter;
 mod include;
 mod instance;

@@ -4,6 +4,7 @@
 //! contents of each `<include filename>`d scene in its place, and upgrading files older
 //! than 2.0.0, as Mitsuba 3 does.
 
+pub(crate) use super::elem::Elem;
 use super::params::{Params, SubstError};
 use super::position::Positions;
 use super::search_path::SearchPath;
@@ -17,50 +18,6 @@ const MAX_DEPTH: usize = 64;
 /// Most attributes on one element (Mitsuba's take at most five; roxmltree's duplicate check
 /// is quadratic in their number).
 const MAX_ATTRIBUTES: usize = 256;
-
-/// One XML element after parameter substitution.
-#[derive(Debug, Clone)]
-pub(crate) struct Elem {
-    /// The tag name.
-    pub tag: String,
-    /// Attributes in file order, values substituted.
-    pub attrs: Vec<(String, String)>,
-    /// Child elements (comments and `<default>` removed).
-    pub children: Vec<Elem>,
-    /// 1-based line of the start tag.
-    pub line: u32,
-    /// 1-based column of the start tag.
-    pub column: u32,
-    /// The included file the element comes from (`None`: the scene file itself).
-    pub file: Option<Arc<Path>>,
-    /// The `name` the file gave, when the upgrade of an old file renamed it.
-    pub renamed_from: Option<Box<str>>,
-}
-
-impl Elem {
-    /// The value of an attribute.
-    pub fn attr(&self, name: &str) -> Option<&str> {
-        self.attrs
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, v)| v.as_str())
-    }
-
-    /// The start tag with its identifying attributes, for messages.
-    pub fn describe(&self) -> String {
-        let mut s = format!("<{}", clip(&self.tag));
-        for key in ["type", "name", "id"] {
-            if let Some(v) = self.attr(key) {
-                s.push_str(&format!(" {key}=\"{}\"", clip(v)));
-            }
-        }
-        s.push('>');
-        if let Some(old) = &self.renamed_from {
-            s.push_str(&format!(" (name=\"{}\" in the file)", clip(old)));
-        }
-        s
-    }
-}
 
 /// Parses `xml` into the `<scene>` element tree, with the folders that the files it names
 /// resolve against.

@@ -15,7 +15,7 @@
 //! elements keep their file, line and column, so later errors point into the file as it is
 //! written; a renamed element's message shows the name the file gave.
 
-use super::tree::Elem;
+use super::elem::Elem;
 use std::path::Path;
 use std::sync::Arc;
 
