@@ -33,6 +33,7 @@ fn cornell_box_file_equals_the_scene_built_in_code() {
     let mut parsed = load(CORNELL, &[]);
     assert_eq!(parsed.source.as_deref(), Some(Path::new(CORNELL)));
     parsed.source = None;
+    parsed.origins = Default::default();
     assert_eq!(parsed, cornell_box());
 }
 
@@ -40,6 +41,7 @@ fn cornell_box_file_equals_the_scene_built_in_code() {
 fn cornell_box_defines_override_defaults() {
     let mut parsed = load(CORNELL, &[("max_depth", "2"), ("spp", "16"), ("res", "32")]);
     parsed.source = None;
+    parsed.origins = Default::default();
     assert_eq!(parsed, cornell_box_with(16, 32, 2));
     assert_eq!(
         parsed.integrator,
@@ -381,6 +383,7 @@ fn mitsuba3_materials_and_their_defaults() {
 fn cornell_box_direct_lighting_define() {
     let mut parsed = load(CORNELL, &[("max_depth", "2")]);
     parsed.source = None;
+    parsed.origins = Default::default();
     assert_eq!(parsed, cornell_box_with(64, 256, 2));
 }
 

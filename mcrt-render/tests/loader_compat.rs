@@ -250,8 +250,12 @@ const NEW: &str = r#"<scene version="3.0.0">
 /// [[2, 0, 0.5], [0, 3, 0], [0, 0, 1]] (`mi.traverse`).
 #[test]
 fn old_files_are_upgraded() {
-    let old = parse(OLD).unwrap_or_else(|e| panic!("{e}"));
-    let new = parse(NEW).unwrap_or_else(|e| panic!("{e}"));
+    let mut old = parse(OLD).unwrap_or_else(|e| panic!("{e}"));
+    let mut new = parse(NEW).unwrap_or_else(|e| panic!("{e}"));
+    // The two spellings put the shapes on different lines; the scenes are the same.
+    assert_eq!(old.origins.shapes.len(), new.origins.shapes.len());
+    old.origins = Default::default();
+    new.origins = Default::default();
     assert_eq!(old, new);
     assert_eq!(
         old.integrator,
