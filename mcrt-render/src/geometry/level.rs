@@ -13,11 +13,9 @@ use rayon::prelude::*;
 pub(super) struct Level {
     /// Primitives in the ray-query backend's slot order.
     pub(super) prims: Vec<Prim>,
-    pub(super) ids: Vec<PrimId>,
+    /// Per stored primitive, what a hit on it reads (one lookup per hit).
+    pub(super) slots: Vec<SlotData>,
     pub(super) query: RayQuery,
-    /// Per stored primitive: a triangle's unit front normal ([`SurfacePoint::ng`](
-    /// mcrt::integrator::SurfacePoint::ng)), else zero.
-    pub(super) face_ng: Vec<Vec3>,
     /// The bounding box of every primitive.
     pub(super) bounds: Aabb,
 }
@@ -27,18 +25,23 @@ impl Level {
     pub(super) fn build(accel: AccelKind, view: PrimsView) -> Self {
         let q = RayQuery::build(accel, &view);
         // Gathers over every primitive, in parallel (`collect` keeps the order).
-        let ids: Vec<PrimId> = q.slots.par_iter().map(|&i| view.ids[i as usize]).collect();
         Self {
             prims: q
                 .slots
                 .par_iter()
                 .map(|&i| view.prims[i as usize])
                 .collect(),
-            face_ng: ids
+            slots: q
+                .slots
                 .par_iter()
-                .map(|id| face_normal(view.shapes, id))
+                .map(|&i| {
+                    let id = view.ids[i as usize];
+                    SlotData {
+                        id,
+                        ng: face_normal(view.shapes, &id),
+                    }
+                })
                 .collect(),
-            ids,
             query: q.query,
             bounds: q.bounds,
         }
@@ -60,8 +63,18 @@ impl Level {
 
     /// Heap bytes of the stored primitives and their per-slot data.
     pub(super) fn prim_bytes(&self) -> usize {
-        vec_bytes(&self.prims) + vec_bytes(&self.ids) + vec_bytes(&self.face_ng)
+        vec_bytes(&self.prims) + vec_bytes(&self.slots)
     }
+}
+
+/// What a hit on a stored primitive reads besides the primitive itself.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct SlotData {
+    /// The primitive's shape and index in it.
+    pub(super) id: PrimId,
+    /// A triangle's unit front normal ([`SurfacePoint::ng`](
+    /// mcrt::integrator::SurfacePoint::ng)), else zero.
+    pub(super) ng: Vec3,
 }
 
 /// The unit front normal of a triangle (zero for other primitives), as hits report it.

@@ -300,7 +300,8 @@ impl Geometry {
     /// Fills in the surface data of a hit found by the search in `level`.
     #[inline(always)]
     fn make_hit(&self, level: &Level, ray: &Ray, t: f32, rec: HitRecord) -> SurfacePoint {
-        let id = level.ids[rec.slot as usize];
+        let slot = level.slots[rec.slot as usize];
+        let id = slot.id;
         let mut p = ray.at(t);
         let mut uv = Vec2::new(rec.b1, rec.b2);
         let (ng, ns) = match &self.shapes[id.shape as usize] {
@@ -309,7 +310,7 @@ impl Geometry {
                 if let Prim::Tri(tri) = &level.prims[rec.slot as usize] {
                     p = tri.point(Vec3A::new(b0, rec.b1, rec.b2));
                 }
-                let ng = level.face_ng[rec.slot as usize];
+                let ng = slot.ng;
                 let ns = if m.normals.is_empty() {
                     ng
                 } else {
