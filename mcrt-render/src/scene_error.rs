@@ -155,6 +155,10 @@ pub(crate) const QUOTE_CHARS: usize = 120;
 /// a file was searched in, each quoted and clipped to [`QUOTE_CHARS`].
 const IO_REASON_CHARS: usize = (MAX_LISTED_FOLDERS + 1) * (QUOTE_CHARS + 4);
 
+/// Most characters of a message of ours about a value (`InvalidValue`): room for a
+/// sentence that ends in the allowed range, with a clipped quote inside it.
+const MESSAGE_CHARS: usize = 3 * QUOTE_CHARS + 40;
+
 /// Most folders a "not found" message lists.
 pub(crate) const MAX_LISTED_FOLDERS: usize = 16;
 
@@ -218,7 +222,9 @@ impl SceneErrorKind {
                 found: c(found),
             },
             Self::Malformed(m) => Self::Malformed(c(m)),
-            Self::InvalidValue(m) => Self::InvalidValue(c(m)),
+            // Our own sentence (which quotes user text clipped already): a longer bound, so
+            // that the allowed range or largest value at its end is not cut off.
+            Self::InvalidValue(m) => Self::InvalidValue(clip_to(&m, MESSAGE_CHARS)),
             Self::UndefinedParameter(m) => Self::UndefinedParameter(c(m)),
             Self::UnknownDefine(m) => Self::UnknownDefine(c(m)),
             Self::UndefinedReference(m) => Self::UndefinedReference(c(m)),

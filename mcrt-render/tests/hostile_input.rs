@@ -442,6 +442,8 @@ fn lights_whose_power_overflows_f32_are_refused_not_dropped() {
         let e = err(body);
         located(&e, 3, param);
         assert!(e.to_string().contains("3.4028235e38"), "{e}");
+        // The whole sentence, to the largest value allowed (it was cut at 120 characters).
+        assert!(e.to_string().contains("may be at most"), "{e}");
     }
     // Below the bound: accepted.
     parse("<scene version=\"3.0.0\"><emitter type=\"point\"><rgb name=\"intensity\" value=\"2e37\"/></emitter></scene>")
