@@ -16,6 +16,7 @@ use crate::param_defs::bsdf::{
     K, MATERIAL, NONLINEAR, REFLECTANCE, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
     SPECULAR_TRANSMITTANCE,
 };
+use crate::param_defs::bsdf_composite::{OPACITY, WEIGHT};
 use crate::param_defs::IorParam;
 use crate::scene_error::SceneErrorKind;
 use crate::validate;
@@ -86,7 +87,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             return twosided(ctx, e, p, depth);
         }
         "blendbsdf" => {
-            let weight = match (p.float("weight")?, scalar(TextureParam::Weight)) {
+            let weight = match (p.float(WEIGHT.name)?, scalar(TextureParam::Weight)) {
                 (Some(w), _) | (None, Some(w)) => w,
                 (None, None) => {
                     return Err(ctx.err(
@@ -104,7 +105,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             return checked(ctx, e, texture::attach(ctx, ty, desc, textures)?);
         }
         "mask" => {
-            let opacity = p.float("opacity")?;
+            let opacity = p.float(OPACITY.name)?;
             let opacity = opacity.or(scalar(TextureParam::Opacity)).unwrap_or(0.5);
             let [inner] = nested::<1>(ctx, e, p, depth)?;
             let desc = BsdfDesc::Mask {

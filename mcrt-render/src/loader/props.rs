@@ -167,6 +167,22 @@ impl<'c, 'a> Props<'c, 'a> {
         }
     }
 
+    /// Float parameter `d` checked into `T`, if the scene gives it (a default that depends
+    /// on another parameter, or a required parameter).
+    pub fn get_float_opt<T: Copy>(&mut self, d: &FloatParam<T>) -> Res<Option<T>> {
+        match self.float(d.name)? {
+            None => Ok(None),
+            Some(v) => (d.accept)(v)
+                .map(Some)
+                .map_err(|m| self.invalid(d.name, self.elem, &m)),
+        }
+    }
+
+    /// Integer parameter `d`, checked, if the scene gives it.
+    pub fn get_int_opt(&mut self, d: &IntParam) -> Res<Option<i64>> {
+        self.int_in(d.name, d.min, d.max)
+    }
+
     /// Boolean parameter `d`: its value or its default.
     pub fn get_bool(&mut self, d: &BoolParam) -> Res<bool> {
         Ok(self.bool(d.name)?.unwrap_or(d.default))

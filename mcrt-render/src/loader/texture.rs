@@ -6,6 +6,7 @@ use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::description::BsdfDesc;
+use crate::param_defs::texture as defs;
 use crate::scene_error::SceneErrorKind;
 use crate::texture::{
     read_image_beside, uv_transform, Bitmap, Checkerboard, FilterType, Texture, TextureParam,
@@ -22,20 +23,20 @@ pub(crate) fn read_texture(ctx: &Ctx, e: &Elem) -> Res<Texture> {
     }
     let mut p = Props::new(ctx, e)?;
     no_objects(ctx, &p)?;
-    let to_uv = match p.transform("to_uv")? {
+    let to_uv = match p.transform(defs::TO_UV.name)? {
         Some(m) => uv_transform(&m),
         None => Affine2::IDENTITY,
     };
     let texture = match ty {
         "bitmap" => {
-            let Some(name) = p.string("filename")? else {
+            let Some(name) = p.string(defs::FILENAME.name)? else {
                 return Err(ctx.err(
                     e,
                     SceneErrorKind::InvalidValue("bitmap needs a \"filename\"".into()),
                 ));
             };
-            let raw = p.bool("raw")?.unwrap_or(false);
-            let filter = match p.string("filter_type")? {
+            let raw = p.get_bool(&defs::RAW)?;
+            let filter = match p.string(defs::FILTER_TYPE.name)? {
                 None => FilterType::default(),
                 Some(s) => FilterType::parse(&s).ok_or_else(|| {
                     p.invalid(
@@ -45,7 +46,7 @@ pub(crate) fn read_texture(ctx: &Ctx, e: &Elem) -> Res<Texture> {
                     )
                 })?,
             };
-            let wrap = match p.string("wrap_mode")? {
+            let wrap = match p.string(defs::WRAP_MODE.name)? {
                 None => WrapMode::default(),
                 Some(s) => WrapMode::parse(&s).ok_or_else(|| {
                     p.invalid(
@@ -82,14 +83,11 @@ pub(crate) fn read_texture(ctx: &Ctx, e: &Elem) -> Res<Texture> {
                 to_uv,
             })
         }
-        "checkerboard" => {
-            let d = Checkerboard::default();
-            Texture::Checkerboard(Checkerboard {
-                color0: p.rgb("color0")?.unwrap_or(d.color0),
-                color1: p.rgb("color1")?.unwrap_or(d.color1),
-                to_uv,
-            })
-        }
+        "checkerboard" => Texture::Checkerboard(Checkerboard {
+            color0: p.get_rgb(&defs::COLOR0)?,
+            color1: p.get_rgb(&defs::COLOR1)?,
+            to_uv,
+        }),
         other => return Err(unknown_plugin(ctx, e, other)),
     };
     if let Texture::Checkerboard(c) = &texture {
