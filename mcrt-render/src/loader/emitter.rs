@@ -6,7 +6,7 @@ use super::props::Props;
 use super::spectrum::SpectrumUse;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, texture, unknown_plugin};
-use crate::description::{AreaEmitterDesc, EmitterDesc};
+use crate::description::{AreaEmitterDesc, Colour, EmitterDesc};
 use crate::param_defs::emitter as defs;
 use crate::scene_error::SceneErrorKind;
 use crate::texture::Texture;
@@ -67,11 +67,14 @@ pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<(AreaEmitterDesc, Option<Tex
     let mut p = Props::new(ctx, e)?;
     let tex = take_texture(ctx, &mut p, defs::AREA_RADIANCE.name)?;
     let radiance = match &tex {
-        Some(t) => texture::stand_in(t),
+        Some(t) => {
+            let name = defs::AREA_RADIANCE.name;
+            Colour::named(name, texture::stand_in(t)).map_err(|i| p.invalid(name, e, &i.message))?
+        }
         None => non_negative(e, &mut p, defs::AREA_RADIANCE.name)?,
     };
     // The power of a unit area (the shape's area multiplies it: `Lights::new` checks that).
-    validate::emission_power("radiance", radiance, std::f64::consts::PI)
+    validate::emission_power("radiance", radiance.get(), std::f64::consts::PI)
         .map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok((AreaEmitterDesc { radiance }, tex))
@@ -202,7 +205,7 @@ fn read_projector(ctx: &Ctx, e: &Elem, p: &mut Props, tex: Option<Texture>) -> R
         Some(t) => t,
         None => {
             let c = non_negative(e, p, defs::PROJECTOR_IRRADIANCE.name)?;
-            let image = crate::texture::Image::new(1, 1, vec![c])
+            let image = crate::texture::Image::new(1, 1, vec![c.get()])
                 .ok_or_else(|| p.invalid(defs::PROJECTOR_IRRADIANCE.name, e, "unusable"))?;
             Texture::Bitmap(crate::texture::Bitmap {
                 image: std::sync::Arc::new(image),
@@ -258,10 +261,9 @@ fn read_projector(ctx: &Ctx, e: &Elem, p: &mut Props, tex: Option<Texture>) -> R
     })
 }
 
-/// An emitted colour with default 1 whose channels must be finite and non-negative (a
-/// `<spectrum>` is converted as emission, without the D65 weighting of reflectances).
-fn non_negative(e: &Elem, p: &mut Props, name: &'static str) -> Res<Vec3> {
+/// An emitted colour with default 1, checked into a [`Colour`] (a `<spectrum>` is converted
+/// as emission, without the D65 weighting of reflectances).
+fn non_negative(e: &Elem, p: &mut Props, name: &'static str) -> Res<Colour> {
     let v = p.colour(name, SpectrumUse::Emission)?.unwrap_or(Vec3::ONE);
-    validate::colour(name, v).map_err(|i| p.invalid(name, e, &i.message))?;
-    Ok(v)
+    Colour::named(name, v).map_err(|i| p.invalid(name, e, &i.message))
 }

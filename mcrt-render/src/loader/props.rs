@@ -7,6 +7,7 @@ use super::spectrum::{Spectrum, SpectrumUse};
 use super::transform::{check_attrs, read_transform, xyz};
 use super::tree::Elem;
 use super::values::{parse_bool, parse_float, parse_int, parse_triple};
+use crate::description::Colour;
 use crate::param_defs::{
     self, BoolParam, ChoiceParam, ColourParam, FloatParam, IntParam, PluginParams,
 };
@@ -259,9 +260,10 @@ impl<'c, 'a> Props<'c, 'a> {
         self.colour(name, SpectrumUse::Reflectance)
     }
 
-    /// Colour parameter `d` (as [`Props::rgb`]), or its default.
-    pub fn get_rgb(&mut self, d: &ColourParam) -> Res<Vec3> {
-        Ok(self.rgb(d.name)?.unwrap_or(Vec3::splat(d.default)))
+    /// Colour parameter `d` (as [`Props::rgb`]) checked into a [`Colour`], or its default.
+    pub fn get_rgb(&mut self, d: &ColourParam) -> Res<Colour> {
+        let v = self.rgb(d.name)?.unwrap_or(Vec3::splat(d.default));
+        Colour::named(d.name, v).map_err(|i| self.invalid(d.name, self.elem, &i.message))
     }
 
     /// A colour as [`Props::rgb`], with a `<spectrum>` converted for `usage`.

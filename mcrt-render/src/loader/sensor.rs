@@ -209,9 +209,11 @@ fn read_film(ctx: &Ctx, e: &Elem) -> Res<FilmDesc> {
         return Err(unknown_plugin(ctx, e, ty));
     }
     let mut p = Props::new(ctx, e)?;
-    let mut f = FilmDesc::default();
-    f.width = p.get_int(&film_defs::WIDTH)? as u32;
-    f.height = p.get_int(&film_defs::HEIGHT)? as u32;
+    let mut f = FilmDesc {
+        width: p.get_int(&film_defs::WIDTH)? as u32,
+        height: p.get_int(&film_defs::HEIGHT)? as u32,
+        ..FilmDesc::default()
+    };
     // Output-format options: accepted and ignored (the renderer writes float RGB EXR).
     for d in [
         &film_defs::FILE_FORMAT,

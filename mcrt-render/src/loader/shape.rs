@@ -7,7 +7,7 @@ use super::emitter::read_area;
 use super::props::Props;
 use super::tree::Elem;
 use super::{plugin_type, unknown_plugin};
-use crate::description::{BsdfDesc, ShapeDesc, ShapeKind};
+use crate::description::{BsdfDesc, Colour, ShapeDesc, ShapeKind};
 use crate::param_defs::shape_plugins as defs;
 use crate::scene_error::SceneErrorKind;
 use crate::validate;
@@ -99,7 +99,7 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
     // As in Mitsuba 3: a shape without a BSDF is diffuse 0.5, but an emitting one is black.
     shape.bsdf = bsdf.unwrap_or_else(|| match emitter {
         Some(_) => BsdfDesc::Diffuse {
-            reflectance: Vec3::ZERO,
+            reflectance: Colour::BLACK,
         },
         None => BsdfDesc::default(),
     });
