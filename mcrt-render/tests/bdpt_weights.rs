@@ -35,7 +35,7 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
     });
     mirror.bsdf = BsdfDesc::Conductor {
         fresnel: ConductorFresnel::Perfect,
-        specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
     };
     mixed.shapes.push(mirror);
     mixed.emitters.push(EmitterDesc::Point {
@@ -63,7 +63,7 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
             ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
             diffuse_reflectance: mcrt_render::description::Colour::new(Vec3::new(0.8, 0.4, 0.1))
                 .unwrap(),
-            specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+            specular_reflectance: mcrt_render::description::Colour::WHITE,
             nonlinear: false,
         },
     ));
@@ -76,8 +76,8 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
             ),
             int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
             ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
-            specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
-            specular_transmittance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+            specular_reflectance: mcrt_render::description::Colour::WHITE,
+            specular_transmittance: mcrt_render::description::Colour::WHITE,
         },
     ));
     materials.shapes.push(sphere(

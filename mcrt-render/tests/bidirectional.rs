@@ -250,7 +250,7 @@ fn furnace(bsdf: BsdfDesc, integrator: IntegratorDesc) -> SceneDescription {
         },
         shapes: vec![sphere],
         emitters: vec![EmitterDesc::Constant {
-            radiance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+            radiance: mcrt_render::description::Colour::WHITE,
         }],
         source: None,
         ..SceneDescription::default()
@@ -272,7 +272,7 @@ fn furnaces_return_the_albedo() {
             "mirror",
             BsdfDesc::Conductor {
                 fresnel: ConductorFresnel::Perfect,
-                specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+                specular_reflectance: mcrt_render::description::Colour::WHITE,
             },
             Vec3::ONE,
         ),
@@ -281,8 +281,8 @@ fn furnaces_return_the_albedo() {
             BsdfDesc::Dielectric {
                 int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
                 ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
-                specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
-                specular_transmittance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+                specular_reflectance: mcrt_render::description::Colour::WHITE,
+                specular_transmittance: mcrt_render::description::Colour::WHITE,
             },
             Vec3::ONE,
         ),

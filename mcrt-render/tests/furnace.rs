@@ -25,7 +25,7 @@ fn furnace(bsdf: BsdfDesc, spp: u32) -> (Vec3, Vec3) {
         bsdf,
         spp,
         EmitterDesc::Constant {
-            radiance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+            radiance: mcrt_render::description::Colour::WHITE,
         },
     )
 }
@@ -132,7 +132,7 @@ fn diffuse_sphere_returns_its_albedo() {
 fn mirror_sphere_returns_one() {
     let b = BsdfDesc::Conductor {
         fresnel: ConductorFresnel::Perfect,
-        specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
     };
     check("mirror", furnace(b, 4), Vec3::ONE);
 }
@@ -142,8 +142,8 @@ fn glass_sphere_returns_one() {
     let b = BsdfDesc::Dielectric {
         int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
         ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
-        specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
-        specular_transmittance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
+        specular_transmittance: mcrt_render::description::Colour::WHITE,
     };
     check("glass", furnace(b, 64), Vec3::ONE);
 }
@@ -206,7 +206,7 @@ fn point_light_over_a_diffuse_plane() {
     // of radius 0.02 around that point, where cos θ / d² > 0.9994.
     let light = EmitterDesc::Point {
         position: Vec3::new(0.0, 0.0, 1.0),
-        intensity: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+        intensity: mcrt_render::description::Colour::WHITE,
     };
     let path = IntegratorDesc::Path {
         max_depth: 2,
@@ -268,8 +268,8 @@ fn white_plastic_sphere_returns_one() {
         let b = BsdfDesc::Plastic {
             int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
             ext_ior: mcrt_render::description::Ior::new(1.000277).unwrap(),
-            diffuse_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
-            specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+            diffuse_reflectance: mcrt_render::description::Colour::WHITE,
+            specular_reflectance: mcrt_render::description::Colour::WHITE,
             nonlinear,
         };
         check("white plastic", furnace(b, 64), Vec3::ONE);
@@ -281,8 +281,8 @@ fn thin_glass_sphere_returns_one() {
     let b = BsdfDesc::ThinDielectric {
         int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
         ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
-        specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
-        specular_transmittance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
+        specular_transmittance: mcrt_render::description::Colour::WHITE,
     };
     check("thin glass", furnace(b, 16), Vec3::ONE);
 }
@@ -295,8 +295,8 @@ fn rough_glass(alpha: f32) -> BsdfDesc {
         ),
         int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
         ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
-        specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
-        specular_transmittance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
+        specular_transmittance: mcrt_render::description::Colour::WHITE,
     }
 }
 
@@ -319,8 +319,8 @@ fn lossy_spheres_return_what_mitsuba_returns() {
         microfacet: Microfacet::new(distribution, Roughness::new(alpha).expect("a roughness")),
         int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
         ext_ior: mcrt_render::description::Ior::new(1.000277).unwrap(),
-        diffuse_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
-        specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+        diffuse_reflectance: mcrt_render::description::Colour::WHITE,
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
         nonlinear: false,
     };
     let cases = [
@@ -351,7 +351,7 @@ fn lossy_spheres_return_what_mitsuba_returns() {
 #[test]
 fn blend_and_mask_of_lossless_materials_return_one() {
     let white = BsdfDesc::Diffuse {
-        reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+        reflectance: mcrt_render::description::Colour::WHITE,
     };
     let blend = BsdfDesc::Blend {
         weight: 0.4,
@@ -359,8 +359,8 @@ fn blend_and_mask_of_lossless_materials_return_one() {
         second: Box::new(BsdfDesc::Plastic {
             int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
             ext_ior: mcrt_render::description::Ior::new(1.000277).unwrap(),
-            diffuse_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
-            specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+            diffuse_reflectance: mcrt_render::description::Colour::WHITE,
+            specular_reflectance: mcrt_render::description::Colour::WHITE,
             nonlinear: false,
         }),
     };

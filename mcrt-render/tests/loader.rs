@@ -78,7 +78,7 @@ fn veach_plates_are_ggx_mirrors_of_rising_roughness() {
                     Roughness::new(alpha).expect("a roughness")
                 ),
                 fresnel: ConductorFresnel::Perfect,
-                specular_reflectance: mcrt_render::description::Colour::new(Vec3::ONE).unwrap(),
+                specular_reflectance: mcrt_render::description::Colour::WHITE,
             }
         );
         assert!(s.emitter.is_none());

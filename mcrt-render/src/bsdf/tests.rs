@@ -134,8 +134,8 @@ fn from_desc_reads_twosided_and_ior() {
         crate::description::BsdfDesc::Dielectric {
             int_ior: crate::description::Ior::new(1.5).unwrap(),
             ext_ior: crate::description::Ior::new(1.0).unwrap(),
-            specular_reflectance: crate::description::Colour::new(Vec3::ONE).unwrap(),
-            specular_transmittance: crate::description::Colour::new(Vec3::ONE).unwrap(),
+            specular_reflectance: crate::description::Colour::WHITE,
+            specular_transmittance: crate::description::Colour::WHITE,
         },
     ));
     let s = AnyBsdf::from_desc(&desc).expect("valid");
