@@ -2,7 +2,7 @@
 //! 3's `cornell_box()` with a box pixel filter), so the renderer needs no file to run.
 
 use crate::description::{
-    AreaEmitterDesc, BsdfDesc, FilmDesc, FilterDesc, FovAxis, IntegratorDesc, SampleCount,
+    AreaEmitterDesc, BsdfDesc, Colour, FilmDesc, FilterDesc, FovAxis, IntegratorDesc, SampleCount,
     SamplerDesc, SamplerKind, SceneDescription, SensorDesc, ShapeDesc, ShapeKind,
 };
 use crate::transform::look_at;
@@ -41,7 +41,7 @@ pub fn cornell_box_with(spp: u32, res: u32, max_depth: i32) -> SceneDescription 
         &white,
     );
     light.emitter = Some(AreaEmitterDesc {
-        radiance: Vec3::new(18.387, 13.9873, 6.75357),
+        radiance: Colour::known(Vec3::new(18.387, 13.9873, 6.75357)),
     });
     let shapes = vec![
         light,
@@ -133,7 +133,7 @@ fn sensor(spp: u32, res: u32) -> SensorDesc {
 
 fn diffuse(r: f32, g: f32, b: f32) -> BsdfDesc {
     BsdfDesc::Diffuse {
-        reflectance: Vec3::new(r, g, b),
+        reflectance: Colour::known(Vec3::new(r, g, b)),
     }
 }
 

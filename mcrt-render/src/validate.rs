@@ -2,9 +2,10 @@
 //! already make, and the bounds that keep any scene's memory and work finite. The XML loader
 //! applies them to each element as it reads it (so its errors name file, line and element),
 //! and [`Renderer::new`](crate::render::Renderer::new) applies them to descriptions built in
-//! code. A roughness ([`Roughness`]) and a sample count
-//! ([`SampleCount`]) are checked when they are made, and never again; the integrators'
-//! parameters are checked against their one definition each (`param_defs`).
+//! code. A roughness ([`Roughness`]), a sample count ([`SampleCount`]), a colour
+//! ([`Colour`]: every reflectance, transmittance, conductor index and emitted colour) and an
+//! index of refraction ([`Ior`]) are checked when they are made, and never again; the
+//! integrators' parameters are checked against their one definition each (`param_defs`).
 //!
 //! The bounds, also listed in `docs/scene-format.md`:
 //!
@@ -17,7 +18,7 @@
 //! | roughness α | [[`MIN_ROUGHNESS`], 10] ([`Roughness`]); the loader clamps smaller α to 10⁻⁴ as Mitsuba 3 does |
 
 use crate::description::{
-    BsdfDesc, ConductorFresnel, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc, Roughness,
+    BsdfDesc, Colour, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc, Ior, Roughness,
     SampleCount, SceneDescription, ShapeDesc, ShapeKind,
 };
 use glam::{Mat4, Vec3, Vec4};
@@ -52,15 +53,6 @@ fn invalid(param: &'static str, message: impl Into<String>) -> Invalid {
     Invalid::new(param, message)
 }
 
-/// A colour whose channels must be finite and non-negative.
-pub fn colour(param: &'static str, v: Vec3) -> Result<(), Invalid> {
-    if v.is_finite() && v.min_element() >= 0.0 {
-        Ok(())
-    } else {
-        Err(invalid(param, "must be finite and non-negative"))
-    }
-}
-
 /// An emitted quantity `v` whose power, `factor` times its mean channel (for a scene of unit
 /// size), must be a finite `f32`: past that, the light's power, by which lights are
 /// chosen, overflows (issue 26: such a light was dropped without a word).
@@ -79,15 +71,6 @@ pub fn emission_power(param: &'static str, v: Vec3, factor: f64) -> Result<(), I
             max / factor
         ),
     ))
-}
-
-/// An index of refraction: finite and positive.
-pub fn ior(param: &'static str, v: f32) -> Result<(), Invalid> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(invalid(param, "must be finite and positive"))
-    }
 }
 
 /// An object-to-world transform: finite, affine (last row 0 0 0 1) and invertible.
@@ -192,81 +175,32 @@ pub fn work(pixels: u64, spp: u32, i: &IntegratorDesc) -> Result<(), Invalid> {
     Ok(())
 }
 
-/// A material.
+/// A material: what its types do not hold already (its colours are [`Colour`]s and its
+/// indices [`Ior`]s, checked when they were made): a plastic's internal scattering, a
+/// blend's weight, a mask's opacity, a principled material's parameters, and where textures
+/// are attached.
 pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
     match b {
-        BsdfDesc::Diffuse { reflectance } => colour("reflectance", *reflectance),
-        BsdfDesc::Conductor {
-            fresnel,
-            specular_reflectance,
-        } => {
-            conductor_fresnel(fresnel)?;
-            colour("specular_reflectance", *specular_reflectance)
-        }
-        BsdfDesc::RoughConductor {
-            fresnel,
-            specular_reflectance,
-            ..
-        } => {
-            conductor_fresnel(fresnel)?;
-            colour("specular_reflectance", *specular_reflectance)
-        }
-        BsdfDesc::Dielectric {
-            int_ior,
-            ext_ior,
-            specular_reflectance,
-            specular_transmittance,
-        }
-        | BsdfDesc::ThinDielectric {
-            int_ior,
-            ext_ior,
-            specular_reflectance,
-            specular_transmittance,
-        } => dielectric(
-            *int_ior,
-            *ext_ior,
-            *specular_reflectance,
-            *specular_transmittance,
-        ),
-        BsdfDesc::RoughDielectric {
-            int_ior,
-            ext_ior,
-            specular_reflectance,
-            specular_transmittance,
-            ..
-        } => dielectric(
-            *int_ior,
-            *ext_ior,
-            *specular_reflectance,
-            *specular_transmittance,
-        ),
+        BsdfDesc::Diffuse { .. }
+        | BsdfDesc::Conductor { .. }
+        | BsdfDesc::RoughConductor { .. }
+        | BsdfDesc::Dielectric { .. }
+        | BsdfDesc::ThinDielectric { .. }
+        | BsdfDesc::RoughDielectric { .. } => Ok(()),
         BsdfDesc::Plastic {
             int_ior,
             ext_ior,
             diffuse_reflectance,
-            specular_reflectance,
             nonlinear,
-        } => plastic(
-            *int_ior,
-            *ext_ior,
-            *diffuse_reflectance,
-            *specular_reflectance,
-            *nonlinear,
-        ),
-        BsdfDesc::RoughPlastic {
+            ..
+        }
+        | BsdfDesc::RoughPlastic {
             int_ior,
             ext_ior,
             diffuse_reflectance,
-            specular_reflectance,
             nonlinear,
             ..
-        } => plastic(
-            *int_ior,
-            *ext_ior,
-            *diffuse_reflectance,
-            *specular_reflectance,
-            *nonlinear,
-        ),
+        } => plastic(*int_ior, *ext_ior, *diffuse_reflectance, *nonlinear),
         BsdfDesc::Principled(params) => principled(params),
         BsdfDesc::Blend {
             weight,
@@ -343,36 +277,18 @@ fn unit_interval(param: &'static str, v: f32) -> Result<(), Invalid> {
     }
 }
 
-/// An interface between two indices (smooth, rough or thin) and its two colours.
-fn dielectric(int_ior: f32, ext_ior: f32, reflect: Vec3, transmit: Vec3) -> Result<(), Invalid> {
-    ior("int_ior", int_ior)?;
-    ior("ext_ior", ext_ior)?;
-    colour("specular_reflectance", reflect)?;
-    colour("specular_transmittance", transmit)
-}
-
 /// A coated material. Its diffuse albedo after internal scattering, `ρ / (1 − F_dr)` (or
 /// `ρ / (1 − ρ F_dr)` when `nonlinear`), must stay finite: `F_dr` < 1 for every index
 /// the fits cover, and an albedo above 1 with `nonlinear` could reach the pole, so it is
 /// refused (Mitsuba would render infinities).
-fn plastic(
-    int_ior: f32,
-    ext_ior: f32,
-    diffuse: Vec3,
-    specular: Vec3,
-    nonlinear: bool,
-) -> Result<(), Invalid> {
-    ior("int_ior", int_ior)?;
-    ior("ext_ior", ext_ior)?;
-    colour("diffuse_reflectance", diffuse)?;
-    colour("specular_reflectance", specular)?;
+fn plastic(int_ior: Ior, ext_ior: Ior, diffuse: Colour, nonlinear: bool) -> Result<(), Invalid> {
     if nonlinear && diffuse.max_element() > 1.0 {
         return Err(invalid(
             "diffuse_reflectance",
             "must not exceed 1 with nonlinear (the internal scattering would diverge)",
         ));
     }
-    let fdr = crate::bsdf::fresnel_diffuse_reflectance(ext_ior / int_ior);
+    let fdr = crate::bsdf::fresnel_diffuse_reflectance(ext_ior.get() / int_ior.get());
     if !(fdr < 1.0 && fdr.is_finite()) {
         return Err(invalid(
             "int_ior",
@@ -381,16 +297,6 @@ fn plastic(
         ));
     }
     Ok(())
-}
-
-fn conductor_fresnel(f: &ConductorFresnel) -> Result<(), Invalid> {
-    match f {
-        ConductorFresnel::Perfect => Ok(()),
-        ConductorFresnel::Complex { eta, k } => {
-            colour("eta", *eta)?;
-            colour("k", *k)
-        }
-    }
 }
 
 /// An emitter that is not attached to a shape.
@@ -403,12 +309,10 @@ pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
             if !position.is_finite() {
                 return Err(invalid("position", "must be finite"));
             }
-            colour("intensity", *intensity)?;
-            emission_power("intensity", *intensity, 4.0 * PI64)
+            emission_power("intensity", intensity.get(), 4.0 * PI64)
         }
         EmitterDesc::Constant { radiance } => {
-            colour("radiance", *radiance)?;
-            emission_power("radiance", *radiance, 4.0 * PI64 * PI64)
+            emission_power("radiance", radiance.get(), 4.0 * PI64 * PI64)
         }
         EmitterDesc::EnvMap {
             scale, to_world, ..
@@ -446,8 +350,7 @@ pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
                     "must be a rotation, uniform scale and translation for a spot light",
                 ));
             }
-            colour("intensity", *intensity)?;
-            emission_power("intensity", *intensity, 4.0 * PI64)
+            emission_power("intensity", intensity.get(), 4.0 * PI64)
         }
         EmitterDesc::Directional {
             irradiance,
@@ -456,8 +359,7 @@ pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
             if !(direction.is_finite() && (direction.length() - 1.0).abs() < 1e-3) {
                 return Err(invalid("direction", "must be a finite unit vector"));
             }
-            colour("irradiance", *irradiance)?;
-            emission_power("irradiance", *irradiance, PI64)
+            emission_power("irradiance", irradiance.get(), PI64)
         }
         EmitterDesc::Textured { inner, .. } => {
             if !matches!(**inner, EmitterDesc::Spot { .. }) {
@@ -546,11 +448,9 @@ pub fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
             ));
         }
     }
-    bsdf(&s.bsdf)?;
-    match &s.emitter {
-        Some(e) => colour("radiance", e.radiance),
-        None => Ok(()),
-    }
+    // The area emitter's radiance is a [`Colour`]; its power was checked by the loader (a
+    // description built in code meets `Lights::new`'s check).
+    bsdf(&s.bsdf)
 }
 
 /// A shape inside a shape group: a [`shape`] that is neither an instance nor an emitter
@@ -609,27 +509,21 @@ pub fn scene(d: &SceneDescription) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::description::AreaEmitterDesc;
 
     #[test]
     fn the_shipped_defaults_pass_and_hostile_values_fail() {
         let d = crate::cornell_box::cornell_box();
         assert_eq!(scene(&d), Ok(()));
+        // Colours and indices cannot even be made invalid.
         for bad in [f32::NAN, f32::INFINITY, -1.0] {
-            let mut x = d.clone();
-            x.shapes[0].bsdf = BsdfDesc::Diffuse {
-                reflectance: Vec3::new(0.5, bad, 0.5),
-            };
-            let e = scene(&x).unwrap_err();
-            assert!(e.contains("shape 0") && e.contains("reflectance"), "{e}");
-            let mut x = d.clone();
-            x.shapes[1].emitter = Some(AreaEmitterDesc {
-                radiance: Vec3::splat(bad),
-            });
-            assert!(scene(&x).unwrap_err().contains("radiance"));
+            let e = Colour::named("reflectance", Vec3::new(0.5, bad, 0.5)).unwrap_err();
+            assert_eq!(
+                e.to_string(),
+                "\"reflectance\" must be finite and non-negative"
+            );
         }
         for bad in [0.0, f32::NAN, -1.5, f32::INFINITY] {
-            assert!(ior("int_ior", bad).is_err(), "{bad}");
+            assert!(Ior::new(bad).is_err(), "{bad}");
         }
         let mut x = d.clone();
         x.integrator = IntegratorDesc::Path {

@@ -35,17 +35,17 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
     });
     mirror.bsdf = BsdfDesc::Conductor {
         fresnel: ConductorFresnel::Perfect,
-        specular_reflectance: Vec3::ONE,
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
     };
     mixed.shapes.push(mirror);
     mixed.emitters.push(EmitterDesc::Point {
         position: Vec3::new(0.3, 0.5, 0.4),
-        intensity: Vec3::splat(0.5),
+        intensity: mcrt_render::description::Colour::new(Vec3::splat(0.5)).unwrap(),
     });
     // An open box would let rays escape; a dim environment is still sampled and hit by the
     // camera paths that leave through the open front.
     mixed.emitters.push(EmitterDesc::Constant {
-        radiance: Vec3::splat(0.2),
+        radiance: mcrt_render::description::Colour::new(Vec3::splat(0.2)).unwrap(),
     });
     let mut materials = cornell.clone();
     let sphere = |x: f32, bsdf: BsdfDesc| {
@@ -59,10 +59,11 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
     materials.shapes.push(sphere(
         -0.5,
         BsdfDesc::Plastic {
-            int_ior: 1.49,
-            ext_ior: 1.0,
-            diffuse_reflectance: Vec3::new(0.8, 0.4, 0.1),
-            specular_reflectance: Vec3::ONE,
+            int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
+            ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
+            diffuse_reflectance: mcrt_render::description::Colour::new(Vec3::new(0.8, 0.4, 0.1))
+                .unwrap(),
+            specular_reflectance: mcrt_render::description::Colour::WHITE,
             nonlinear: false,
         },
     ));
@@ -73,10 +74,10 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
                 MicrofacetKind::Ggx,
                 Roughness::new(0.3).expect("a roughness"),
             ),
-            int_ior: 1.5,
-            ext_ior: 1.0,
-            specular_reflectance: Vec3::ONE,
-            specular_transmittance: Vec3::ONE,
+            int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
+            ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
+            specular_reflectance: mcrt_render::description::Colour::WHITE,
+            specular_transmittance: mcrt_render::description::Colour::WHITE,
         },
     ));
     materials.shapes.push(sphere(
@@ -84,7 +85,7 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
         BsdfDesc::Mask {
             opacity: 0.5,
             inner: Box::new(BsdfDesc::TwoSided(Box::new(BsdfDesc::Diffuse {
-                reflectance: Vec3::splat(0.6),
+                reflectance: mcrt_render::description::Colour::new(Vec3::splat(0.6)).unwrap(),
             }))),
         },
     ));

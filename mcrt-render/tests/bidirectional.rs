@@ -250,7 +250,7 @@ fn furnace(bsdf: BsdfDesc, integrator: IntegratorDesc) -> SceneDescription {
         },
         shapes: vec![sphere],
         emitters: vec![EmitterDesc::Constant {
-            radiance: Vec3::ONE,
+            radiance: mcrt_render::description::Colour::WHITE,
         }],
         source: None,
         ..SceneDescription::default()
@@ -261,22 +261,28 @@ fn furnace(bsdf: BsdfDesc, integrator: IntegratorDesc) -> SceneDescription {
 fn furnaces_return_the_albedo() {
     let rho = Vec3::new(0.2, 0.5, 0.8);
     let materials = [
-        ("diffuse", BsdfDesc::Diffuse { reflectance: rho }, rho),
+        (
+            "diffuse",
+            BsdfDesc::Diffuse {
+                reflectance: mcrt_render::description::Colour::new(rho).unwrap(),
+            },
+            rho,
+        ),
         (
             "mirror",
             BsdfDesc::Conductor {
                 fresnel: ConductorFresnel::Perfect,
-                specular_reflectance: Vec3::ONE,
+                specular_reflectance: mcrt_render::description::Colour::WHITE,
             },
             Vec3::ONE,
         ),
         (
             "glass",
             BsdfDesc::Dielectric {
-                int_ior: 1.5,
-                ext_ior: 1.0,
-                specular_reflectance: Vec3::ONE,
-                specular_transmittance: Vec3::ONE,
+                int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
+                ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
+                specular_reflectance: mcrt_render::description::Colour::WHITE,
+                specular_transmittance: mcrt_render::description::Colour::WHITE,
             },
             Vec3::ONE,
         ),
@@ -356,7 +362,7 @@ fn images_do_not_depend_on_the_thread_count() {
 fn bdpt_with_a_gaussian_filter_keeps_its_border_pixels() {
     let mut desc = furnace(
         BsdfDesc::Diffuse {
-            reflectance: Vec3::splat(0.5),
+            reflectance: mcrt_render::description::Colour::new(Vec3::splat(0.5)).unwrap(),
         },
         IntegratorDesc::Bdpt {
             max_depth: -1,
@@ -369,7 +375,7 @@ fn bdpt_with_a_gaussian_filter_keeps_its_border_pixels() {
     desc.sensor.film.height = 32;
     desc.emitters.push(EmitterDesc::Point {
         position: Vec3::new(1.0, 2.0, 3.0),
-        intensity: Vec3::splat(5.0),
+        intensity: mcrt_render::description::Colour::new(Vec3::splat(5.0)).unwrap(),
     });
     let pt = RenderOptions {
         spp: Some(1024),

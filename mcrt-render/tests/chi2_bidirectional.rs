@@ -122,7 +122,7 @@ fn environment_emission_directions_follow_their_density() {
     let mut desc = mcrt_render::cornell_box::cornell_box();
     desc.shapes.iter_mut().for_each(|s| s.emitter = None);
     desc.emitters.push(EmitterDesc::Constant {
-        radiance: Vec3::ONE,
+        radiance: mcrt_render::description::Colour::WHITE,
     });
     let (geo, lights) = lights_of(&desc);
     let world = geo.bounding_sphere();
@@ -150,7 +150,7 @@ fn sphere_light_emission_points_are_uniform_by_area() {
         radius,
     });
     s.emitter = Some(mcrt_render::description::AreaEmitterDesc {
-        radiance: Vec3::ONE,
+        radiance: mcrt_render::description::Colour::WHITE,
     });
     let desc = SceneDescription {
         shapes: vec![s],

@@ -25,7 +25,7 @@ fn furnace(bsdf: BsdfDesc, spp: u32) -> (Vec3, Vec3) {
         bsdf,
         spp,
         EmitterDesc::Constant {
-            radiance: Vec3::ONE,
+            radiance: mcrt_render::description::Colour::WHITE,
         },
     )
 }
@@ -118,7 +118,12 @@ fn diffuse_sphere_returns_its_albedo() {
     let rho = Vec3::new(0.2, 0.5, 0.8);
     check(
         "diffuse",
-        furnace(BsdfDesc::Diffuse { reflectance: rho }, 64),
+        furnace(
+            BsdfDesc::Diffuse {
+                reflectance: mcrt_render::description::Colour::new(rho).unwrap(),
+            },
+            64,
+        ),
         rho,
     );
 }
@@ -127,7 +132,7 @@ fn diffuse_sphere_returns_its_albedo() {
 fn mirror_sphere_returns_one() {
     let b = BsdfDesc::Conductor {
         fresnel: ConductorFresnel::Perfect,
-        specular_reflectance: Vec3::ONE,
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
     };
     check("mirror", furnace(b, 4), Vec3::ONE);
 }
@@ -135,10 +140,10 @@ fn mirror_sphere_returns_one() {
 #[test]
 fn glass_sphere_returns_one() {
     let b = BsdfDesc::Dielectric {
-        int_ior: 1.5,
-        ext_ior: 1.0,
-        specular_reflectance: Vec3::ONE,
-        specular_transmittance: Vec3::ONE,
+        int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
+        ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
+        specular_transmittance: mcrt_render::description::Colour::WHITE,
     };
     check("glass", furnace(b, 64), Vec3::ONE);
 }
@@ -156,7 +161,13 @@ fn diffuse_sphere_under_a_uniform_envmap_returns_its_albedo() {
         scale: 1.0,
         to_world: Mat4::IDENTITY,
     };
-    let got = furnace_with(BsdfDesc::Diffuse { reflectance: rho }, 64, env);
+    let got = furnace_with(
+        BsdfDesc::Diffuse {
+            reflectance: mcrt_render::description::Colour::new(rho).unwrap(),
+        },
+        64,
+        env,
+    );
     std::fs::remove_dir_all(&dir).ok();
     check("diffuse under envmap", got, rho);
 }
@@ -170,7 +181,7 @@ fn check_lit_plane(light: EmitterDesc, integrator: IntegratorDesc, want: Vec3) {
     let mut floor = ShapeDesc::new(ShapeKind::Rectangle);
     floor.to_world = Mat4::from_scale(Vec3::splat(10.0));
     floor.bsdf = BsdfDesc::Diffuse {
-        reflectance: PLANE_RHO,
+        reflectance: mcrt_render::description::Colour::new(PLANE_RHO).unwrap(),
     };
     let desc = SceneDescription {
         integrator,
@@ -195,7 +206,7 @@ fn point_light_over_a_diffuse_plane() {
     // of radius 0.02 around that point, where cos θ / d² > 0.9994.
     let light = EmitterDesc::Point {
         position: Vec3::new(0.0, 0.0, 1.0),
-        intensity: Vec3::ONE,
+        intensity: mcrt_render::description::Colour::WHITE,
     };
     let path = IntegratorDesc::Path {
         max_depth: 2,
@@ -213,14 +224,14 @@ fn directional_and_spot_lights_over_a_diffuse_plane() {
     let lights = [
         (
             EmitterDesc::Directional {
-                irradiance: Vec3::splat(2.0),
+                irradiance: mcrt_render::description::Colour::new(Vec3::splat(2.0)).unwrap(),
                 direction: Vec3::new(theta.sin(), 0.0, -theta.cos()),
             },
             2.0 * theta.cos(),
         ),
         (
             EmitterDesc::Spot {
-                intensity: Vec3::splat(3.0),
+                intensity: mcrt_render::description::Colour::new(Vec3::splat(3.0)).unwrap(),
                 cutoff_angle: 20.0,
                 beam_width: 15.0,
                 to_world: Mat4::from_translation(Vec3::new(0.0, 0.0, 2.0))
@@ -255,10 +266,10 @@ fn white_plastic_sphere_returns_one() {
     // coating's diffuse reflectances (0.12% for η = 1.49; docs/bsdf-models.md, "Plastic").
     for nonlinear in [false, true] {
         let b = BsdfDesc::Plastic {
-            int_ior: 1.49,
-            ext_ior: 1.000277,
-            diffuse_reflectance: Vec3::ONE,
-            specular_reflectance: Vec3::ONE,
+            int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
+            ext_ior: mcrt_render::description::Ior::new(1.000277).unwrap(),
+            diffuse_reflectance: mcrt_render::description::Colour::WHITE,
+            specular_reflectance: mcrt_render::description::Colour::WHITE,
             nonlinear,
         };
         check("white plastic", furnace(b, 64), Vec3::ONE);
@@ -268,10 +279,10 @@ fn white_plastic_sphere_returns_one() {
 #[test]
 fn thin_glass_sphere_returns_one() {
     let b = BsdfDesc::ThinDielectric {
-        int_ior: 1.5,
-        ext_ior: 1.0,
-        specular_reflectance: Vec3::ONE,
-        specular_transmittance: Vec3::ONE,
+        int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
+        ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
+        specular_transmittance: mcrt_render::description::Colour::WHITE,
     };
     check("thin glass", furnace(b, 16), Vec3::ONE);
 }
@@ -282,10 +293,10 @@ fn rough_glass(alpha: f32) -> BsdfDesc {
             MicrofacetKind::Ggx,
             Roughness::new(alpha).expect("a roughness"),
         ),
-        int_ior: 1.5,
-        ext_ior: 1.0,
-        specular_reflectance: Vec3::ONE,
-        specular_transmittance: Vec3::ONE,
+        int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
+        ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
+        specular_transmittance: mcrt_render::description::Colour::WHITE,
     }
 }
 
@@ -306,10 +317,10 @@ fn nearly_smooth_rough_glass_sphere_returns_one() {
 fn lossy_spheres_return_what_mitsuba_returns() {
     let rough_plastic = |distribution, alpha| BsdfDesc::RoughPlastic {
         microfacet: Microfacet::new(distribution, Roughness::new(alpha).expect("a roughness")),
-        int_ior: 1.49,
-        ext_ior: 1.000277,
-        diffuse_reflectance: Vec3::ONE,
-        specular_reflectance: Vec3::ONE,
+        int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
+        ext_ior: mcrt_render::description::Ior::new(1.000277).unwrap(),
+        diffuse_reflectance: mcrt_render::description::Colour::WHITE,
+        specular_reflectance: mcrt_render::description::Colour::WHITE,
         nonlinear: false,
     };
     let cases = [
@@ -340,16 +351,16 @@ fn lossy_spheres_return_what_mitsuba_returns() {
 #[test]
 fn blend_and_mask_of_lossless_materials_return_one() {
     let white = BsdfDesc::Diffuse {
-        reflectance: Vec3::ONE,
+        reflectance: mcrt_render::description::Colour::WHITE,
     };
     let blend = BsdfDesc::Blend {
         weight: 0.4,
         first: Box::new(white.clone()),
         second: Box::new(BsdfDesc::Plastic {
-            int_ior: 1.49,
-            ext_ior: 1.000277,
-            diffuse_reflectance: Vec3::ONE,
-            specular_reflectance: Vec3::ONE,
+            int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
+            ext_ior: mcrt_render::description::Ior::new(1.000277).unwrap(),
+            diffuse_reflectance: mcrt_render::description::Colour::WHITE,
+            specular_reflectance: mcrt_render::description::Colour::WHITE,
             nonlinear: false,
         }),
     };

@@ -496,7 +496,7 @@ fn nested_instancing_is_refused_by_the_geometry_and_emitters_in_groups_by_valida
 
     let mut lit = ShapeDesc::new(ShapeKind::Cube);
     lit.emitter = Some(mcrt_render::description::AreaEmitterDesc {
-        radiance: Vec3::ONE,
+        radiance: mcrt_render::description::Colour::WHITE,
     });
     let group = Arc::new(ShapeGroupDesc {
         id: Some("g".into()),

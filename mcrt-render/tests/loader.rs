@@ -80,7 +80,7 @@ fn veach_plates_are_ggx_mirrors_of_rising_roughness() {
                     Roughness::new(alpha).expect("a roughness")
                 ),
                 fresnel: ConductorFresnel::Perfect,
-                specular_reflectance: Vec3::ONE,
+                specular_reflectance: mcrt_render::description::Colour::WHITE,
             }
         );
         assert!(s.emitter.is_none());
@@ -110,19 +110,22 @@ fn veach_sphere_lights() {
                 radius: r
             }
         );
-        assert_eq!(s.emitter.map(|e| e.radiance), Some(Vec3::splat(l)));
+        assert_eq!(s.emitter.map(|e| e.radiance.get()), Some(Vec3::splat(l)));
         assert_eq!(s.to_world, Mat4::IDENTITY);
         // An emitting shape without a BSDF gets Mitsuba 3's black diffuse.
         assert_eq!(
             s.bsdf,
             BsdfDesc::Diffuse {
-                reflectance: Vec3::ZERO
+                reflectance: mcrt_render::description::Colour::new(Vec3::ZERO).unwrap()
             }
         );
     }
     let fill = &d.shapes[10];
     assert_eq!(fill.id.as_deref(), Some("fill"));
-    assert_eq!(fill.emitter.map(|e| e.radiance), Some(Vec3::splat(1.2)));
+    assert_eq!(
+        fill.emitter.map(|e| e.radiance.get()),
+        Some(Vec3::splat(1.2))
+    );
     // A shape without a BSDF and without an emitter gets Mitsuba's default: diffuse 0.5.
     let plain = parse(
         r#"<scene version="3.0.0"><shape type="sphere"/></scene>"#,
@@ -136,7 +139,7 @@ fn veach_sphere_lights() {
 fn veach_walls_compose_transforms_in_mitsuba_order() {
     let d = load(VEACH, &[]);
     let wall = BsdfDesc::Diffuse {
-        reflectance: Vec3::splat(0.4),
+        reflectance: mcrt_render::description::Colour::new(Vec3::splat(0.4)).unwrap(),
     };
     let back = &d.shapes[8];
     assert_eq!(back.id.as_deref(), Some("back"));
@@ -198,14 +201,15 @@ fn substitution_works_in_any_attribute_and_defines_win() {
     assert_eq!(
         refl(&d),
         BsdfDesc::Diffuse {
-            reflectance: Vec3::new(0.25, 0.75, 0.25)
+            reflectance: mcrt_render::description::Colour::new(Vec3::new(0.25, 0.75, 0.25))
+                .unwrap()
         }
     );
     let d = parse(xml, &[("r", "0.5"), ("kind", "diffuse")]).unwrap();
     assert_eq!(
         refl(&d),
         BsdfDesc::Diffuse {
-            reflectance: Vec3::new(0.5, 0.75, 0.5)
+            reflectance: mcrt_render::description::Colour::new(Vec3::new(0.5, 0.75, 0.5)).unwrap()
         }
     );
     // A define the file neither declares nor uses is refused (a misspelt -D is never
@@ -321,10 +325,10 @@ fn mitsuba3_materials_and_their_defaults() {
     assert_eq!(
         d.shapes[0].bsdf,
         BsdfDesc::Plastic {
-            int_ior: 1.49,
-            ext_ior: air,
-            diffuse_reflectance: half,
-            specular_reflectance: one,
+            int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
+            ext_ior: mcrt_render::description::Ior::new(air).unwrap(),
+            diffuse_reflectance: mcrt_render::description::Colour::new(half).unwrap(),
+            specular_reflectance: mcrt_render::description::Colour::new(one).unwrap(),
             nonlinear: false,
         }
     );
@@ -338,10 +342,10 @@ fn mitsuba3_materials_and_their_defaults() {
                     Roughness::new(0.3).expect("a roughness")
                 )
             },
-            int_ior: 1.49,
-            ext_ior: air,
-            diffuse_reflectance: half,
-            specular_reflectance: one,
+            int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
+            ext_ior: mcrt_render::description::Ior::new(air).unwrap(),
+            diffuse_reflectance: mcrt_render::description::Colour::new(half).unwrap(),
+            specular_reflectance: mcrt_render::description::Colour::new(one).unwrap(),
             nonlinear: true,
         }
     );
@@ -349,19 +353,19 @@ fn mitsuba3_materials_and_their_defaults() {
         d.shapes[2].bsdf,
         BsdfDesc::RoughDielectric {
             microfacet: Microfacet::new(MicrofacetKind::Beckmann, Roughness::DEFAULT),
-            int_ior: 1.5046,
-            ext_ior: air,
-            specular_reflectance: one,
-            specular_transmittance: one,
+            int_ior: mcrt_render::description::Ior::new(1.5046).unwrap(),
+            ext_ior: mcrt_render::description::Ior::new(air).unwrap(),
+            specular_reflectance: mcrt_render::description::Colour::new(one).unwrap(),
+            specular_transmittance: mcrt_render::description::Colour::new(one).unwrap(),
         }
     );
     assert_eq!(
         d.shapes[3].bsdf,
         BsdfDesc::ThinDielectric {
-            int_ior: 1.333,
-            ext_ior: air,
-            specular_reflectance: one,
-            specular_transmittance: one,
+            int_ior: mcrt_render::description::Ior::new(1.333).unwrap(),
+            ext_ior: mcrt_render::description::Ior::new(air).unwrap(),
+            specular_reflectance: mcrt_render::description::Colour::new(one).unwrap(),
+            specular_transmittance: mcrt_render::description::Colour::new(one).unwrap(),
         }
     );
     let BsdfDesc::Conductor {
@@ -375,7 +379,10 @@ fn mitsuba3_materials_and_their_defaults() {
         Vec3::new(0.143036, 0.375307, 1.44205),
         Vec3::new(3.983, 2.38556, 1.60336),
     );
-    let err = (eta - want.0).abs().max((k - want.1).abs()).max_element();
+    let err = (eta.get() - want.0)
+        .abs()
+        .max((k.get() - want.1).abs())
+        .max_element();
     assert!(err.is_finite() && err < 1e-5, "{eta} {k}");
 }
 
@@ -448,11 +455,14 @@ fn mesh_scene_with_include_spectra_tent_and_crop() {
         panic!("{:?}", d.shapes[4].bsdf)
     };
     assert!(
-        close(reflectance, [0.0353889, 0.404299, 0.107332]),
+        close(reflectance.get(), [0.0353889, 0.404299, 0.107332]),
         "{reflectance}"
     );
     let radiance = d.shapes[0].emitter.expect("the light").radiance;
-    assert!(close(radiance, [20.383, 13.091, 8.59723]), "{radiance}");
+    assert!(
+        close(radiance.get(), [20.383, 13.091, 8.59723]),
+        "{radiance}"
+    );
     let t = load("tests/data/tent-crop.xml", &[]);
     let film = t.sensor.film;
     assert_eq!(film.filter, FilterDesc::Tent { radius: 1.5 });
@@ -507,7 +517,7 @@ fn spot_directional_and_thinlens_with_their_defaults() {
             cutoff_angle,
             beam_width,
             to_world,
-        } => (*intensity, *cutoff_angle, *beam_width, *to_world),
+        } => (intensity.get(), *cutoff_angle, *beam_width, *to_world),
         e => panic!("{e:?}"),
     };
     assert_eq!(spot(0), (Vec3::ONE, 20.0, 15.0, Mat4::IDENTITY));
@@ -519,7 +529,7 @@ fn spot_directional_and_thinlens_with_their_defaults() {
         EmitterDesc::Directional {
             irradiance,
             direction,
-        } => (*irradiance, *direction),
+        } => (irradiance.get(), *direction),
         e => panic!("{e:?}"),
     };
     assert_eq!(directional(3), (Vec3::ONE, Vec3::Z));

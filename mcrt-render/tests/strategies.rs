@@ -80,7 +80,7 @@ fn test_box(max_depth: i32) -> SceneDescription {
             Roughness::new(0.3).expect("a roughness"),
         ),
         fresnel: ConductorFresnel::Perfect,
-        specular_reflectance: Vec3::splat(0.8),
+        specular_reflectance: mcrt_render::description::Colour::new(Vec3::splat(0.8)).unwrap(),
     };
     desc
 }

@@ -140,7 +140,7 @@ fn loader_builds_textured_materials() {
     assert_eq!(
         *inner,
         BsdfDesc::Diffuse {
-            reflectance: Vec3::splat(mean)
+            reflectance: mcrt_render::description::Colour::new(Vec3::splat(mean)).unwrap()
         }
     );
     let (inner, t2) = textures(&d, 1);
@@ -167,7 +167,7 @@ fn loader_builds_textured_materials() {
         panic!()
     };
     assert_eq!(
-        (*diffuse_reflectance, *specular_reflectance),
+        (diffuse_reflectance.get(), specular_reflectance.get()),
         (Vec3::splat(mean), Vec3::splat(0.3))
     );
     let (inner, t3) = textures(&d, 2);

@@ -210,7 +210,10 @@ impl<B: Bsdf> Bsdf for Sided<B> {
 fn fresnel_of(f: &ConductorFresnel) -> Fresnel {
     match *f {
         ConductorFresnel::Perfect => Fresnel::Perfect,
-        ConductorFresnel::Complex { eta, k } => Fresnel::Complex { eta, k },
+        ConductorFresnel::Complex { eta, k } => Fresnel::Complex {
+            eta: eta.get(),
+            k: k.get(),
+        },
     }
 }
 
@@ -233,14 +236,14 @@ impl AnyBsdf {
             // The textures' means stand in the parameters; `TexturedBsdf` sets them per hit.
             BsdfDesc::Textured { inner, .. } => return Self::from_desc(inner),
             BsdfDesc::Diffuse { reflectance } => AnyBsdf::Diffuse(Diffuse {
-                reflectance: *reflectance,
+                reflectance: reflectance.get(),
             }),
             BsdfDesc::Conductor {
                 fresnel,
                 specular_reflectance,
             } => AnyBsdf::Conductor(Conductor {
                 fresnel: fresnel_of(fresnel),
-                specular_reflectance: *specular_reflectance,
+                specular_reflectance: specular_reflectance.get(),
             }),
             BsdfDesc::RoughConductor {
                 microfacet,
@@ -249,7 +252,7 @@ impl AnyBsdf {
             } => AnyBsdf::RoughConductor(RoughConductor::with_ndf(
                 Ndf::of(microfacet),
                 fresnel_of(fresnel),
-                *specular_reflectance,
+                specular_reflectance.get(),
             )),
             BsdfDesc::Dielectric {
                 int_ior,
@@ -257,9 +260,9 @@ impl AnyBsdf {
                 specular_reflectance,
                 specular_transmittance,
             } => AnyBsdf::Dielectric(Dielectric {
-                eta: int_ior / ext_ior,
-                specular_reflectance: *specular_reflectance,
-                specular_transmittance: *specular_transmittance,
+                eta: int_ior.get() / ext_ior.get(),
+                specular_reflectance: specular_reflectance.get(),
+                specular_transmittance: specular_transmittance.get(),
             }),
             BsdfDesc::RoughDielectric {
                 microfacet,
@@ -269,9 +272,9 @@ impl AnyBsdf {
                 specular_transmittance,
             } => AnyBsdf::RoughDielectric(RoughDielectric::with_ndf(
                 Ndf::of(microfacet),
-                int_ior / ext_ior,
-                *specular_reflectance,
-                *specular_transmittance,
+                int_ior.get() / ext_ior.get(),
+                specular_reflectance.get(),
+                specular_transmittance.get(),
             )),
             BsdfDesc::ThinDielectric {
                 int_ior,
@@ -279,9 +282,9 @@ impl AnyBsdf {
                 specular_reflectance,
                 specular_transmittance,
             } => AnyBsdf::ThinDielectric(ThinDielectric {
-                eta: int_ior / ext_ior,
-                specular_reflectance: *specular_reflectance,
-                specular_transmittance: *specular_transmittance,
+                eta: int_ior.get() / ext_ior.get(),
+                specular_reflectance: specular_reflectance.get(),
+                specular_transmittance: specular_transmittance.get(),
             }),
             BsdfDesc::Plastic {
                 int_ior,
@@ -290,9 +293,9 @@ impl AnyBsdf {
                 specular_reflectance,
                 nonlinear,
             } => AnyBsdf::Plastic(Plastic::new(
-                *diffuse_reflectance,
-                *specular_reflectance,
-                int_ior / ext_ior,
+                diffuse_reflectance.get(),
+                specular_reflectance.get(),
+                int_ior.get() / ext_ior.get(),
                 *nonlinear,
             )),
             BsdfDesc::RoughPlastic {
@@ -304,9 +307,9 @@ impl AnyBsdf {
                 nonlinear,
             } => AnyBsdf::RoughPlastic(RoughPlastic::with_ndf(
                 Ndf::of(microfacet),
-                *diffuse_reflectance,
-                *specular_reflectance,
-                int_ior / ext_ior,
+                diffuse_reflectance.get(),
+                specular_reflectance.get(),
+                int_ior.get() / ext_ior.get(),
                 *nonlinear,
             )),
             BsdfDesc::Principled(params) => {

@@ -132,10 +132,10 @@ fn one_sided_is_black_from_behind_and_twosided_is_not() {
 fn from_desc_reads_twosided_and_ior() {
     let desc = crate::description::BsdfDesc::TwoSided(Box::new(
         crate::description::BsdfDesc::Dielectric {
-            int_ior: 1.5,
-            ext_ior: 1.0,
-            specular_reflectance: Vec3::ONE,
-            specular_transmittance: Vec3::ONE,
+            int_ior: crate::description::Ior::new(1.5).unwrap(),
+            ext_ior: crate::description::Ior::new(1.0).unwrap(),
+            specular_reflectance: crate::description::Colour::WHITE,
+            specular_transmittance: crate::description::Colour::WHITE,
         },
     ));
     let s = AnyBsdf::from_desc(&desc).expect("valid");

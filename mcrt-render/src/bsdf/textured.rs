@@ -182,7 +182,7 @@ mod tests {
     fn diffuse_reflectance_follows_the_texture() {
         let desc = BsdfDesc::TwoSided(Box::new(BsdfDesc::Textured {
             inner: Box::new(BsdfDesc::Diffuse {
-                reflectance: Vec3::splat(0.3),
+                reflectance: crate::description::Colour::new(Vec3::splat(0.3)).unwrap(),
             }),
             textures: vec![(TextureParam::Reflectance, checker())],
         }));
@@ -197,7 +197,7 @@ mod tests {
     #[test]
     fn nested_slots_and_scalar_weight() {
         let diffuse = |r| BsdfDesc::Diffuse {
-            reflectance: Vec3::splat(r),
+            reflectance: crate::description::Colour::new(Vec3::splat(r)).unwrap(),
         };
         let desc = BsdfDesc::Textured {
             inner: Box::new(BsdfDesc::Blend {

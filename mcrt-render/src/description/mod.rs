@@ -3,6 +3,7 @@
 //! [`Default`] values means what the same XML without those attributes means to Mitsuba.
 
 mod checked;
+mod colour;
 mod instancing;
 mod microfacet;
 mod origin;
@@ -10,6 +11,7 @@ mod principled;
 
 pub use crate::texture::{Texture, TextureParam};
 pub use checked::{Roughness, SampleCount};
+pub use colour::{Colour, Ior};
 use glam::{Mat4, Vec3};
 pub(crate) use instancing::groups_of;
 pub use instancing::ShapeGroupDesc;
@@ -572,9 +574,9 @@ pub enum ConductorFresnel {
     /// named `material`, see [`named_conductor`](crate::bsdf::named_conductor)).
     Complex {
         /// Real part η.
-        eta: Vec3,
+        eta: Colour,
         /// Imaginary part k.
-        k: Vec3,
+        k: Colour,
     },
 }
 
@@ -584,14 +586,14 @@ pub enum BsdfDesc {
     /// `diffuse`: Lambertian, one-sided.
     Diffuse {
         /// Albedo, linear RGB (default 0.5).
-        reflectance: Vec3,
+        reflectance: Colour,
     },
     /// `conductor`: a smooth mirror.
     Conductor {
         /// The Fresnel term.
         fresnel: ConductorFresnel,
         /// Scale on the reflectance (default 1).
-        specular_reflectance: Vec3,
+        specular_reflectance: Colour,
     },
     /// `roughconductor`: a microfacet conductor, sampled with visible normals.
     RoughConductor {
@@ -600,18 +602,18 @@ pub enum BsdfDesc {
         /// The Fresnel term.
         fresnel: ConductorFresnel,
         /// Scale on the reflectance (default 1).
-        specular_reflectance: Vec3,
+        specular_reflectance: Colour,
     },
     /// `dielectric`: smooth glass that reflects and refracts.
     Dielectric {
         /// Interior index of refraction (default 1.5046, BK7).
-        int_ior: f32,
+        int_ior: Ior,
         /// Exterior index of refraction (default 1.000277, air).
-        ext_ior: f32,
+        ext_ior: Ior,
         /// Scale on reflection (default 1).
-        specular_reflectance: Vec3,
+        specular_reflectance: Colour,
         /// Scale on transmission (default 1).
-        specular_transmittance: Vec3,
+        specular_transmittance: Colour,
     },
     /// `roughdielectric`: microfacet glass that reflects and refracts, sampled with
     /// visible normals.
@@ -619,36 +621,36 @@ pub enum BsdfDesc {
         /// The microfacet surface (distribution, roughness, sampling).
         microfacet: Microfacet,
         /// Interior index of refraction (default 1.5046, BK7).
-        int_ior: f32,
+        int_ior: Ior,
         /// Exterior index of refraction (default 1.000277, air).
-        ext_ior: f32,
+        ext_ior: Ior,
         /// Scale on reflection (default 1).
-        specular_reflectance: Vec3,
+        specular_reflectance: Colour,
         /// Scale on transmission (default 1).
-        specular_transmittance: Vec3,
+        specular_transmittance: Colour,
     },
     /// `thindielectric`: a pane of glass of negligible thickness (reflects, or lets light
     /// through undeflected).
     ThinDielectric {
         /// Index of refraction of the pane (default 1.5046, BK7).
-        int_ior: f32,
+        int_ior: Ior,
         /// Exterior index of refraction (default 1.000277, air).
-        ext_ior: f32,
+        ext_ior: Ior,
         /// Scale on reflection (default 1).
-        specular_reflectance: Vec3,
+        specular_reflectance: Colour,
         /// Scale on transmission (default 1).
-        specular_transmittance: Vec3,
+        specular_transmittance: Colour,
     },
     /// `plastic`: a diffuse base under a smooth dielectric coating.
     Plastic {
         /// Index of refraction of the coating (default 1.49, polypropylene).
-        int_ior: f32,
+        int_ior: Ior,
         /// Exterior index of refraction (default 1.000277, air).
-        ext_ior: f32,
+        ext_ior: Ior,
         /// Albedo of the base (default 0.5).
-        diffuse_reflectance: Vec3,
+        diffuse_reflectance: Colour,
         /// Scale on the coating's reflection (default 1).
-        specular_reflectance: Vec3,
+        specular_reflectance: Colour,
         /// Whether internal scattering tints the base's colour (default false).
         nonlinear: bool,
     },
@@ -657,13 +659,13 @@ pub enum BsdfDesc {
         /// The microfacet surface (distribution, roughness, sampling).
         microfacet: Microfacet,
         /// Index of refraction of the coating (default 1.49, polypropylene).
-        int_ior: f32,
+        int_ior: Ior,
         /// Exterior index of refraction (default 1.000277, air).
-        ext_ior: f32,
+        ext_ior: Ior,
         /// Albedo of the base (default 0.5).
-        diffuse_reflectance: Vec3,
+        diffuse_reflectance: Colour,
         /// Scale on the coating's reflection (default 1).
-        specular_reflectance: Vec3,
+        specular_reflectance: Colour,
         /// Whether internal scattering tints the base's colour (default false).
         nonlinear: bool,
     },
@@ -779,7 +781,7 @@ impl BsdfDesc {
 impl Default for BsdfDesc {
     fn default() -> Self {
         Self::Diffuse {
-            reflectance: Vec3::splat(0.5),
+            reflectance: Colour::known(Vec3::splat(0.5)),
         }
     }
 }
@@ -788,7 +790,7 @@ impl Default for BsdfDesc {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AreaEmitterDesc {
     /// Emitted radiance, linear RGB.
-    pub radiance: Vec3,
+    pub radiance: Colour,
 }
 
 /// An emitter that is not attached to a shape.
@@ -799,12 +801,12 @@ pub enum EmitterDesc {
         /// Position in world space.
         position: Vec3,
         /// Radiant intensity, linear RGB (W/sr).
-        intensity: Vec3,
+        intensity: Colour,
     },
     /// `constant`: radiance arriving equally from every direction.
     Constant {
         /// Radiance, linear RGB.
-        radiance: Vec3,
+        radiance: Colour,
     },
     /// `envmap`: an environment map read from an EXR file (latitude–longitude).
     EnvMap {
@@ -820,7 +822,7 @@ pub enum EmitterDesc {
     /// axis (Mitsuba 3's `spot`).
     Spot {
         /// Peak radiant intensity, linear RGB (W/sr), along the axis.
-        intensity: Vec3,
+        intensity: Colour,
         /// Half-angle in degrees beyond which nothing is emitted (default 20).
         cutoff_angle: f32,
         /// Half-angle in degrees up to which the intensity is the peak's; it falls off
@@ -833,7 +835,7 @@ pub enum EmitterDesc {
     /// `directional`).
     Directional {
         /// Irradiance on a surface facing the light, linear RGB (W/m²).
-        irradiance: Vec3,
+        irradiance: Colour,
         /// Unit direction the light travels along, world space (default +z).
         direction: Vec3,
     },

@@ -29,10 +29,10 @@ impl Lights {
         for (i, s) in desc.shapes.iter().enumerate() {
             if let Some(e) = &s.emitter {
                 shape_light[i] = Some(lights.len() as u32);
-                power.push(PI * geo.shape_area(i as u32) * mean(e.radiance).max(0.0));
+                power.push(PI * geo.shape_area(i as u32) * mean(e.radiance.get()).max(0.0));
                 lights.push(Light::Area {
                     shape: i as u32,
-                    radiance: e.radiance,
+                    radiance: e.radiance.get(),
                 });
             }
         }
@@ -46,10 +46,10 @@ impl Lights {
                     intensity,
                 } => {
                     has_delta = true;
-                    power.push(4.0 * PI * mean(*intensity).max(0.0));
+                    power.push(4.0 * PI * mean(intensity.get()).max(0.0));
                     lights.push(Light::Point {
                         position: *position,
-                        intensity: *intensity,
+                        intensity: intensity.get(),
                     });
                 }
                 EmitterDesc::Spot {
@@ -58,8 +58,8 @@ impl Lights {
                     beam_width,
                     to_world,
                 } => {
-                    let spot =
-                        Spot::new(*intensity, *cutoff_angle, *beam_width, *to_world).map_err(at)?;
+                    let spot = Spot::new(intensity.get(), *cutoff_angle, *beam_width, *to_world)
+                        .map_err(at)?;
                     has_delta = true;
                     power.push(spot.power());
                     lights.push(Light::Spot(Box::new(spot)));
@@ -76,7 +76,7 @@ impl Lights {
                             "only a spot light takes a texture here".into(),
                         )));
                     };
-                    let spot = Spot::new(intensity, cutoff_angle, beam_width, to_world)
+                    let spot = Spot::new(intensity.get(), cutoff_angle, beam_width, to_world)
                         .map_err(at)?
                         .with_texture(texture.clone(), to_world);
                     has_delta = true;
@@ -102,10 +102,10 @@ impl Lights {
                 } => {
                     // The light through the disk of the scene's bounding sphere.
                     has_delta = true;
-                    power.push(PI * radius * radius * mean(*irradiance).max(0.0));
+                    power.push(PI * radius * radius * mean(irradiance.get()).max(0.0));
                     lights.push(Light::Directional {
                         direction: direction.normalize_or_zero(),
-                        irradiance: *irradiance,
+                        irradiance: irradiance.get(),
                     });
                 }
                 EmitterDesc::Constant { radiance } => {
@@ -113,9 +113,9 @@ impl Lights {
                         return Err(at(LightError::SeveralEnvironments));
                     }
                     env = Some(lights.len() as u32);
-                    power.push(4.0 * PI * PI * radius * radius * mean(*radiance).max(0.0));
+                    power.push(4.0 * PI * PI * radius * radius * mean(radiance.get()).max(0.0));
                     lights.push(Light::Constant {
-                        radiance: *radiance,
+                        radiance: radiance.get(),
                     });
                 }
                 EmitterDesc::EnvMap {

@@ -186,7 +186,7 @@ fn light_choice_is_drawn_only_when_read() {
     desc.shapes[i].kind = ShapeKind::Rectangle;
     desc.emitters.push(EmitterDesc::Point {
         position: Vec3::Y,
-        intensity: Vec3::ONE,
+        intensity: crate::description::Colour::WHITE,
     });
     let geo = Geometry::new(&desc.shapes, None, AccelKind::Bvh).unwrap();
     assert!(

@@ -9,13 +9,14 @@ use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::bsdf::named_conductor;
 use crate::description::{
-    BsdfDesc, ConductorFresnel, Microfacet, MicrofacetKind, Roughness, TextureParam,
+    BsdfDesc, Colour, ConductorFresnel, Ior, Microfacet, MicrofacetKind, Roughness, TextureParam,
 };
 use crate::param_defs::bsdf::{
     ALPHA, ALPHA_U, ALPHA_V, COATING_IOR, DIFFUSE_REFLECTANCE, DISTRIBUTION, ETA, EXT_IOR, INT_IOR,
     K, MATERIAL, NONLINEAR, REFLECTANCE, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
     SPECULAR_TRANSMITTANCE,
 };
+use crate::param_defs::bsdf_composite::{OPACITY, WEIGHT};
 use crate::param_defs::IorParam;
 use crate::scene_error::SceneErrorKind;
 use crate::validate;
@@ -86,7 +87,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             return twosided(ctx, e, p, depth);
         }
         "blendbsdf" => {
-            let weight = match (p.float("weight")?, scalar(TextureParam::Weight)) {
+            let weight = match (p.float(WEIGHT.name)?, scalar(TextureParam::Weight)) {
                 (Some(w), _) | (None, Some(w)) => w,
                 (None, None) => {
                     return Err(ctx.err(
@@ -101,17 +102,17 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
                 first: Box::new(first),
                 second: Box::new(second),
             };
-            return checked(ctx, e, texture::attach(ctx, ty, desc, textures)?);
+            return checked(ctx, e, texture::attach(ctx, e, ty, desc, textures)?);
         }
         "mask" => {
-            let opacity = p.float("opacity")?;
+            let opacity = p.float(OPACITY.name)?;
             let opacity = opacity.or(scalar(TextureParam::Opacity)).unwrap_or(0.5);
             let [inner] = nested::<1>(ctx, e, p, depth)?;
             let desc = BsdfDesc::Mask {
                 opacity,
                 inner: Box::new(inner),
             };
-            return checked(ctx, e, texture::attach(ctx, ty, desc, textures)?);
+            return checked(ctx, e, texture::attach(ctx, e, ty, desc, textures)?);
         }
         _ => {}
     }
@@ -166,7 +167,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
         "principled" => super::principled::principled(e, &mut p)?,
         other => return Err(unknown_plugin(ctx, e, other)),
     };
-    let desc = texture::attach(ctx, ty, desc, textures)?;
+    let desc = texture::attach(ctx, e, ty, desc, textures)?;
     validate::bsdf(&desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(desc)
@@ -317,18 +318,27 @@ fn fresnel(e: &Elem, p: &mut Props) -> Res<ConductorFresnel> {
                 ),
             ));
         };
-        return Ok(ConductorFresnel::Complex { eta, k });
+        return conductor(e, p, eta, k);
     }
     if eta.is_none() && k.is_none() {
         return Ok(ConductorFresnel::Perfect);
     }
-    let eta = eta.unwrap_or(Vec3::ZERO);
-    let k = k.unwrap_or(Vec3::ONE);
-    Ok(ConductorFresnel::Complex { eta, k })
+    conductor(e, p, eta.unwrap_or(Vec3::ZERO), k.unwrap_or(Vec3::ONE))
+}
+
+/// A complex index of refraction, each part checked into a [`Colour`].
+fn conductor(e: &Elem, p: &Props, eta: Vec3, k: Vec3) -> Res<ConductorFresnel> {
+    let check = |name: &'static str, v: Vec3| {
+        Colour::named(name, v).map_err(|i| p.invalid(name, e, &i.message))
+    };
+    Ok(ConductorFresnel::Complex {
+        eta: check(ETA.name, eta)?,
+        k: check(K.name, k)?,
+    })
 }
 
 /// An index of refraction given as a number or as one of Mitsuba's named media.
-fn ior(e: &Elem, p: &mut Props, d: &IorParam) -> Res<f32> {
+fn ior(e: &Elem, p: &mut Props, d: &IorParam) -> Res<Ior> {
     let name = d.name;
     let value = match p.raw(name) {
         None => d.default,
@@ -338,8 +348,7 @@ fn ior(e: &Elem, p: &mut Props, d: &IorParam) -> Res<f32> {
         Some((Value::Int(v), _)) => v as f32,
         Some((_, el)) => return Err(p.wrong(el, name, "a <float> or a <string>")),
     };
-    validate::ior("", value).map_err(|i| p.invalid(name, e, &i.message))?;
-    Ok(value)
+    Ior::new(value).map_err(|i| p.invalid(name, e, &i.message))
 }
 
 /// Mitsuba's table of named indices of refraction.

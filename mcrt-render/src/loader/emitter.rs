@@ -6,7 +6,8 @@ use super::props::Props;
 use super::spectrum::SpectrumUse;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, texture, unknown_plugin};
-use crate::description::{AreaEmitterDesc, EmitterDesc};
+use crate::description::{AreaEmitterDesc, Colour, EmitterDesc};
+use crate::param_defs::emitter as defs;
 use crate::scene_error::SceneErrorKind;
 use crate::texture::Texture;
 use crate::validate;
@@ -64,13 +65,16 @@ pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<(AreaEmitterDesc, Option<Tex
         return Err(ctx.err(e, SceneErrorKind::Misplaced(msg)));
     }
     let mut p = Props::new(ctx, e)?;
-    let tex = take_texture(ctx, &mut p, "radiance")?;
+    let tex = take_texture(ctx, &mut p, defs::AREA_RADIANCE.name)?;
     let radiance = match &tex {
-        Some(t) => texture::stand_in(t),
-        None => non_negative(e, &mut p, "radiance")?,
+        Some(t) => {
+            let name = defs::AREA_RADIANCE.name;
+            Colour::named(name, texture::stand_in(t)).map_err(|i| p.invalid(name, e, &i.message))?
+        }
+        None => non_negative(e, &mut p, defs::AREA_RADIANCE.name)?,
     };
     // The power of a unit area (the shape's area multiplies it: `Lights::new` checks that).
-    validate::emission_power("radiance", radiance, std::f64::consts::PI)
+    validate::emission_power("radiance", radiance.get(), std::f64::consts::PI)
         .map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok((AreaEmitterDesc { radiance }, tex))
@@ -82,8 +86,8 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
     let mut p = Props::new(ctx, e)?;
     // The textures a spot (`texture`) and a projector (`irradiance`) take.
     let tex = match ty {
-        "spot" => take_texture(ctx, &mut p, "texture")?,
-        "projector" => take_texture(ctx, &mut p, "irradiance")?,
+        "spot" => take_texture(ctx, &mut p, defs::SPOT_TEXTURE.name)?,
+        "projector" => take_texture(ctx, &mut p, defs::PROJECTOR_IRRADIANCE.name)?,
         _ => {
             no_objects(ctx, &p)?;
             None
@@ -91,8 +95,11 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
     };
     let desc = match ty {
         "point" => {
-            let intensity = non_negative(e, &mut p, "intensity")?;
-            let position = match (p.point("position")?, p.transform("to_world")?) {
+            let intensity = non_negative(e, &mut p, defs::INTENSITY.name)?;
+            let position = match (
+                p.point(defs::POSITION.name)?,
+                p.transform(defs::POINT_TO_WORLD.name)?,
+            ) {
                 (Some(_), Some(_)) => {
                     return Err(p.invalid("position", e, "and to_world cannot both be given"))
                 }
@@ -106,17 +113,19 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
             }
         }
         "spot" => {
-            let intensity = non_negative(e, &mut p, "intensity")?;
-            let cutoff_angle = p
-                .float("cutoff_angle")?
-                .unwrap_or(EmitterDesc::SPOT_CUTOFF_ANGLE);
+            let intensity = non_negative(e, &mut p, defs::INTENSITY.name)?;
+            let cutoff_angle = p.get_float(&defs::CUTOFF_ANGLE)?;
             // Mitsuba 3's default beam width: three quarters of the cutoff angle.
-            let beam_width = p.float("beam_width")?.unwrap_or(0.75 * cutoff_angle);
+            let beam_width = p
+                .get_float_opt(&defs::BEAM_WIDTH)?
+                .unwrap_or(0.75 * cutoff_angle);
             let spot = EmitterDesc::Spot {
                 intensity,
                 cutoff_angle,
                 beam_width,
-                to_world: p.transform("to_world")?.unwrap_or(Mat4::IDENTITY),
+                to_world: p
+                    .transform(defs::CONE_TO_WORLD.name)?
+                    .unwrap_or(Mat4::IDENTITY),
             };
             match tex {
                 Some(texture) => EmitterDesc::Textured {
@@ -128,9 +137,12 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
         }
         "projector" => read_projector(ctx, e, &mut p, tex)?,
         "directional" => {
-            let irradiance = non_negative(e, &mut p, "irradiance")?;
+            let irradiance = non_negative(e, &mut p, defs::IRRADIANCE.name)?;
             // The light travels along +z of its to_world (Mitsuba 3's `directional`).
-            let direction = match (p.point("direction")?, p.transform("to_world")?) {
+            let direction = match (
+                p.point(defs::DIRECTION.name)?,
+                p.transform(defs::DIRECTIONAL_TO_WORLD.name)?,
+            ) {
                 (Some(_), Some(_)) => {
                     return Err(p.invalid("direction", e, "and to_world cannot both be given"))
                 }
@@ -147,10 +159,10 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
             }
         }
         "constant" => EmitterDesc::Constant {
-            radiance: non_negative(e, &mut p, "radiance")?,
+            radiance: non_negative(e, &mut p, defs::RADIANCE.name)?,
         },
         "envmap" => {
-            let name = p.string("filename")?.ok_or_else(|| {
+            let name = p.string(defs::ENVMAP_FILENAME.name)?.ok_or_else(|| {
                 ctx.err(
                     e,
                     SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
@@ -163,11 +175,13 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
                 .is_ok_and(|f| starts_rgbe(&f));
             let filename =
                 ctx.readable_file(e, &name, (!rgbe).then_some((&EXR_MAGIC[..], "an OpenEXR")))?;
-            let scale = p.float("scale")?.unwrap_or(1.0);
+            let scale = p.get_float(&defs::SCALE)?;
             EmitterDesc::EnvMap {
                 filename,
                 scale,
-                to_world: p.transform("to_world")?.unwrap_or(Mat4::IDENTITY),
+                to_world: p
+                    .transform(defs::ENVMAP_TO_WORLD.name)?
+                    .unwrap_or(Mat4::IDENTITY),
             }
         }
         "area" => {
@@ -190,9 +204,9 @@ fn read_projector(ctx: &Ctx, e: &Elem, p: &mut Props, tex: Option<Texture>) -> R
     let irradiance = match tex {
         Some(t) => t,
         None => {
-            let c = non_negative(e, p, "irradiance")?;
-            let image = crate::texture::Image::new(1, 1, vec![c])
-                .ok_or_else(|| p.invalid("irradiance", e, "unusable"))?;
+            let c = non_negative(e, p, defs::PROJECTOR_IRRADIANCE.name)?;
+            let image = crate::texture::Image::new(1, 1, vec![c.get()])
+                .ok_or_else(|| p.invalid(defs::PROJECTOR_IRRADIANCE.name, e, "unusable"))?;
             Texture::Bitmap(crate::texture::Bitmap {
                 image: std::sync::Arc::new(image),
                 filter: crate::texture::FilterType::Nearest,
@@ -202,7 +216,7 @@ fn read_projector(ctx: &Ctx, e: &Elem, p: &mut Props, tex: Option<Texture>) -> R
         }
     };
     let aspect = f64::from(crate::light::texture_aspect(&irradiance));
-    if p.has("focal_length") {
+    if p.has(defs::PROJECTOR_FOCAL_LENGTH.name) {
         return Err(ctx.err(
             e,
             SceneErrorKind::Unsupported(
@@ -210,13 +224,15 @@ fn read_projector(ctx: &Ctx, e: &Elem, p: &mut Props, tex: Option<Texture>) -> R
             ),
         ));
     }
-    let Some(fov) = p.float("fov")? else {
+    let Some(fov) = p.get_float_opt(&defs::PROJECTOR_FOV)? else {
         return Err(ctx.err(
             e,
             SceneErrorKind::MissingAttribute("parameter \"fov\" (of the projector)".into()),
         ));
     };
-    let axis = p.string("fov_axis")?.unwrap_or_else(|| "x".into());
+    let axis = p
+        .string(defs::PROJECTOR_FOV_AXIS.name)?
+        .unwrap_or_else(|| defs::PROJECTOR_FOV_AXIS.default.into());
     let half_tan = (0.5 * f64::from(fov).to_radians()).tan();
     // Mitsuba 3's `parse_fov`: every axis converted to the width's.
     let x_half_tan = match axis.to_ascii_lowercase().as_str() {
@@ -229,7 +245,7 @@ fn read_projector(ctx: &Ctx, e: &Elem, p: &mut Props, tex: Option<Texture>) -> R
         "diagonal" => half_tan / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
         other => {
             return Err(p.invalid(
-                "fov_axis",
+                defs::PROJECTOR_FOV_AXIS.name,
                 e,
                 &format!("\"{other}\" is not x, y, smaller, larger or diagonal"),
             ))
@@ -237,16 +253,17 @@ fn read_projector(ctx: &Ctx, e: &Elem, p: &mut Props, tex: Option<Texture>) -> R
     };
     Ok(EmitterDesc::Projector {
         irradiance,
-        scale: p.float("scale")?.unwrap_or(1.0),
+        scale: p.get_float(&defs::SCALE)?,
         x_fov: (2.0 * x_half_tan.atan()).to_degrees() as f32,
-        to_world: p.transform("to_world")?.unwrap_or(Mat4::IDENTITY),
+        to_world: p
+            .transform(defs::CONE_TO_WORLD.name)?
+            .unwrap_or(Mat4::IDENTITY),
     })
 }
 
-/// An emitted colour with default 1 whose channels must be finite and non-negative (a
-/// `<spectrum>` is converted as emission, without the D65 weighting of reflectances).
-fn non_negative(e: &Elem, p: &mut Props, name: &'static str) -> Res<Vec3> {
+/// An emitted colour with default 1, checked into a [`Colour`] (a `<spectrum>` is converted
+/// as emission, without the D65 weighting of reflectances).
+fn non_negative(e: &Elem, p: &mut Props, name: &'static str) -> Res<Colour> {
     let v = p.colour(name, SpectrumUse::Emission)?.unwrap_or(Vec3::ONE);
-    validate::colour(name, v).map_err(|i| p.invalid(name, e, &i.message))?;
-    Ok(v)
+    Colour::named(name, v).map_err(|i| p.invalid(name, e, &i.message))
 }

@@ -7,6 +7,7 @@ use super::spectrum::{Spectrum, SpectrumUse};
 use super::transform::{check_attrs, read_transform, xyz};
 use super::tree::Elem;
 use super::values::{parse_bool, parse_float, parse_int, parse_triple};
+use crate::description::Colour;
 use crate::param_defs::{
     self, BoolParam, ChoiceParam, ColourParam, FloatParam, IntParam, PluginParams,
 };
@@ -167,6 +168,22 @@ impl<'c, 'a> Props<'c, 'a> {
         }
     }
 
+    /// Float parameter `d` checked into `T`, if the scene gives it (a default that depends
+    /// on another parameter, or a required parameter).
+    pub fn get_float_opt<T: Copy>(&mut self, d: &FloatParam<T>) -> Res<Option<T>> {
+        match self.float(d.name)? {
+            None => Ok(None),
+            Some(v) => (d.accept)(v)
+                .map(Some)
+                .map_err(|m| self.invalid(d.name, self.elem, &m)),
+        }
+    }
+
+    /// Integer parameter `d`, checked, if the scene gives it.
+    pub fn get_int_opt(&mut self, d: &IntParam) -> Res<Option<i64>> {
+        self.int_in(d.name, d.min, d.max)
+    }
+
     /// Boolean parameter `d`: its value or its default.
     pub fn get_bool(&mut self, d: &BoolParam) -> Res<bool> {
         Ok(self.bool(d.name)?.unwrap_or(d.default))
@@ -243,9 +260,10 @@ impl<'c, 'a> Props<'c, 'a> {
         self.colour(name, SpectrumUse::Reflectance)
     }
 
-    /// Colour parameter `d` (as [`Props::rgb`]), or its default.
-    pub fn get_rgb(&mut self, d: &ColourParam) -> Res<Vec3> {
-        Ok(self.rgb(d.name)?.unwrap_or(Vec3::splat(d.default)))
+    /// Colour parameter `d` (as [`Props::rgb`]) checked into a [`Colour`], or its default.
+    pub fn get_rgb(&mut self, d: &ColourParam) -> Res<Colour> {
+        let v = self.rgb(d.name)?.unwrap_or(Vec3::splat(d.default));
+        Colour::named(d.name, v).map_err(|i| self.invalid(d.name, self.elem, &i.message))
     }
 
     /// A colour as [`Props::rgb`], with a `<spectrum>` converted for `usage`.

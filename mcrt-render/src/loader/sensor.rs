@@ -9,12 +9,9 @@ use crate::description::{
     CropWindow, FilmDesc, FilterDesc, FovAxis, SampleCount, SamplerDesc, SamplerKind, SensorDesc,
     ThinLensDesc,
 };
-use crate::param_defs::sampler;
+use crate::param_defs::{film as film_defs, sampler, sensor as defs};
 use crate::scene_error::SceneErrorKind;
-use crate::validate::{self, MAX_FILM_PIXELS};
-
-/// Largest accepted film side, in pixels (the area is bounded by [`MAX_FILM_PIXELS`]).
-pub(crate) const MAX_RESOLUTION: i64 = MAX_FILM_PIXELS as i64;
+use crate::validate;
 
 /// Reads a `<sensor>` element.
 pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
@@ -29,22 +26,22 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
     } else {
         // Mitsuba 3's perspective reads `focus_distance` (a float, as every projective
         // camera does) and never uses it: accepted and ignored.
-        p.float("focus_distance")?;
+        p.float(defs::IGNORED_FOCUS_DISTANCE.name)?;
     }
     // Mitsuba 3 reads `fov` (with `fov_axis`) or `focal_length` (default 50 mm on a 36 × 24
     // mm frame: a diagonal field of view), and refuses both. A diagonal fov becomes the
     // horizontal one once the film's aspect is known.
     let mut diagonal = None;
-    let focal = p.string("focal_length")?;
-    if let Some(fov) = p.float("fov")? {
+    let focal = p.string(defs::FOCAL_LENGTH.name)?;
+    if let Some(fov) = p.float(defs::FOV.name)? {
         if focal.is_some() {
             return Err(p.invalid("fov", e, "and focal_length cannot both be given"));
         }
-        if !(fov > 0.0 && fov < 180.0) {
-            return Err(p.invalid("fov", e, "must lie strictly between 0 and 180 degrees"));
-        }
+        let fov = defs::FOV
+            .check(fov)
+            .map_err(|i| p.invalid(i.param, e, &i.message))?;
         s.fov = fov;
-        if let Some(axis) = p.string("fov_axis")? {
+        if let Some(axis) = p.string(defs::FOV_AXIS.name)? {
             s.fov_axis = match axis.to_ascii_lowercase().as_str() {
                 "x" => FovAxis::X,
                 "y" => FovAxis::Y,
@@ -79,12 +76,12 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
         };
         diagonal = Some(diagonal_fov(mm));
     }
-    s.near_clip = p.float("near_clip")?.unwrap_or(s.near_clip);
-    s.far_clip = p.float("far_clip")?.unwrap_or(s.far_clip);
+    s.near_clip = p.get_float(&defs::NEAR_CLIP)?;
+    s.far_clip = p.get_float(&defs::FAR_CLIP)?;
     if !(s.near_clip > 0.0 && s.far_clip > s.near_clip) {
         return Err(p.invalid("near_clip", e, "must be positive and below far_clip"));
     }
-    s.to_world = p.transform("to_world")?.unwrap_or(s.to_world);
+    s.to_world = p.transform(defs::TO_WORLD.name)?.unwrap_or(s.to_world);
     let (mut film, mut sampler) = (None, None);
     for o in &p.objects {
         let slot_is_free = match o.tag.as_str() {
@@ -150,21 +147,13 @@ fn horizontal_fov(diag: f32, a: f32) -> f32 {
 /// The lens parameters of a `thinlens` sensor: `aperture_radius` (required, as in
 /// Mitsuba 3) and `focus_distance`.
 fn read_lens(ctx: &Ctx, e: &Elem, p: &mut Props) -> Res<ThinLensDesc> {
-    let aperture_radius = p.float("aperture_radius")?.ok_or_else(|| {
+    let aperture_radius = p.get_float_opt(&defs::APERTURE_RADIUS)?.ok_or_else(|| {
         ctx.err(
             e,
             SceneErrorKind::MissingAttribute("parameter \"aperture_radius\"".into()),
         )
     })?;
-    if !(aperture_radius.is_finite() && aperture_radius >= 0.0) {
-        return Err(p.invalid("aperture_radius", e, "must be finite and non-negative"));
-    }
-    let focus_distance = p
-        .float("focus_distance")?
-        .unwrap_or(ThinLensDesc::FOCUS_DISTANCE);
-    if !(focus_distance.is_finite() && focus_distance > 0.0) {
-        return Err(p.invalid("focus_distance", e, "must be finite and positive"));
-    }
+    let focus_distance = p.get_float(&defs::FOCUS_DISTANCE)?;
     Ok(ThinLensDesc {
         aperture_radius,
         focus_distance,
@@ -220,31 +209,32 @@ fn read_film(ctx: &Ctx, e: &Elem) -> Res<FilmDesc> {
         return Err(unknown_plugin(ctx, e, ty));
     }
     let mut p = Props::new(ctx, e)?;
-    let mut f = FilmDesc::default();
-    if let Some(w) = p.int_in("width", 1, MAX_RESOLUTION)? {
-        f.width = w as u32;
-    }
-    if let Some(h) = p.int_in("height", 1, MAX_RESOLUTION)? {
-        f.height = h as u32;
-    }
+    let mut f = FilmDesc {
+        width: p.get_int(&film_defs::WIDTH)? as u32,
+        height: p.get_int(&film_defs::HEIGHT)? as u32,
+        ..FilmDesc::default()
+    };
     // Output-format options: accepted and ignored (the renderer writes float RGB EXR).
-    for name in ["file_format", "pixel_format", "component_format"] {
-        p.string(name)?;
+    for d in [
+        &film_defs::FILE_FORMAT,
+        &film_defs::PIXEL_FORMAT,
+        &film_defs::COMPONENT_FORMAT,
+    ] {
+        p.string(d.name)?;
     }
-    for name in ["sample_border", "compensate"] {
-        p.bool(name)?;
+    for d in [&film_defs::SAMPLE_BORDER, &film_defs::COMPENSATE] {
+        p.get_bool(d)?;
     }
     // Mitsuba 0.6's `banner` (a boolean): Mitsuba 3's film marks it read, of any type.
-    p.raw("banner");
+    p.raw(film_defs::BANNER.name);
     // Mitsuba's crop window: offsets default to 0, sizes to the rest of the film.
-    let max = MAX_RESOLUTION;
     let (ox, oy) = (
-        p.int_in("crop_offset_x", 0, max)?,
-        p.int_in("crop_offset_y", 0, max)?,
+        p.get_int_opt(&film_defs::CROP_OFFSET_X)?,
+        p.get_int_opt(&film_defs::CROP_OFFSET_Y)?,
     );
     let (cw, ch) = (
-        p.int_in("crop_width", 1, max)?,
-        p.int_in("crop_height", 1, max)?,
+        p.get_int_opt(&film_defs::CROP_WIDTH)?,
+        p.get_int_opt(&film_defs::CROP_HEIGHT)?,
     );
     if ox.is_some() || oy.is_some() || cw.is_some() || ch.is_some() {
         let (ox, oy) = (ox.unwrap_or(0) as u32, oy.unwrap_or(0) as u32);
@@ -280,20 +270,12 @@ fn read_filter(ctx: &Ctx, e: &Elem) -> Res<FilterDesc> {
     no_objects(ctx, &p)?;
     let f = match ty {
         "box" => FilterDesc::Box,
-        "tent" => {
-            let radius = p.float("radius")?.unwrap_or(1.0);
-            if !(radius > 0.0 && radius <= 16.0) {
-                return Err(p.invalid("radius", e, "must lie in (0, 16] pixels"));
-            }
-            FilterDesc::Tent { radius }
-        }
-        "gaussian" => {
-            let stddev = p.float("stddev")?.unwrap_or(0.5);
-            if !(stddev > 0.0 && stddev <= 16.0) {
-                return Err(p.invalid("stddev", e, "must lie in (0, 16] pixels"));
-            }
-            FilterDesc::Gaussian { stddev }
-        }
+        "tent" => FilterDesc::Tent {
+            radius: p.get_float(&film_defs::TENT_RADIUS)?,
+        },
+        "gaussian" => FilterDesc::Gaussian {
+            stddev: p.get_float(&film_defs::STDDEV)?,
+        },
         other => return Err(unknown_plugin(ctx, e, other)),
     };
     p.finish()?;

@@ -7,7 +7,8 @@ use super::emitter::read_area;
 use super::props::Props;
 use super::tree::Elem;
 use super::{plugin_type, unknown_plugin};
-use crate::description::{BsdfDesc, ShapeDesc, ShapeKind};
+use crate::description::{BsdfDesc, Colour, ShapeDesc, ShapeKind};
+use crate::param_defs::shape_plugins as defs;
 use crate::scene_error::SceneErrorKind;
 use crate::validate;
 use glam::Vec3;
@@ -15,19 +16,19 @@ use glam::Vec3;
 /// The parameters of a shape read from a mesh file; the file must exist and be readable
 /// (its contents are read when the geometry is built).
 fn mesh_file<'a>(ctx: &Ctx<'a>, e: &'a Elem, ty: &str, p: &mut Props) -> Res<ShapeKind> {
-    let name = p.string("filename")?.ok_or_else(|| {
+    let name = p.string(defs::FILENAME.name)?.ok_or_else(|| {
         ctx.err(
             e,
             SceneErrorKind::MissingAttribute("parameter \"filename\"".into()),
         )
     })?;
     let filename = ctx.readable_file(e, &name, None)?;
-    let face_normals = p.bool("face_normals")?.unwrap_or(false);
+    let face_normals = p.get_bool(&defs::FACE_NORMALS)?;
     Ok(match ty {
         "obj" => ShapeKind::Obj {
             filename,
             face_normals,
-            flip_tex_coords: p.bool("flip_tex_coords")?.unwrap_or(true),
+            flip_tex_coords: p.get_bool(&defs::FLIP_TEX_COORDS)?,
         },
         "ply" => ShapeKind::Ply {
             filename,
@@ -35,9 +36,7 @@ fn mesh_file<'a>(ctx: &Ctx<'a>, e: &'a Elem, ty: &str, p: &mut Props) -> Res<Sha
         },
         _ => ShapeKind::Serialized {
             filename,
-            shape_index: p
-                .int_in("shape_index", 0, i64::from(u32::MAX))?
-                .unwrap_or(0) as u32,
+            shape_index: p.get_int(&defs::SHAPE_INDEX)? as u32,
             face_normals,
         },
     })
@@ -52,18 +51,15 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
         "cube" => ShapeKind::Cube,
         "disk" => ShapeKind::Disk,
         "sphere" => {
-            let center = p.point("center")?.unwrap_or(Vec3::ZERO);
-            let radius = p.float("radius")?.unwrap_or(1.0);
-            if radius <= 0.0 {
-                return Err(p.invalid("radius", e, "must be positive"));
-            }
+            let center = p.point(defs::CENTER.name)?.unwrap_or(Vec3::ZERO);
+            let radius = p.get_float(&defs::SPHERE_RADIUS)?;
             ShapeKind::Sphere { center, radius }
         }
         "cylinder" => {
             // Mitsuba 3's defaults: the unit-radius tube from the origin to (0, 0, 1).
-            let p0 = p.point("p0")?.unwrap_or(Vec3::ZERO);
-            let p1 = p.point("p1")?.unwrap_or(Vec3::Z);
-            let radius = p.float("radius")?.unwrap_or(1.0);
+            let p0 = p.point(defs::P0.name)?.unwrap_or(Vec3::ZERO);
+            let p1 = p.point(defs::P1.name)?.unwrap_or(Vec3::Z);
+            let radius = p.get_float(&defs::CYLINDER_RADIUS)?;
             ShapeKind::Cylinder { p0, p1, radius }
         }
         "obj" | "ply" | "serialized" => mesh_file(ctx, e, ty, &mut p)?,
@@ -75,8 +71,8 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
     };
     let mut shape = ShapeDesc::new(kind);
     shape.id = e.attr("id").map(str::to_string);
-    shape.to_world = p.transform("to_world")?.unwrap_or(shape.to_world);
-    shape.flip_normals = p.bool("flip_normals")?.unwrap_or(false);
+    shape.to_world = p.transform(defs::TO_WORLD.name)?.unwrap_or(shape.to_world);
+    shape.flip_normals = p.get_bool(&defs::FLIP_NORMALS)?;
     let (mut bsdf, mut emitter, mut emission_texture) = (None, None, None);
     for o in &p.objects {
         let first = match o.tag.as_str() {
@@ -103,7 +99,7 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
     // As in Mitsuba 3: a shape without a BSDF is diffuse 0.5, but an emitting one is black.
     shape.bsdf = bsdf.unwrap_or_else(|| match emitter {
         Some(_) => BsdfDesc::Diffuse {
-            reflectance: Vec3::ZERO,
+            reflectance: Colour::BLACK,
         },
         None => BsdfDesc::default(),
     });

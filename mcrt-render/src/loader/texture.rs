@@ -5,7 +5,8 @@ use super::context::{Ctx, Res};
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
-use crate::description::BsdfDesc;
+use crate::description::{BsdfDesc, Colour};
+use crate::param_defs::texture as defs;
 use crate::scene_error::SceneErrorKind;
 use crate::texture::{
     read_image_beside, uv_transform, Bitmap, Checkerboard, FilterType, Texture, TextureParam,
@@ -22,20 +23,20 @@ pub(crate) fn read_texture(ctx: &Ctx, e: &Elem) -> Res<Texture> {
     }
     let mut p = Props::new(ctx, e)?;
     no_objects(ctx, &p)?;
-    let to_uv = match p.transform("to_uv")? {
+    let to_uv = match p.transform(defs::TO_UV.name)? {
         Some(m) => uv_transform(&m),
         None => Affine2::IDENTITY,
     };
     let texture = match ty {
         "bitmap" => {
-            let Some(name) = p.string("filename")? else {
+            let Some(name) = p.string(defs::FILENAME.name)? else {
                 return Err(ctx.err(
                     e,
                     SceneErrorKind::InvalidValue("bitmap needs a \"filename\"".into()),
                 ));
             };
-            let raw = p.bool("raw")?.unwrap_or(false);
-            let filter = match p.string("filter_type")? {
+            let raw = p.get_bool(&defs::RAW)?;
+            let filter = match p.string(defs::FILTER_TYPE.name)? {
                 None => FilterType::default(),
                 Some(s) => FilterType::parse(&s).ok_or_else(|| {
                     p.invalid(
@@ -45,7 +46,7 @@ pub(crate) fn read_texture(ctx: &Ctx, e: &Elem) -> Res<Texture> {
                     )
                 })?,
             };
-            let wrap = match p.string("wrap_mode")? {
+            let wrap = match p.string(defs::WRAP_MODE.name)? {
                 None => WrapMode::default(),
                 Some(s) => WrapMode::parse(&s).ok_or_else(|| {
                     p.invalid(
@@ -82,14 +83,16 @@ pub(crate) fn read_texture(ctx: &Ctx, e: &Elem) -> Res<Texture> {
                 to_uv,
             })
         }
-        "checkerboard" => {
-            let d = Checkerboard::default();
-            Texture::Checkerboard(Checkerboard {
-                color0: p.rgb("color0")?.unwrap_or(d.color0),
-                color1: p.rgb("color1")?.unwrap_or(d.color1),
-                to_uv,
-            })
-        }
+        "checkerboard" => Texture::Checkerboard(Checkerboard {
+            // Any finite colour, negative ones too (as Mitsuba 3 takes them).
+            color0: p
+                .rgb(defs::COLOR0.name)?
+                .unwrap_or(Vec3::splat(defs::COLOR0.default)),
+            color1: p
+                .rgb(defs::COLOR1.name)?
+                .unwrap_or(Vec3::splat(defs::COLOR1.default)),
+            to_uv,
+        }),
         other => return Err(unknown_plugin(ctx, e, other)),
     };
     if let Texture::Checkerboard(c) = &texture {
@@ -193,9 +196,10 @@ pub(crate) fn not_here(ctx: &Ctx, o: &Elem) -> crate::scene_error::SceneError {
 
 /// `desc` with `textures` attached: each must be a parameter of the plugin (`e`, of type
 /// `ty`); colour parameters take the texture's mean as their stand-in (blend weights and
-/// opacities took theirs when they were read).
+/// opacities took theirs when they were read), which must be a valid [`Colour`].
 pub(crate) fn attach(
     ctx: &Ctx,
+    e: &Elem,
     ty: &str,
     mut desc: BsdfDesc,
     textures: Vec<(TextureParam, Texture, &Elem)>,
@@ -213,8 +217,13 @@ pub(crate) fn attach(
                 },
             ));
         }
-        if let Some(slot) = colour_mut(&mut desc, *param) {
-            *slot = stand_in(texture);
+        match colour_mut(&mut desc, *param) {
+            Some(Slot::Checked(slot)) => {
+                *slot = Colour::named(param.name(), stand_in(texture))
+                    .map_err(|i| ctx.err(e, SceneErrorKind::InvalidValue(i.to_string())))?;
+            }
+            Some(Slot::Plain(slot)) => *slot = stand_in(texture),
+            None => {}
         }
     }
     Ok(BsdfDesc::Textured {
@@ -223,10 +232,20 @@ pub(crate) fn attach(
     })
 }
 
+/// Where a colour parameter of a description lives: a checked [`Colour`], or the plain
+/// base colour of `principled` (checked with its other parameters).
+enum Slot<'a> {
+    Checked(&'a mut Colour),
+    Plain(&'a mut Vec3),
+}
+
 /// The colour parameter `p` of a material description.
-fn colour_mut(desc: &mut BsdfDesc, p: TextureParam) -> Option<&mut Vec3> {
+fn colour_mut(desc: &mut BsdfDesc, p: TextureParam) -> Option<Slot<'_>> {
     use TextureParam as P;
-    Some(match (desc, p) {
+    Some(Slot::Checked(match (desc, p) {
+        (BsdfDesc::Principled(params), P::BaseColor) => {
+            return Some(Slot::Plain(&mut params.base_color))
+        }
         (BsdfDesc::Diffuse { reflectance }, P::Reflectance) => reflectance,
         (
             BsdfDesc::Conductor {
@@ -285,7 +304,6 @@ fn colour_mut(desc: &mut BsdfDesc, p: TextureParam) -> Option<&mut Vec3> {
             },
             P::DiffuseReflectance,
         ) => diffuse_reflectance,
-        (BsdfDesc::Principled(params), P::BaseColor) => &mut params.base_color,
         _ => return None,
-    })
+    }))
 }

@@ -13,11 +13,17 @@
 //! line that uses it.
 
 pub(crate) mod bsdf;
+pub(crate) mod bsdf_composite;
 #[cfg(test)]
 mod doc_tests;
+pub(crate) mod emitter;
+pub(crate) mod film;
 pub(crate) mod integrator;
 pub(crate) mod sampler;
+pub(crate) mod sensor;
 pub(crate) mod shape;
+pub(crate) mod shape_plugins;
+pub(crate) mod texture;
 
 /// An integer parameter in `min..=max`.
 #[derive(Debug)]
@@ -197,7 +203,8 @@ impl ParamDef {
 /// The parameters of one plugin.
 #[derive(Debug)]
 pub(crate) struct PluginParams {
-    /// The element: `integrator`, `sampler`, `bsdf`.
+    /// The element: `integrator`, `sampler`, `bsdf`, `shape`, `emitter`, `sensor`, `film`,
+    /// `rfilter`, `texture`.
     pub category: &'static str,
     /// The `type` attribute.
     pub plugin: &'static str,
@@ -225,8 +232,35 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     bsdf::ROUGHCONDUCTOR,
     bsdf::ROUGHDIELECTRIC,
     bsdf::ROUGHPLASTIC,
+    bsdf_composite::PRINCIPLED,
+    bsdf_composite::BLENDBSDF,
+    bsdf_composite::MASK,
+    bsdf_composite::TWOSIDED,
     shape::INSTANCE,
     shape::SHAPEGROUP,
+    shape_plugins::RECTANGLE,
+    shape_plugins::CUBE,
+    shape_plugins::DISK,
+    shape_plugins::SPHERE,
+    shape_plugins::CYLINDER,
+    shape_plugins::OBJ,
+    shape_plugins::PLY,
+    shape_plugins::SERIALIZED,
+    emitter::AREA,
+    emitter::POINT,
+    emitter::SPOT,
+    emitter::PROJECTOR,
+    emitter::DIRECTIONAL,
+    emitter::CONSTANT,
+    emitter::ENVMAP,
+    sensor::PERSPECTIVE,
+    sensor::THINLENS,
+    film::HDRFILM,
+    film::BOX,
+    film::TENT,
+    film::GAUSSIAN,
+    texture::BITMAP,
+    texture::CHECKERBOARD,
 ];
 
 /// The table of plugin `plugin` of element `category`, if it has one.

@@ -190,7 +190,7 @@ mod tests {
         assert_eq!(draws(&desc), 4);
         desc.emitters.push(EmitterDesc::Point {
             position: Vec3::new(0.0, 1.0, 0.0),
-            intensity: Vec3::ONE,
+            intensity: crate::description::Colour::WHITE,
         });
         assert_eq!(draws(&desc), 4);
     }
