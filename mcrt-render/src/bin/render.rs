@@ -6,7 +6,7 @@
 //!     [--strategy bsdf|light|balance|power]
 //!     [--sampler independent|stratified|sobol|sobol4d|halton|r2|cmj]
 //!     [--accel bvh|grid|kdtree] [--light-sampling auto|solid-angle|area]
-//!     [--integrator path|direct|bdpt|mlt|ptracer] [--bdpt-strategy s,t]
+//!     [--integrator path|direct|bdpt|mlt|ptracer|guided] [--bdpt-strategy s,t]
 //!     [--samples START..END] [--crop x0,y0,x1,y1]
 //! ```
 //!
@@ -207,12 +207,12 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "integrator",
         short: None,
-        value: Some("path|direct|bdpt|mlt|ptracer"),
+        value: Some("path|direct|bdpt|mlt|ptracer|guided"),
         help: "estimator, overriding the scene's <integrator> (its max_depth and rr_depth carry \
                over; mlt counts --spp as mutations per pixel) [default: the scene's]",
         apply: |a, v| {
             a.opts.integrator = Some(IntegratorKind::parse(v).ok_or_else(|| {
-                format!("--integrator {v}: expected path, direct, bdpt, mlt or ptracer")
+                format!("--integrator {v}: expected path, direct, bdpt, mlt, ptracer or guided")
             })?);
             Ok(())
         },
@@ -429,7 +429,7 @@ fn run(args: Args) -> Result<bool, String> {
     let (w, h) = renderer.size();
     println!(
         "{name}: {w}×{h}, integrator {}, {} {} ({}), strategy {}, effects: {}",
-        renderer.integrator().name(),
+        renderer.integrator_name(),
         renderer.spp(),
         if renderer.integrator().name() == "mlt" {
             "mutations per pixel"
@@ -476,6 +476,13 @@ fn run(args: Args) -> Result<bool, String> {
         result.rays,
         result.nonfinite_samples
     );
+    if let Some(g) = &result.guiding {
+        println!(
+            "guided: {} training passes ({} spp, {:.3} s of the time above), final pass {} spp, \
+             guide of {} spatial leaves",
+            g.passes, g.training_spp, g.training_seconds, g.final_spp, g.leaves
+        );
+    }
     if let Some(st) = &result.strategies {
         let lens: Vec<String> = st
             .length_shares()
