@@ -6,6 +6,7 @@
 //!     [--strategy bsdf|light|balance|power]
 //!     [--sampler independent|stratified|sobol|sobol4d|halton|r2|cmj]
 //!     [--accel bvh|grid|kdtree] [--light-sampling auto|solid-angle|area]
+//!     [--light-bvh auto|on|off]
 //!     [--integrator path|direct|bdpt|mlt|ptracer|guided] [--bdpt-strategy s,t]
 //!     [--samples START..END] [--crop x0,y0,x1,y1]
 //! ```
@@ -181,6 +182,20 @@ const OPTIONS: &[Opt] = &[
                 "kdtree" => AccelKind::KdTree,
                 _ => return Err(format!("--accel {v}: expected bvh, grid or kdtree")),
             };
+            Ok(())
+        },
+    },
+    Opt {
+        long: "light-bvh",
+        short: None,
+        value: Some("auto|on|off"),
+        help: "whether next-event estimation chooses its light by a light BVH: auto above 16 \
+               lights with a position (each emitting triangle counted), on whenever a light \
+               has one, off never (by power over distance up to 16, by power beyond) \
+               [default: auto]",
+        apply: |a, v| {
+            a.opts.light_bvh = mcrt_render::light::LightBvhUse::parse(v)
+                .ok_or_else(|| format!("--light-bvh {v}: expected auto, on or off"))?;
             Ok(())
         },
     },
@@ -448,6 +463,9 @@ fn run(args: Args) -> Result<bool, String> {
         renderer.integrator().strategy().name(),
         renderer.effects().describe()
     );
+    if let Some(n) = renderer.light_bvh_lights() {
+        println!("next-event estimation chooses among {n} lights by a light BVH");
+    }
     if split {
         println!(
             "part: samples {} of {}, pixels {} (x0,y0,x1,y1) of {w}×{h}",

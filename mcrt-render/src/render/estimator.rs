@@ -43,7 +43,8 @@ impl Renderer {
         let geo = Geometry::new(&desc.shapes, None, opts.accel)
             .map_err(RenderError::Geometry)?
             .with_shape_sampling(shape_sampling);
-        let lights = Lights::new(desc, &geo, scene_radius(desc)).map_err(RenderError::Lights)?;
+        let lights = Lights::with_bvh(desc, &geo, scene_radius(desc), opts.light_bvh)
+            .map_err(RenderError::Lights)?;
         let camera = Camera::new(&desc.sensor).map_err(RenderError::Camera)?;
         // Per shape in the numbering hits report: the scene's, then its groups'.
         let all_shapes = desc.all_shapes();
@@ -136,10 +137,15 @@ impl Renderer {
             &described,
             None,
             &format!(
-                "{integrator:?} {:?} {shape_sampling:?} {}{}",
+                "{integrator:?} {:?} {shape_sampling:?} {}{}{}",
                 opts.accel,
                 opts.specialize,
-                guided.map_or(String::new(), |g| format!(" {g:?}"))
+                guided.map_or(String::new(), |g| format!(" {g:?}")),
+                // Only where it changes the choice, so that identities stay as they were.
+                match lights.bvh_lights() {
+                    Some(n) => format!(" light BVH over {n}"),
+                    None => String::new(),
+                }
             ),
         )
         .map_err(RenderError::Invalid)?;

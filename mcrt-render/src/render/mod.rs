@@ -139,6 +139,13 @@ impl Renderer {
         &self.integrator
     }
 
+    /// The number of lights the light BVH of next-event estimation chooses among (each
+    /// emitting triangle of a mesh counted), or `None` when the scene has too few lights
+    /// with a position for it.
+    pub fn light_bvh_lights(&self) -> Option<usize> {
+        self.lights.bvh_lights()
+    }
+
     /// The guided path tracer, when the integrator is `guided`.
     pub fn guided(&self) -> Option<&mcrt::integrator::GuidedPathTracer> {
         self.guided.as_ref().map(|g| &g.tracer)
