@@ -165,10 +165,12 @@ def sphere_ply(path: Path, rings: int, segments: int) -> int:
     return len(faces)
 
 
-def many_lights(out: Path) -> None:
+def many_lights(out: Path, keep: int | None = None) -> None:
+    """The many-lights room; with `keep`, only that many of its rectangle lights (every
+    420/keep-th) and no sphere, as many-lights-KEEP.xml (the study of the BVH's threshold)."""
     rng = random.Random(28)
-    tris = sphere_ply(out / "many-lights-sphere.ply", 51, 100)
-    assert tris >= 10_000, tris
+    tris = 0 if keep else sphere_ply(out / "many-lights-sphere.ply", 51, 100)
+    assert keep or tris >= 10_000, tris
     s = HEADER.format(
         comment="Issue 28's many-lights room, written by scripts/make_issue28_scenes.py: "
         f"420 small rectangle lights on the ceiling and walls (radiance over three decades, "
@@ -211,13 +213,15 @@ def many_lights(out: Path) -> None:
                 ex, ey = ([0, half, 0], [0, 0, half]) if side < 0 else ([0, 0, half], [0, half, 0])
                 lights.append(rect([0.995 * side, y, z], ex, ey, "dark", emit()))
     assert len(lights) == 420
+    if keep:
+        lights = [lights[(k * 420) // keep] for k in range(keep)]
     s += "".join(lights)
     # Occluders: a tall box before the back wall, a screen before the left wall, a panel
     # under the ceiling (opaque both ways).
     s += cube([0.35, -0.3, -0.75], [0.2, 0.7, 0.12], "white")
     s += cube([-0.85, 0.1, -0.1], [0.03, 0.5, 0.45], "white")
     s += cube([-0.2, 0.85, -0.2], [0.45, 0.02, 0.45], "white")
-    s += (
+    s += "" if keep else (
         '    <shape type="ply">\n'
         '        <string name="filename" value="many-lights-sphere.ply"/>\n'
         '        <transform name="to_world"><scale value="0.25"/>'
@@ -227,7 +231,7 @@ def many_lights(out: Path) -> None:
         "    </shape>\n"
     )
     s += "</scene>\n"
-    (out / "many-lights.xml").write_text(s)
+    (out / (f"many-lights-{keep}.xml" if keep else "many-lights.xml")).write_text(s)
 
 
 def indirect(out: Path) -> None:
@@ -297,8 +301,16 @@ def door(out: Path) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out", type=Path, default=Path("mcrt-render/tests/data/issue28"))
+    ap.add_argument("--threshold-study", type=int, nargs="*", metavar="N",
+                    help="write only many-lights-N.xml for each N: N of the room's "
+                         "rectangle lights, no sphere")
     a = ap.parse_args()
     a.out.mkdir(parents=True, exist_ok=True)
+    if a.threshold_study:
+        for n in a.threshold_study:
+            many_lights(a.out, n)
+        print(f"wrote many-lights-N.xml for N = {a.threshold_study} into {a.out}")
+        return
     many_lights(a.out)
     indirect(a.out)
     door(a.out)
