@@ -30,6 +30,10 @@ def main() -> None:
     ap.add_argument("--variant", default="llvm_ad_rgb")
     ap.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME=VALUE")
     ap.add_argument("--out", type=Path)
+    ap.add_argument("--variance", action="store_true",
+                    help="also write OUT-variance.exr: the variance of each pixel's mean, "
+                         "estimated from the spread of the passes (for a block test whose "
+                         "reference's noise is not ours scaled)")
     ap.add_argument("--all-channels", action="store_true",
                     help="keep every channel of the film (AOVs such as the moment "
                          "integrator's), named as Mitsuba names them")
@@ -44,10 +48,13 @@ def main() -> None:
     scene = mi.load_file(str(a.scene), **params)
     passes = a.spp // a.pass_spp
     acc = None
+    acc2 = None
     start = time.perf_counter()
     for i in range(passes):
         img = np.array(mi.render(scene, spp=a.pass_spp, seed=i), dtype=np.float64)
         acc = img if acc is None else acc + img
+        if a.variance:
+            acc2 = img * img if acc2 is None else acc2 + img * img
     seconds = time.perf_counter() - start
     mean = (acc / passes).astype(np.float32)
     out = a.out or a.scene.with_suffix(".exr")
@@ -57,6 +64,13 @@ def main() -> None:
     else:
         mean = mean[:, :, :3]
         mi.Bitmap(mean).write(str(out))
+    if a.variance:
+        if passes < 2:
+            ap.error("--variance needs at least two passes")
+        m1 = acc[:, :, :3] / passes
+        spread = np.maximum(acc2[:, :, :3] / passes - m1 * m1, 0.0) * passes / (passes - 1)
+        var_out = out.with_name(out.stem + "-variance.exr")
+        mi.Bitmap((spread / passes).astype(np.float32)).write(str(var_out))
     h, w = mean.shape[:2]
     m = mean[:, :, :3].reshape(-1, 3).mean(axis=0)
     print(f"{out}: {w}x{h}, {a.spp} spp in {passes} passes, {seconds:.1f} s "

@@ -154,7 +154,8 @@ pub fn work(pixels: u64, spp: u32, i: &IntegratorDesc) -> Result<(), Invalid> {
         } => (emitter_samples as u64 + bsdf_samples as u64).max(1),
         IntegratorDesc::Path { .. }
         | IntegratorDesc::Bdpt { .. }
-        | IntegratorDesc::Ptracer { .. } => 1,
+        | IntegratorDesc::Ptracer { .. }
+        | IntegratorDesc::Guided { .. } => 1,
         // The bootstrap's paths and normalisation samples, spread over the pixels.
         IntegratorDesc::Mlt {
             bootstrap_samples,

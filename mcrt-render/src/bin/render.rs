@@ -6,7 +6,8 @@
 //!     [--strategy bsdf|light|balance|power]
 //!     [--sampler independent|stratified|sobol|sobol4d|halton|r2|cmj]
 //!     [--accel bvh|grid|kdtree] [--light-sampling auto|solid-angle|area]
-//!     [--integrator path|direct|bdpt|mlt|ptracer] [--bdpt-strategy s,t]
+//!     [--light-bvh auto|on|off]
+//!     [--integrator path|direct|bdpt|mlt|ptracer|guided] [--bdpt-strategy s,t]
 //!     [--samples START..END] [--crop x0,y0,x1,y1]
 //! ```
 //!
@@ -185,6 +186,20 @@ const OPTIONS: &[Opt] = &[
         },
     },
     Opt {
+        long: "light-bvh",
+        short: None,
+        value: Some("auto|on|off"),
+        help: "whether next-event estimation chooses its light by a light BVH: auto above 16 \
+               lights with a position (each emitting triangle counted), on whenever a light \
+               has one, off never (by power over distance up to 16, by power beyond) \
+               [default: auto]",
+        apply: |a, v| {
+            a.opts.light_bvh = mcrt_render::light::LightBvhUse::parse(v)
+                .ok_or_else(|| format!("--light-bvh {v}: expected auto, on or off"))?;
+            Ok(())
+        },
+    },
+    Opt {
         long: "light-sampling",
         short: None,
         value: Some("auto|solid-angle|area"),
@@ -207,12 +222,12 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "integrator",
         short: None,
-        value: Some("path|direct|bdpt|mlt|ptracer"),
+        value: Some("path|direct|bdpt|mlt|ptracer|guided"),
         help: "estimator, overriding the scene's <integrator> (its max_depth and rr_depth carry \
                over; mlt counts --spp as mutations per pixel) [default: the scene's]",
         apply: |a, v| {
             a.opts.integrator = Some(IntegratorKind::parse(v).ok_or_else(|| {
-                format!("--integrator {v}: expected path, direct, bdpt, mlt or ptracer")
+                format!("--integrator {v}: expected path, direct, bdpt, mlt, ptracer or guided")
             })?);
             Ok(())
         },
@@ -429,7 +444,7 @@ fn run(args: Args) -> Result<bool, String> {
     let (w, h) = renderer.size();
     println!(
         "{name}: {w}×{h}, integrator {}, {} {} ({}), strategy {}, effects: {}",
-        renderer.integrator().name(),
+        renderer.integrator_name(),
         renderer.spp(),
         if renderer.integrator().name() == "mlt" {
             "mutations per pixel"
@@ -448,6 +463,9 @@ fn run(args: Args) -> Result<bool, String> {
         renderer.integrator().strategy().name(),
         renderer.effects().describe()
     );
+    if let Some(n) = renderer.light_bvh_lights() {
+        println!("next-event estimation chooses among {n} lights by a light BVH");
+    }
     if split {
         println!(
             "part: samples {} of {}, pixels {} (x0,y0,x1,y1) of {w}×{h}",
@@ -476,6 +494,13 @@ fn run(args: Args) -> Result<bool, String> {
         result.rays,
         result.nonfinite_samples
     );
+    if let Some(g) = &result.guiding {
+        println!(
+            "guided: {} training passes ({} spp, {:.3} s of the time above), final pass {} spp, \
+             guide of {} spatial leaves",
+            g.passes, g.training_spp, g.training_seconds, g.final_spp, g.leaves
+        );
+    }
     if let Some(st) = &result.strategies {
         let lens: Vec<String> = st
             .length_shares()

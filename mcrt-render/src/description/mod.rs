@@ -101,6 +101,24 @@ pub enum IntegratorDesc {
         /// subpaths play it from their first bounce, which changes the noise only).
         rr_depth: u32,
     },
+    /// Path tracing guided by a learned distribution of incident radiance (Müller, Gross &
+    /// Novák 2017, "Practical Path Guiding for Efficient Light-Transport Simulation"; no
+    /// Mitsuba 3 plugin, Mitsuba 0.6's `guided_path` of the paper's authors is the model):
+    /// the render trains an SD-tree in passes of doubling sample counts and keeps the image
+    /// of the final pass.
+    Guided {
+        /// Longest path in segments, as for `path`.
+        max_depth: i32,
+        /// Depth from which Russian roulette starts, as for `path`.
+        rr_depth: u32,
+        /// The probability of sampling the guide rather than the BSDF (default 0.5).
+        guide_probability: f32,
+        /// `c` of the spatial subdivision threshold `c·√(2^k)` records (default 12000).
+        spatial_threshold: f32,
+        /// The energy fraction above which a directional quadrant is subdivided (default
+        /// 0.01).
+        directional_threshold: f32,
+    },
 }
 
 /// Mitsuba 3's `moment` integrator around a sampling integrator (`path` or `direct`): the
@@ -127,10 +145,12 @@ pub enum IntegratorKind {
     Mlt,
     /// `ptracer`.
     Ptracer,
+    /// `guided`.
+    Guided,
 }
 
 impl IntegratorKind {
-    /// Parses `path`, `direct`, `bdpt`, `mlt` or `ptracer`.
+    /// Parses `path`, `direct`, `bdpt`, `mlt`, `ptracer` or `guided`.
     pub fn parse(s: &str) -> Option<Self> {
         Some(match s {
             "path" => Self::Path,
@@ -138,6 +158,7 @@ impl IntegratorKind {
             "bdpt" => Self::Bdpt,
             "mlt" => Self::Mlt,
             "ptracer" => Self::Ptracer,
+            "guided" => Self::Guided,
             _ => return None,
         })
     }
@@ -150,6 +171,7 @@ impl IntegratorKind {
             Self::Bdpt => "bdpt",
             Self::Mlt => "mlt",
             Self::Ptracer => "ptracer",
+            Self::Guided => "guided",
         }
     }
 }
@@ -168,6 +190,10 @@ impl IntegratorDesc {
             sigma: m.sigma,
         }
     };
+
+    /// Default `guide_probability`, `spatial_threshold` and `directional_threshold` of
+    /// `guided` (the paper's 0.5, 12000 and 0.01).
+    pub const GUIDED_DEFAULTS: (f32, f32, f32) = (0.5, 12_000.0, 0.01);
 
     /// The samples per pixel a render of this integrator takes when nothing overrides the
     /// scene: `mutations_per_pixel` for `mlt`, else the sampler's `sample_count`.
@@ -189,6 +215,7 @@ impl IntegratorDesc {
             Self::Bdpt { .. } => IntegratorKind::Bdpt,
             Self::Mlt { .. } => IntegratorKind::Mlt,
             Self::Ptracer { .. } => IntegratorKind::Ptracer,
+            Self::Guided { .. } => IntegratorKind::Guided,
         }
     }
 
@@ -198,7 +225,8 @@ impl IntegratorDesc {
             Self::Path { max_depth, .. }
             | Self::Bdpt { max_depth, .. }
             | Self::Mlt { max_depth, .. }
-            | Self::Ptracer { max_depth, .. } => Some(max_depth),
+            | Self::Ptracer { max_depth, .. }
+            | Self::Guided { max_depth, .. } => Some(max_depth),
             Self::Direct { .. } => None,
         }
     }
@@ -214,7 +242,8 @@ impl IntegratorDesc {
         let rr = match *self {
             Self::Path { rr_depth, .. }
             | Self::Bdpt { rr_depth, .. }
-            | Self::Ptracer { rr_depth, .. } => rr_depth,
+            | Self::Ptracer { rr_depth, .. }
+            | Self::Guided { rr_depth, .. } => rr_depth,
             _ => 5,
         };
         match kind {
@@ -233,6 +262,13 @@ impl IntegratorDesc {
             IntegratorKind::Ptracer => Self::Ptracer {
                 max_depth: depth,
                 rr_depth: rr,
+            },
+            IntegratorKind::Guided => Self::Guided {
+                max_depth: depth,
+                rr_depth: rr,
+                guide_probability: Self::GUIDED_DEFAULTS.0,
+                spatial_threshold: Self::GUIDED_DEFAULTS.1,
+                directional_threshold: Self::GUIDED_DEFAULTS.2,
             },
             IntegratorKind::Mlt => match Self::MLT_DEFAULTS {
                 Self::Mlt {

@@ -1,16 +1,29 @@
 //! Building [`Lights`] from a scene description: each emitter with its power, the
 //! choice of lights and the sampling plan.
 
+use super::bvh_choice::{BvhChoice, BvhEntry, BVH_MIN_LIGHTS};
 use super::choice::{LightChoice, LightPlace};
-use super::{mean, EnvMap, Light, LightError, Lights, Projector, SamplePlan, Spot};
+use super::{mean, EnvMap, Light, LightBvhUse, LightError, Lights, Projector, SamplePlan, Spot};
 use crate::description::{EmitterDesc, SceneDescription};
 use crate::geometry::{Geometry, RectangleSampler, ShapeSampling};
+use mcrt::sampling::light_bvh::LightBounds;
 use std::f32::consts::PI;
 
 impl Lights {
     /// The lights of a scene; `radius` bounds the scene (for the power of environment
     /// lights).
     pub fn new(desc: &SceneDescription, geo: &Geometry, radius: f32) -> Result<Self, LightError> {
+        Self::with_bvh(desc, geo, radius, LightBvhUse::Auto)
+    }
+
+    /// [`Lights::new`], choosing the lights of next-event estimation by the light BVH as
+    /// `bvh` says.
+    pub fn with_bvh(
+        desc: &SceneDescription,
+        geo: &Geometry,
+        radius: f32,
+        bvh: LightBvhUse,
+    ) -> Result<Self, LightError> {
         let mut lights = Vec::new();
         let mut power = Vec::new();
         let mut shape_light = vec![None; desc.shapes.len()];
@@ -169,7 +182,12 @@ impl Lights {
             })
             .collect();
         let picker = LightChoice::new(&power, &places);
-        let lone_rectangle = single
+        let bvh = picker
+            .as_ref()
+            .filter(|_| bvh != LightBvhUse::Never)
+            .and_then(|_| bvh_choice(&lights, &power, geo, &shape_texture, bvh));
+        let lone_rectangle = bvh.is_none()
+            && single
             && picker.is_some()
             && matches!(rectangles[..], [Some(_)])
             && shape_texture.is_empty();
@@ -178,7 +196,9 @@ impl Lights {
             (true, true, ShapeSampling::Area) => SamplePlan::LoneRectangleByArea,
             (true, true, ShapeSampling::SolidAngle) => SamplePlan::LoneRectangleBySolidAngle,
             (true, true, ShapeSampling::Auto) => SamplePlan::LoneRectangleByDistance,
-            (true, false, _) => SamplePlan::Choose { single },
+            (true, false, _) => SamplePlan::Choose {
+                single: single && bvh.is_none(),
+            },
         };
         let on_mesh =
             |l: &Light| matches!(*l, Light::Area { shape, .. } if geo.shape_reads_pick(shape));
@@ -194,7 +214,8 @@ impl Lights {
             shape_texture,
             picker,
             plan,
-            reads_pick: lights.iter().any(on_mesh),
+            reads_pick: bvh.is_some() || lights.iter().any(on_mesh),
+            bvh,
             rectangles,
             lights,
             shape_light,
@@ -202,6 +223,80 @@ impl Lights {
             has_delta,
         })
     }
+}
+
+/// The light BVH's choice when more than [`BVH_MIN_LIGHTS`] lights have a position (each
+/// emitting triangle of a mesh counted as one, unless its emission is textured: such a mesh
+/// stays one light); `None` below, or when a light's bounds are not usable.
+fn bvh_choice(
+    lights: &[Light],
+    power: &[f32],
+    geo: &Geometry,
+    shape_texture: &[Option<crate::texture::Texture>],
+    bvh: LightBvhUse,
+) -> Option<BvhChoice> {
+    // Count first: the per-triangle bounds are built only when the tree will be.
+    let count: usize = lights
+        .iter()
+        .map(|l| match *l {
+            Light::Area { shape, .. } if !textured(shape_texture, shape) => {
+                geo.triangle_count(shape).unwrap_or(1)
+            }
+            Light::Constant { .. } | Light::EnvMap(_) | Light::Directional { .. } => 0,
+            _ => 1,
+        })
+        .sum();
+    if count == 0 || (bvh == LightBvhUse::Auto && count <= BVH_MIN_LIGHTS) {
+        return None;
+    }
+    let mut entries = Vec::with_capacity(count);
+    let mut bounds = Vec::with_capacity(count);
+    let mut unbounded = Vec::new();
+    for (i, l) in lights.iter().enumerate() {
+        let whole = |b: mcrt::sampling::light_bvh::LightBounds| {
+            (
+                vec![BvhEntry {
+                    light: i as u32,
+                    triangle: None,
+                }],
+                vec![b],
+            )
+        };
+        let (e, b) = match *l {
+            Light::Area { shape, radiance } => {
+                let per_triangle = (!textured(shape_texture, shape))
+                    .then(|| geo.triangle_light_bounds(shape, mean(radiance).max(0.0)))
+                    .flatten();
+                match per_triangle {
+                    Some(b) => (
+                        (0..b.len() as u32)
+                            .map(|k| BvhEntry {
+                                light: i as u32,
+                                triangle: Some(k),
+                            })
+                            .collect(),
+                        b,
+                    ),
+                    None => whole(geo.shape_light_bounds(shape, power[i])?),
+                }
+            }
+            Light::Point { position, .. } => whole(LightBounds::point(position, power[i])),
+            Light::Spot(ref s) => whole(s.light_bounds(power[i])),
+            Light::Projector(ref p) => whole(LightBounds::point(p.position(), power[i])),
+            Light::Constant { .. } | Light::EnvMap(_) | Light::Directional { .. } => {
+                unbounded.push(i as u32);
+                continue;
+            }
+        };
+        entries.extend(e);
+        bounds.extend(b);
+    }
+    BvhChoice::new(lights.len(), entries, &bounds, unbounded, power)
+}
+
+/// Whether the area light on shape `shape` has a textured emission.
+fn textured(shape_texture: &[Option<crate::texture::Texture>], shape: u32) -> bool {
+    matches!(shape_texture.get(shape as usize), Some(Some(_)))
 }
 
 /// The width over height of a texture's image (Mitsuba's `resolution()`; 1 for a

@@ -1,9 +1,11 @@
 //! Lights: area emitters on shapes (front side only), point and spot lights, directional
 //! lights, a constant environment and an environment map, chosen for next-event estimation by power, or, with a few lights
 //! that all have a position, by their estimated contribution at the shading point
-//! (`choice.rs`).
+//! (`choice.rs`), or, with many lights, by a light BVH beside the lights without a position
+//! (`bvh_choice.rs`).
 
 mod build;
+mod bvh_choice;
 mod choice;
 mod emission;
 mod envmap;
@@ -14,6 +16,8 @@ mod spot;
 mod tests;
 
 pub(crate) use build::texture_aspect;
+use bvh_choice::BvhChoice;
+pub use bvh_choice::LightBvhUse;
 use choice::LightChoice;
 
 pub use envmap::EnvMap;
@@ -69,8 +73,11 @@ pub enum Light {
 #[derive(Debug, Clone)]
 pub struct Lights {
     lights: Vec<Light>,
-    /// Chooses a light; `None` when no light emits.
+    /// Chooses a light; `None` when no light emits. (Also the power choice of light
+    /// subpaths.)
     picker: Option<LightChoice>,
+    /// With many lights: the choice of next-event estimation instead of `picker`.
+    bvh: Option<BvhChoice>,
     shape_light: Vec<Option<u32>>,
     /// Per shape: its emitted radiance if it is an area light (one load per hit).
     shape_radiance: Vec<Option<Vec3>>,
@@ -154,10 +161,22 @@ impl Lights {
         &self.lights
     }
 
-    /// Probability of choosing light `i` at shading point `p`.
+    /// Probability of choosing light `i` (its triangle `prim`, where the light BVH chooses
+    /// triangles) at the shading point `from`.
     #[inline]
-    fn pmf(&self, p: Vec3, i: u32) -> f32 {
-        self.picker.as_ref().map_or(0.0, |t| t.pmf(p, i as usize))
+    fn pmf(&self, from: &SurfacePoint, i: u32, prim: u32) -> f32 {
+        if let Some(b) = &self.bvh {
+            return b.pmf(from.p, from.frame.n, i as usize, prim);
+        }
+        self.picker
+            .as_ref()
+            .map_or(0.0, |t| t.pmf(from.p, i as usize))
+    }
+
+    /// The number of lights the light BVH chooses among (each emitting triangle of a mesh
+    /// counted), or `None` when next-event estimation chooses without it.
+    pub fn bvh_lights(&self) -> Option<usize> {
+        self.bvh.as_ref().map(BvhChoice::bvh_lights)
     }
 
     /// Whether [`Lights::sample`] reads its `u_pick` argument (`u_pick.y` chooses a triangle):
@@ -284,18 +303,23 @@ impl Lights {
         };
         let picker = self.picker.as_ref()?;
         // The light is chosen with `u.x`, which is then reused for the light's own point
-        // (see `LightChoice::sample`), so each light's points stay stratified.
-        let (i, pick, u) = if single {
-            (0, 1.0, u)
+        // (see `LightChoice::sample`), so each light's points stay stratified. The light
+        // BVH chooses with `u_pick.x` (and may choose one triangle of a mesh).
+        let (i, pick, u, triangle) = if let Some(b) = &self.bvh {
+            let c = b.sample(from.p, from.frame.n, u_pick.x)?;
+            (c.light, c.pick, u, c.triangle)
+        } else if single {
+            (0, 1.0, u, None)
         } else {
             let (i, pick, rest) = picker.sample(from.p, u.x);
-            (i, pick, Vec2::new(rest, u.y))
+            (i, pick, Vec2::new(rest, u.y), None)
         };
         match self.lights[i] {
             Light::Area { shape, radiance } => {
-                let s = match &self.rectangles[i] {
-                    Some(r) => r.sample(geo.shape_sampling(), from.p, u)?,
-                    None => geo.sample_shape(shape, from.p, u_pick.y, u)?,
+                let s = match (triangle, &self.rectangles[i]) {
+                    (Some(k), _) => geo.sample_triangle(shape, k, from.p, u)?,
+                    (None, Some(r)) => r.sample(geo.shape_sampling(), from.p, u)?,
+                    (None, None) => geo.sample_shape(shape, from.p, u_pick.y, u)?,
                 };
                 let radiance = self.area_radiance_at(geo, shape, radiance, u_pick.y, s.p);
                 toward_area_light(s, radiance, from.p, pick)
@@ -395,15 +419,28 @@ impl Lights {
         let Some(Some(i)) = self.shape_light.get(hit.shape as usize) else {
             return 0.0;
         };
-        geo.shape_pdf_at(hit.shape, from.p, (hit.p, hit.ng, hit.prim)) * self.pmf(from.p, *i)
+        let at = (hit.p, hit.ng, hit.prim);
+        if let Some(b) = &self.bvh {
+            let pick = b.pmf(from.p, from.frame.n, *i as usize, hit.prim);
+            if pick == 0.0 {
+                return 0.0;
+            }
+            let pdf = if b.by_triangle(*i as usize) {
+                geo.triangle_pdf_at(hit.shape, from.p, at)
+            } else {
+                geo.shape_pdf_at(hit.shape, from.p, at)
+            };
+            return pdf * pick;
+        }
+        geo.shape_pdf_at(hit.shape, from.p, at) * self.pmf(from, *i, hit.prim)
     }
 
     /// The same for the environment along `dir`.
     pub(crate) fn pdf_environment(&self, from: &SurfacePoint, dir: Vec3) -> f32 {
         match self.env {
             Some(i) => match &self.lights[i as usize] {
-                Light::EnvMap(m) => self.pmf(from.p, i) * m.pdf(dir),
-                _ => self.pmf(from.p, i) * UniformSphere.pdf(dir),
+                Light::EnvMap(m) => self.pmf(from, i, 0) * m.pdf(dir),
+                _ => self.pmf(from, i, 0) * UniformSphere.pdf(dir),
             },
             None => 0.0,
         }

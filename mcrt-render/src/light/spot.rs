@@ -98,6 +98,18 @@ impl Spot {
         self.position
     }
 
+    /// Its bounds for the light BVH, of power `power`: full intensity within the beam
+    /// width, falling off to 0 at the cutoff angle.
+    pub(crate) fn light_bounds(&self, power: f32) -> mcrt::sampling::light_bvh::LightBounds {
+        mcrt::sampling::light_bvh::LightBounds::spot(
+            self.position,
+            self.frame.n,
+            self.cos_beam,
+            self.cos_cutoff,
+            power,
+        )
+    }
+
     /// The share of the peak intensity sent at angle `θ` to the axis, from `cos θ`: 1
     /// inside the beam, falling linearly in `θ` to 0 at the cutoff, 0 beyond.
     pub fn falloff(&self, cos_theta: f32) -> f32 {

@@ -1,4 +1,4 @@
-//! `<integrator>`: `path`, `direct`, `bdpt`, `mlt` and `ptracer`, read through their
+//! `<integrator>`: `path`, `direct`, `bdpt`, `mlt`, `ptracer` and `guided`, read through their
 //! definitions (`param_defs::integrator`), and `moment` around `path` or `direct`.
 
 use super::context::{Ctx, Res};
@@ -7,9 +7,9 @@ use super::tree::Elem;
 use super::{no_objects, plugin_type};
 use crate::description::{IntegratorDesc, MomentDesc};
 use crate::param_defs::integrator::{
-    direct_counts, mlt_counts, BOOTSTRAP_SAMPLES, BSDF_SAMPLES, CHAINS, EMITTER_SAMPLES,
-    HIDE_EMITTERS, LARGE_STEP_PROB, MAX_DEPTH, MLT_MAX_DEPTH, MUTATIONS_PER_PIXEL, RR_DEPTH,
-    SAMPLES_PER_PASS, SHADING_SAMPLES, SIGMA,
+    direct_counts, mlt_counts, BOOTSTRAP_SAMPLES, BSDF_SAMPLES, CHAINS, DIRECTIONAL_THRESHOLD,
+    EMITTER_SAMPLES, GUIDE_PROBABILITY, HIDE_EMITTERS, LARGE_STEP_PROB, MAX_DEPTH, MLT_MAX_DEPTH,
+    MUTATIONS_PER_PIXEL, RR_DEPTH, SAMPLES_PER_PASS, SHADING_SAMPLES, SIGMA, SPATIAL_THRESHOLD,
 };
 use crate::scene_error::SceneErrorKind;
 
@@ -21,7 +21,7 @@ pub(crate) struct ReadIntegrator {
 }
 
 /// The integrator types that read their own parameters.
-const PLAIN: &[&str] = &["path", "direct", "bdpt", "mlt", "ptracer"];
+const PLAIN: &[&str] = &["path", "direct", "bdpt", "mlt", "ptracer", "guided"];
 
 /// The name Mitsuba 3 gives the first nested object that has no `name` attribute.
 const FIRST_UNNAMED: &str = "_arg_0";
@@ -155,9 +155,25 @@ fn read_plain(ctx: &Ctx, e: &Elem, ty: &str) -> Res<(IntegratorDesc, bool)> {
                 rr_depth,
             }
         }
+        "guided" => {
+            let max_depth = p.get_int(&MAX_DEPTH)? as i32;
+            let rr_depth = p.get_int(&RR_DEPTH)? as u32;
+            IntegratorDesc::Guided {
+                max_depth,
+                rr_depth,
+                guide_probability: p.get_float(&GUIDE_PROBABILITY)?,
+                spatial_threshold: p.get_float(&SPATIAL_THRESHOLD)?,
+                directional_threshold: p.get_float(&DIRECTIONAL_THRESHOLD)?,
+            }
+        }
         other => return Err(unknown(ctx, e, other)),
     };
-    let hide_emitters = p.get_bool(&HIDE_EMITTERS)?;
+    // `guided` has no `hide_emitters` (left unread, it is reported as unknown).
+    let hide_emitters = if ty == "guided" {
+        false
+    } else {
+        p.get_bool(&HIDE_EMITTERS)?
+    };
     p.finish()?;
     Ok((desc, hide_emitters))
 }

@@ -1,4 +1,4 @@
-//! The parameters of the integrators `path`, `direct`, `bdpt`, `mlt` and `ptracer`, and the check of
+//! The parameters of the integrators `path`, `direct`, `bdpt`, `mlt`, `ptracer` and `guided`, and the check of
 //! an [`IntegratorDesc`] against them (for a description built in code; the loader checks
 //! each value as it reads it).
 
@@ -132,6 +132,39 @@ pub(crate) const SIGMA: FloatParam<f32> = FloatParam {
     doc: "standard deviation of a small step's perturbation of each primary sample value",
 };
 
+/// `guide_probability` of `guided`.
+pub(crate) const GUIDE_PROBABILITY: FloatParam<f32> = FloatParam {
+    name: "guide_probability",
+    default: IntegratorDesc::GUIDED_DEFAULTS.0,
+    range: "[0, 0.999]",
+    accept: |v| {
+        if (0.0..=0.999).contains(&v) {
+            Ok(v)
+        } else {
+            Err("must lie in [0, 0.999] (BSDF sampling keeps a positive share)".into())
+        }
+    },
+    doc: "probability of sampling the learned guide rather than the BSDF at a non-specular vertex",
+};
+
+/// `spatial_threshold` of `guided`.
+pub(crate) const SPATIAL_THRESHOLD: FloatParam<f32> = FloatParam {
+    name: "spatial_threshold",
+    default: IntegratorDesc::GUIDED_DEFAULTS.1,
+    range: "> 0",
+    accept: |v| in_half_open(v, 0.0, f32::MAX, "must be positive and finite"),
+    doc: "`c`: a spatial leaf that took more than `c·√(2^k)` records in training pass `k` is           split",
+};
+
+/// `directional_threshold` of `guided`.
+pub(crate) const DIRECTIONAL_THRESHOLD: FloatParam<f32> = FloatParam {
+    name: "directional_threshold",
+    default: IntegratorDesc::GUIDED_DEFAULTS.2,
+    range: "(0, 1]",
+    accept: |v| in_half_open(v, 0.0, 1.0, "must lie in (0, 1]"),
+    doc: "ρ: a directional quadrant holding more than this fraction of its leaf's energy is           subdivided",
+};
+
 /// `path`.
 pub(crate) const PATH: PluginParams = PluginParams {
     category: "integrator",
@@ -140,6 +173,19 @@ pub(crate) const PATH: PluginParams = PluginParams {
         ParamDef::Int(&MAX_DEPTH),
         ParamDef::Int(&RR_DEPTH),
         ParamDef::Bool(&HIDE_EMITTERS),
+    ],
+};
+
+/// `guided`.
+pub(crate) const GUIDED: PluginParams = PluginParams {
+    category: "integrator",
+    plugin: "guided",
+    params: &[
+        ParamDef::Int(&MAX_DEPTH),
+        ParamDef::Int(&RR_DEPTH),
+        ParamDef::Float(&GUIDE_PROBABILITY),
+        ParamDef::Float(&SPATIAL_THRESHOLD),
+        ParamDef::Float(&DIRECTIONAL_THRESHOLD),
     ],
 };
 
@@ -232,6 +278,19 @@ pub(crate) fn check(i: &IntegratorDesc) -> Result<(), Invalid> {
         } => {
             MAX_DEPTH.check(max_depth as i64)?;
             RR_DEPTH.check(rr_depth as i64)?;
+        }
+        IntegratorDesc::Guided {
+            max_depth,
+            rr_depth,
+            guide_probability,
+            spatial_threshold,
+            directional_threshold,
+        } => {
+            MAX_DEPTH.check(max_depth as i64)?;
+            RR_DEPTH.check(rr_depth as i64)?;
+            GUIDE_PROBABILITY.check(guide_probability)?;
+            SPATIAL_THRESHOLD.check(spatial_threshold)?;
+            DIRECTIONAL_THRESHOLD.check(directional_threshold)?;
         }
         IntegratorDesc::Direct {
             emitter_samples,

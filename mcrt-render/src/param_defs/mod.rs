@@ -219,6 +219,7 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     integrator::BDPT,
     integrator::MLT,
     integrator::PTRACER,
+    integrator::GUIDED,
     sampler::INDEPENDENT,
     sampler::STRATIFIED,
     sampler::LDSAMPLER,

@@ -46,6 +46,7 @@ impl Renderer {
             nonfinite_samples: stats.nonfinite,
             seconds: start.elapsed().as_secs_f64(),
             strategies: stats.strategies,
+            guiding: stats.guiding,
         }
     }
 
@@ -133,6 +134,10 @@ impl Renderer {
         view: &SceneView<'_, B, DELTA, ENV>,
         p: &tiles::LoopParams<'_>,
     ) -> (Film, tiles::LoopStats) {
+        if let Some(g) = &self.guided {
+            let b = self.geometry.bounds();
+            return super::guided_loop::render_guided(view, p, g, (b.min, b.max));
+        }
         match &self.integrator {
             Integrator::Bdpt(b) => bidir::render_loop_bdpt(view, p, b),
             Integrator::Mlt(m) => mlt_loop::render_mlt(view, p, m),

@@ -1,6 +1,7 @@
 //! Assembling the estimators' inputs from a [`SceneDescription`]: geometry, lights,
 //! materials, camera, the integrator with its settings, and the resolved sample count.
 
+use super::guided_loop::GuidedSetup;
 use super::samples::resolve;
 use super::{split, Effects, RenderError, RenderOptions, Renderer};
 use crate::bsdf::{AnyBsdf, TexturedBsdf};
@@ -12,7 +13,9 @@ use crate::film::{Film, PixelFilter};
 use crate::geometry::{Geometry, ShapeSampling};
 use crate::light::Lights;
 use glam::{Vec3, Vec4Swizzles};
-use mcrt::integrator::{Bdpt, DirectIntegrator, Integrator, Mlt, PathTracer, Strategy};
+use mcrt::integrator::{
+    Bdpt, DirectIntegrator, GuidedPathTracer, Integrator, Mlt, PathTracer, Strategy,
+};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -50,7 +53,8 @@ impl Renderer {
                 }
             })?
             .with_shape_sampling(shape_sampling);
-        let lights = Lights::new(desc, &geo, scene_radius(desc)).map_err(RenderError::Lights)?;
+        let lights = Lights::with_bvh(desc, &geo, scene_radius(desc), opts.light_bvh)
+            .map_err(RenderError::Lights)?;
         let camera = Camera::new(&desc.sensor).map_err(RenderError::Camera)?;
         // Per shape in the numbering hits report: the scene's, then its groups'.
         let all_shapes = desc.all_shapes();
@@ -82,11 +86,20 @@ impl Renderer {
             desc.hide_emitters,
         );
         check_bidirectional(&integrator, &camera, strategy)?;
+        let guided = guided_setup(&resolved.integrator, &integrator);
+        if guided.is_some() {
+            check_guided(desc, opts)?;
+        }
         if desc.moment.is_some()
-            && !matches!(integrator, Integrator::Path(_) | Integrator::Direct(_))
+            && (guided.is_some()
+                || !matches!(integrator, Integrator::Path(_) | Integrator::Direct(_)))
         {
             return Err(RenderError::Unsupported {
-                integrator: integrator.name(),
+                integrator: if guided.is_some() {
+                    "guided"
+                } else {
+                    integrator.name()
+                },
                 reason: "the moment integrator wraps only path and direct, which sample per pixel",
             });
         }
@@ -134,8 +147,15 @@ impl Renderer {
             &described,
             None,
             &format!(
-                "{integrator:?} {:?} {shape_sampling:?} {}",
-                opts.accel, opts.specialize
+                "{integrator:?} {:?} {shape_sampling:?} {}{}{}",
+                opts.accel,
+                opts.specialize,
+                guided.map_or(String::new(), |g| format!(" {g:?}")),
+                // Only where it changes the choice, so that identities stay as they were.
+                match lights.bvh_lights() {
+                    Some(n) => format!(" light BVH over {n}"),
+                    None => String::new(),
+                }
             ),
         )
         .map_err(RenderError::Invalid)?;
@@ -146,6 +166,7 @@ impl Renderer {
             textured,
             camera,
             integrator,
+            guided,
             filter: PixelFilter::from_desc(&film.filter),
             width,
             height,
@@ -181,6 +202,17 @@ fn integrator(
             rr_depth,
             strategy,
             hide_emitters,
+        }),
+        // The path tracer the guided one guides (`guided_setup` adds the rest).
+        IntegratorDesc::Guided {
+            max_depth,
+            rr_depth,
+            ..
+        } => Integrator::Path(PathTracer {
+            max_depth,
+            rr_depth,
+            strategy,
+            hide_emitters: false,
         }),
         IntegratorDesc::Direct {
             emitter_samples,
@@ -229,6 +261,48 @@ fn integrator(
             hide_emitters,
         }),
     }
+}
+
+/// The guided path tracer of description `d` (`None` unless it is `guided`), from the path
+/// tracer `base` that [`integrator`] made of it.
+fn guided_setup(d: &IntegratorDesc, base: &Integrator) -> Option<GuidedSetup> {
+    match (*d, base) {
+        (
+            IntegratorDesc::Guided {
+                guide_probability,
+                spatial_threshold,
+                directional_threshold,
+                ..
+            },
+            Integrator::Path(pt),
+        ) => Some(GuidedSetup {
+            tracer: GuidedPathTracer {
+                guide_probability,
+                ..GuidedPathTracer::from_path_tracer(pt)
+            },
+            spatial_threshold,
+            directional_threshold,
+        }),
+        _ => None,
+    }
+}
+
+/// What `guided` cannot do: hide emitters, or render a part of the samples or pixels (its
+/// training passes need every pixel, and a part's tree would differ from the whole's).
+fn check_guided(desc: &SceneDescription, opts: &RenderOptions) -> Result<(), RenderError> {
+    if desc.hide_emitters {
+        return Err(RenderError::Unsupported {
+            integrator: "guided",
+            reason: "hide_emitters is not supported by the guided path tracer yet",
+        });
+    }
+    if opts.samples.is_some() || opts.crop.is_some() {
+        return Err(RenderError::Split(
+            "guided cannot be split by --samples or --crop: every part would train its own              guide, so parts would not add up to one render"
+                .into(),
+        ));
+    }
+    Ok(())
 }
 
 /// What `bdpt` and `mlt` need of the camera and the strategy.

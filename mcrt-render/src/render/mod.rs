@@ -26,6 +26,7 @@ mod dispatch;
 mod effects;
 mod error;
 mod estimator;
+mod guided_loop;
 mod material;
 mod mlt_loop;
 mod options;
@@ -37,6 +38,7 @@ mod view;
 
 pub use effects::Effects;
 pub use error::RenderError;
+pub use guided_loop::GuidingReport;
 pub use options::RenderOptions;
 pub use output::RenderOutput;
 
@@ -61,6 +63,9 @@ pub struct Renderer {
     textured: Option<Vec<TexturedBsdf>>,
     camera: Camera,
     integrator: Integrator,
+    /// The guided path tracer, when the scene's integrator is `guided` (then `integrator`
+    /// is the path tracer with the same depth, roulette and strategy).
+    guided: Option<guided_loop::GuidedSetup>,
     filter: PixelFilter,
     width: u32,
     height: u32,
@@ -128,9 +133,31 @@ impl Renderer {
         (self.width, self.height)
     }
 
-    /// The integrator (with the strategy in use).
+    /// The integrator (with the strategy in use); for `guided`, the path tracer it guides
+    /// (same depth, roulette and strategy: see [`Renderer::guided`]).
     pub fn integrator(&self) -> &Integrator {
         &self.integrator
+    }
+
+    /// The number of lights the light BVH of next-event estimation chooses among (each
+    /// emitting triangle of a mesh counted), or `None` when the scene has too few lights
+    /// with a position for it.
+    pub fn light_bvh_lights(&self) -> Option<usize> {
+        self.lights.bvh_lights()
+    }
+
+    /// The guided path tracer, when the integrator is `guided`.
+    pub fn guided(&self) -> Option<&mcrt::integrator::GuidedPathTracer> {
+        self.guided.as_ref().map(|g| &g.tracer)
+    }
+
+    /// The integrator's name: `guided`, or [`Integrator::name`].
+    pub fn integrator_name(&self) -> &'static str {
+        if self.guided.is_some() {
+            "guided"
+        } else {
+            self.integrator.name()
+        }
     }
 
     /// Checks the multiple-importance weights of `bdpt` on this scene as the bidirectional

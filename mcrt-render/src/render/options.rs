@@ -3,6 +3,7 @@
 use super::{AccelKind, ShapeSampling};
 use crate::description::{IntegratorKind, SamplerKind};
 use crate::film::{Crop, SampleRange};
+use crate::light::LightBvhUse;
 use mcrt::integrator::Strategy;
 
 /// Overrides of what the scene file says.
@@ -25,6 +26,9 @@ pub struct RenderOptions {
     /// area (their other strategies cover the region near a light where solid-angle sampling
     /// helps, at a fraction of its cost).
     pub light_sampling: ShapeSampling,
+    /// When next-event estimation chooses its light by the light BVH (by default above 16
+    /// lights with a position, each emitting triangle counted).
+    pub light_bvh: LightBvhUse,
     /// Sample generator (else the file's `sampler` type).
     pub sampler: Option<SamplerKind>,
     /// Integrator type (else the file's); the file's `max_depth` and `rr_depth` carry over
@@ -56,6 +60,7 @@ impl Default for RenderOptions {
             accel: AccelKind::Bvh,
             sampler: None,
             light_sampling: ShapeSampling::Auto,
+            light_bvh: LightBvhUse::Auto,
             specialize: true,
             integrator: None,
             bdpt_only: None,

@@ -19,6 +19,10 @@ pub struct RenderOutput {
     pub seconds: f64,
     /// For bidirectional path tracing: what each strategy contributed.
     pub strategies: Option<mcrt::integrator::StrategyStats>,
+    /// For the guided path tracer: its training passes and what they cost (their time is
+    /// part of [`RenderOutput::seconds`]; [`RenderOutput::samples`] counts the final
+    /// pass's samples, the image's).
+    pub guiding: Option<super::GuidingReport>,
 }
 
 impl RenderOutput {

@@ -54,6 +54,8 @@ pub(crate) struct LoopStats {
     pub strategies: Option<mcrt::integrator::StrategyStats>,
     /// Samples whose value was NaN or infinite (added as zero).
     pub nonfinite: u64,
+    /// What training cost (the guided path tracer only).
+    pub guiding: Option<super::GuidingReport>,
 }
 
 /// The tiles of window `c`, row by row.

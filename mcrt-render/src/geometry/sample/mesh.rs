@@ -64,6 +64,21 @@ pub(super) fn sample(
         return r.sample(how, reference, u);
     }
     let (k, pmf) = m.pick.as_ref()?.sample_with_pmf(u_pick);
+    let (p, n, pdf) = on_triangle(m, how, reference, k, u)?;
+    let pdf = pmf * pdf;
+    (pdf.is_finite() && pdf > 0.0).then_some(ShapeSample { p, n, pdf })
+}
+
+/// A point on triangle `k` (by solid angle or by area, as `how` says at `reference`), its
+/// front normal, and its density per steradian among the points of that triangle.
+#[inline]
+fn on_triangle(
+    m: &MeshData,
+    how: ShapeSampling,
+    reference: Vec3,
+    k: usize,
+    u: Vec2,
+) -> Option<(Vec3, Vec3, f32)> {
     let tri = triangle(m, k);
     let n = front_normal(m, tri);
     let (p, pdf) = match solid_angle(how, reference, tri, || {
@@ -78,8 +93,44 @@ pub(super) fn sample(
             )
         }
     };
-    let pdf = pmf * pdf;
+    Some((p, n, pdf))
+}
+
+/// A point on triangle `k` alone (the light BVH chooses triangles itself): as [`sample`]
+/// without the choice of the triangle, density per steradian among its points.
+pub(super) fn sample_triangle(
+    m: &MeshData,
+    how: ShapeSampling,
+    reference: Vec3,
+    k: usize,
+    u: Vec2,
+) -> Option<ShapeSample> {
+    if k >= m.indices.len() || m.rectangle.is_some() {
+        return None;
+    }
+    let (p, n, pdf) = on_triangle(m, how, reference, k, u)?;
     (pdf.is_finite() && pdf > 0.0).then_some(ShapeSample { p, n, pdf })
+}
+
+/// The density of [`sample_triangle`] at point `p` of triangle `prim`.
+pub(super) fn pdf_triangle(
+    m: &MeshData,
+    how: ShapeSampling,
+    reference: Vec3,
+    at: (Vec3, Vec3, u32),
+) -> Option<f32> {
+    if (at.2 as usize) >= m.indices.len() || m.rectangle.is_some() {
+        return None;
+    }
+    triangle_density(m, how, reference, at)
+}
+
+/// Each triangle's vertices and front normal (a `rectangle`'s two triangles too).
+pub(super) fn triangles(m: &MeshData) -> impl Iterator<Item = ([Vec3; 3], Vec3)> + '_ {
+    (0..m.indices.len()).map(|k| {
+        let tri = triangle(m, k);
+        (tri, front_normal(m, tri))
+    })
 }
 
 /// A point uniform by area over the whole mesh (a triangle by its area, then a uniform
@@ -108,14 +159,26 @@ pub(super) fn pdf(
         return None;
     }
     let pmf = m.pick.as_ref()?.pmf(k);
-    let tri = triangle(m, k);
-    let pdf = match solid_angle(how, reference, tri, || {
+    let pdf = triangle_density(m, how, reference, (p, ng, prim))?;
+    Some(pmf * pdf)
+}
+
+/// The density per steradian of a point `p` (front normal `ng`) on triangle `prim` (in
+/// range) among that triangle's points.
+#[inline]
+fn triangle_density(
+    m: &MeshData,
+    how: ShapeSampling,
+    reference: Vec3,
+    (p, ng, prim): (Vec3, Vec3, u32),
+) -> Option<f32> {
+    let tri = triangle(m, prim as usize);
+    match solid_angle(how, reference, tri, || {
         SphericalTriangle::new(reference, tri[0], tri[1], tri[2])
     }) {
-        Some(st) => st.pdf((p - reference).normalize_or_zero()),
-        None => area_to_solid_angle(1.0 / triangle_area(tri), reference, p, ng)?,
-    };
-    Some(pmf * pdf)
+        Some(st) => Some(st.pdf((p - reference).normalize_or_zero())),
+        None => area_to_solid_angle(1.0 / triangle_area(tri), reference, p, ng),
+    }
 }
 
 fn triangle_area([a, b, c]: [Vec3; 3]) -> f32 {

@@ -16,6 +16,7 @@
 //! Area densities become solid-angle ones as `p_ω = p_A · d² / |cos θ'|` (`d` the distance,
 //! `θ'` the angle at the sampled point between its normal and the way back).
 
+mod light_bounds;
 mod mesh;
 pub(super) mod rectangle;
 mod sphere;

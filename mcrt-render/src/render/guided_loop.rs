@@ -1,0 +1,259 @@
+//! The render loop of the guided path tracer: training passes of doubling sample counts
+//! ([`GuidingSchedule`]), each guided by the SD-tree the previous pass trained and recording
+//! into a fresh tree with the refined structure, then the final pass, whose image is the
+//! render's (Müller, Gross & Novák 2017, "Practical Path Guiding for Efficient
+//! Light-Transport Simulation", CGF 36(4)).
+//!
+//! Determinism: every pass draws the pixel samples of its own index range (pass `k` the
+//! `2^k` indices after the previous passes', the final pass the rest of the sampler's
+//! layout), tiles record into their own [`GuidingRecords`], and the buffers are merged into
+//! the training tree in tile order, chunk by chunk: the trees, and so the image, are the
+//! same at any thread count.
+
+use super::tiles::{pass_size, tiles, LoopParams, LoopStats};
+use crate::camera::Camera;
+use crate::film::{Film, PixelAccum};
+use glam::{Vec2, Vec3};
+use mcrt::integrator::{GuidedPathTracer, Scene};
+use mcrt::sampling::guiding::{GuidingRecords, GuidingSchedule, SdTree};
+use mcrt::sampling::sampler::{AnySampler, Sampler};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+
+/// Tiles rendered between two merges of their records (bounds the records held at once).
+const CHUNK: usize = 64;
+
+/// The guided path tracer with its training settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct GuidedSetup {
+    /// The estimator.
+    pub tracer: GuidedPathTracer,
+    /// `c` of the spatial threshold `c·√(2^k)`.
+    pub spatial_threshold: f32,
+    /// ρ, the directional subdivision threshold.
+    pub directional_threshold: f32,
+}
+
+/// What training cost, for the render's report.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GuidingReport {
+    /// Training passes rendered.
+    pub passes: u32,
+    /// Samples per pixel spent on training (their images are discarded).
+    pub training_spp: u32,
+    /// Samples per pixel of the final pass, the image.
+    pub final_spp: u32,
+    /// Wall-clock seconds of the training passes (part of the render's time).
+    pub training_seconds: f64,
+    /// Spatial leaves of the tree that guided the final pass.
+    pub leaves: usize,
+}
+
+/// One tile's accumulators (the final pass) or records (a training pass), and its rays.
+struct TileOut {
+    pixels: Vec<(usize, PixelAccum)>,
+    records: GuidingRecords,
+    rays: u64,
+    nonfinite: u64,
+}
+
+/// Renders the whole schedule: the film of the final pass, the counters (rays of every
+/// pass, samples of the final pass) and what training cost.
+pub(crate) fn render_guided<S: Scene + Sync>(
+    scene: &S,
+    p: &LoopParams<'_>,
+    g: &GuidedSetup,
+    bounds: (Vec3, Vec3),
+) -> (Film, LoopStats) {
+    let start = Instant::now();
+    let mut schedule = GuidingSchedule::new(p.samples.len());
+    schedule.spatial_c = f64::from(g.spatial_threshold);
+    schedule.rho = f64::from(g.directional_threshold);
+    let mut guide = SdTree::new(bounds.0, bounds.1);
+    let mut training = guide.clone();
+    let mut film = Film::new(p.width, p.height);
+    let mut stats = LoopStats::default();
+    let mut report = GuidingReport {
+        passes: 0,
+        training_spp: 0,
+        final_spp: 0,
+        training_seconds: 0.0,
+        leaves: guide.leaf_count(),
+    };
+    let done = AtomicU64::new(0);
+    let mut first = p.samples.start;
+    for pass in schedule.passes() {
+        if p.cancel.load(Ordering::Relaxed) {
+            break;
+        }
+        let range = (first, first + pass.spp);
+        first += pass.spp;
+        if pass.is_final {
+            report.training_seconds = start.elapsed().as_secs_f64();
+            report.final_spp = pass.spp;
+            report.leaves = guide.leaf_count();
+            run_pass(scene, p, g, &guide, range, &done, |out| {
+                stats.rays += out.rays;
+                stats.nonfinite += out.nonfinite;
+                for (i, a) in &out.pixels {
+                    stats.samples += a.count as u64;
+                    let merged = film.merge(*i, a);
+                    debug_assert!(merged.is_ok());
+                }
+            });
+        } else {
+            run_pass(scene, p, g, &guide, range, &done, |out| {
+                stats.rays += out.rays;
+                training.merge(&out.records);
+            });
+            report.passes += 1;
+            report.training_spp += pass.spp;
+            let next = schedule.next_tree(&training, &pass);
+            guide = std::mem::replace(&mut training, next);
+        }
+    }
+    stats.guiding = Some(report);
+    (film, stats)
+}
+
+/// Renders the sample indices `range` of every pixel guided by `guide`, recording unless
+/// `range` is the final pass's (`take` is given the tiles' results in tile order).
+fn run_pass<S: Scene + Sync>(
+    scene: &S,
+    p: &LoopParams<'_>,
+    g: &GuidedSetup,
+    guide: &SdTree,
+    (s0, s1): (u32, u32),
+    done: &AtomicU64,
+    mut take: impl FnMut(TileOut),
+) {
+    let record = s1 < p.samples.end;
+    let all = tiles(p.window);
+    let total = p.samples.len() as u64 * p.window.area();
+    let step = pass_size(s1 - s0);
+    let mut a = s0;
+    while a < s1 && !p.cancel.load(Ordering::Relaxed) {
+        let b = (a + step).min(s1);
+        for chunk in all.chunks(CHUNK) {
+            let results: Vec<Option<TileOut>> = chunk
+                .par_iter()
+                .map(|&t| {
+                    if p.cancel.load(Ordering::Relaxed) {
+                        return None;
+                    }
+                    let r = render_tile(scene, p, g, guide, t, (a, b), record);
+                    let n = ((t.2 - t.0) * (t.3 - t.1) * (b - a)) as u64;
+                    let d = done.fetch_add(n, Ordering::Relaxed) + n;
+                    (p.progress)(d, total);
+                    Some(r)
+                })
+                .collect();
+            results.into_iter().flatten().for_each(&mut take);
+        }
+        a = b;
+    }
+}
+
+/// One tile with the sampler's concrete type.
+fn render_tile<S: Scene>(
+    scene: &S,
+    p: &LoopParams<'_>,
+    g: &GuidedSetup,
+    guide: &SdTree,
+    tile: (u32, u32, u32, u32),
+    samples: (u32, u32),
+    record: bool,
+) -> TileOut {
+    let t = Tile {
+        scene,
+        camera: p.camera,
+        filter: p.filter,
+        width: p.width,
+        t_max: p.t_max,
+        tracer: &g.tracer,
+        guide,
+        cancel: p.cancel,
+    };
+    match p.sampler {
+        AnySampler::Independent(s) => t.run(s.clone(), tile, samples, record),
+        AnySampler::Stratified(s) => t.run(s.clone(), tile, samples, record),
+        AnySampler::Sobol(s) => t.run(s.clone(), tile, samples, record),
+        AnySampler::Halton(s) => t.run(s.clone(), tile, samples, record),
+        AnySampler::R2(s) => t.run(s.clone(), tile, samples, record),
+        AnySampler::Cmj(s) => t.run(s.clone(), tile, samples, record),
+        AnySampler::Sobol4d(s) => t.run(s.clone(), tile, samples, record),
+    }
+}
+
+/// What rendering a tile reads.
+struct Tile<'a, S> {
+    scene: &'a S,
+    camera: &'a Camera,
+    filter: &'a crate::film::PixelFilter,
+    width: u32,
+    t_max: f32,
+    tracer: &'a GuidedPathTracer,
+    guide: &'a SdTree,
+    cancel: &'a std::sync::atomic::AtomicBool,
+}
+
+impl<S: Scene> Tile<'_, S> {
+    /// The pixel samples `s0..s1` of every pixel of the tile, as the path tracer's loop
+    /// draws them (film position, lens, then the path), recording into the tile's buffer if
+    /// `record`. A sample running when the render is cancelled is discarded.
+    fn run<R: Sampler>(
+        &self,
+        mut rng: R,
+        (x0, y0, x1, y1): (u32, u32, u32, u32),
+        (s0, s1): (u32, u32),
+        record: bool,
+    ) -> TileOut {
+        let mut out = TileOut {
+            pixels: Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize),
+            records: GuidingRecords::new(),
+            rays: 0,
+            nonfinite: 0,
+        };
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let mut acc = PixelAccum::default();
+                for s in s0..s1 {
+                    if self.cancel.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    rng.start_pixel_sample([x, y], s);
+                    let off = self.filter.sample(rng.next_2d());
+                    let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
+                    let (ray, t_max) = if self.camera.has_lens() {
+                        self.camera.generate_ray_through_lens(film, rng.next_2d())
+                    } else {
+                        self.camera.generate_ray_with_tmax(film)
+                    };
+                    let records = record.then_some(&mut out.records);
+                    let r = self.tracer.li(
+                        self.scene,
+                        self.guide,
+                        ray.origin,
+                        ray.dir,
+                        t_max.min(self.t_max),
+                        &mut rng,
+                        records,
+                    );
+                    if self.cancel.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    out.rays += r.rays as u64;
+                    if r.radiance.is_finite() {
+                        acc.add(r.radiance);
+                    } else {
+                        out.nonfinite += 1;
+                        acc.add(Vec3::ZERO);
+                    }
+                }
+                out.pixels.push(((y * self.width + x) as usize, acc));
+            }
+        }
+        out
+    }
+}
