@@ -1,8 +1,10 @@
 //! Materials with textured parameters: the per-hit material is the constant one with each
-//! textured parameter replaced by the texture's value at the hit.
+//! textured parameter replaced by the texture's value at the hit, and each normal or bump
+//! map's normal set from its texture there.
 
+use super::perturbed::{bump_normal, SurfaceDerivatives};
 use super::{AnyBsdf, Sided};
-use crate::description::BsdfDesc;
+use crate::description::{BsdfDesc, NormalSource};
 use crate::texture::{Texture, TextureParam};
 use glam::{Vec2, Vec3};
 use mcrt::sampling::SamplingError;
@@ -41,14 +43,22 @@ impl AnyBsdf {
                 b.opacity = v.x.clamp(0.0, 1.0);
                 return true;
             }
+            (AnyBsdf::RoughConductor(b), P::Alpha | P::AlphaU | P::AlphaV) => {
+                b.ndf = textured_alpha(&b.ndf, p, v.x);
+                return true;
+            }
+            (AnyBsdf::RoughDielectric(b), P::Alpha | P::AlphaU | P::AlphaV) => {
+                b.ndf = textured_alpha(&b.ndf, p, v.x);
+                return true;
+            }
             _ => return false,
         };
         *slot = v;
         true
     }
 
-    /// The material nested at `path` (0: a blend's first or a mask's material, 1: a
-    /// blend's second), this one for an empty path.
+    /// The material nested at `path` (0: a blend's first or a mask's, normal map's or bump
+    /// map's material, 1: a blend's second), this one for an empty path.
     fn nested_mut(&mut self, path: &[u8]) -> Option<&mut AnyBsdf> {
         let Some((&step, rest)) = path.split_first() else {
             return Some(self);
@@ -57,18 +67,40 @@ impl AnyBsdf {
             (AnyBsdf::Blend(b), 0) => &mut b.first.bsdf,
             (AnyBsdf::Blend(b), 1) => &mut b.second.bsdf,
             (AnyBsdf::Mask(m), 0) => &mut m.inner.bsdf,
+            (AnyBsdf::Perturbed(m), 0) => &mut m.inner.bsdf,
             _ => return None,
         };
         next.nested_mut(rest)
     }
 }
 
-/// One textured parameter: where its material sits among nested ones, which parameter,
+/// `ndf` with the textured roughness `p` (`alpha`: both, `alpha_u`, `alpha_v`) set to `a`.
+fn textured_alpha(ndf: &super::Ndf, p: TextureParam, a: f32) -> super::Ndf {
+    let (u, v) = ndf.alphas();
+    match p {
+        TextureParam::AlphaU => ndf.with_alphas(a, v),
+        TextureParam::AlphaV => ndf.with_alphas(u, a),
+        _ => ndf.with_alphas(a, a),
+    }
+}
+
+/// What a texture sets in a material.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Target {
+    /// A parameter.
+    Param(TextureParam),
+    /// A normal map's normal, `2 · rgb − 1`.
+    NormalMap,
+    /// A bump map's normal, from the gradient times `scale`.
+    BumpMap { scale: f32 },
+}
+
+/// One texture of a material: where its material sits among nested ones, what it sets,
 /// and the texture.
 #[derive(Debug, Clone, PartialEq)]
 struct Slot {
     path: Vec<u8>,
-    param: TextureParam,
+    target: Target,
     texture: Texture,
 }
 
@@ -82,7 +114,8 @@ pub struct TexturedBsdf {
     /// The material with the textures' means in their parameters.
     pub base: Sided<AnyBsdf>,
     slots: Vec<Slot>,
-    /// Whether the material turns with the shading tangent (anisotropic roughness).
+    /// Whether the material turns with the shading tangent (anisotropic roughness, normal
+    /// and bump maps).
     tangent: bool,
 }
 
@@ -120,20 +153,52 @@ impl TexturedBsdf {
         !self.slots.is_empty()
     }
 
-    /// The material at texture coordinates `uv`.
+    /// Whether a bump map needs the surface's derivatives at each hit
+    /// ([`TexturedBsdf::at_with`]).
+    #[inline]
+    pub fn needs_derivatives(&self) -> bool {
+        self.slots
+            .iter()
+            .any(|s| matches!(s.target, Target::BumpMap { .. }))
+    }
+
+    /// The material at texture coordinates `uv` of a surface whose derivatives are
+    /// [`SurfaceDerivatives::FLAT`] (which only bump maps read).
     pub fn at(&self, uv: Vec2) -> Sided<AnyBsdf> {
+        self.at_with(uv, &SurfaceDerivatives::FLAT)
+    }
+
+    /// The material at texture coordinates `uv` of a surface with derivatives `d` (in the
+    /// hit's shading frame, for bump maps).
+    pub fn at_with(&self, uv: Vec2, d: &SurfaceDerivatives) -> Sided<AnyBsdf> {
         let mut out = self.base.clone();
         for s in &self.slots {
-            let v = if s.param.is_scalar() {
-                Vec3::splat(s.texture.eval_1(uv))
-            } else {
-                s.texture.eval(uv)
+            let Some(b) = out.bsdf.nested_mut(&s.path) else {
+                continue;
             };
-            if let Some(b) = out.bsdf.nested_mut(&s.path) {
-                b.set_param(s.param, v);
+            match s.target {
+                Target::Param(p) => {
+                    let v = if p.is_scalar() {
+                        Vec3::splat(s.texture.eval_1(uv))
+                    } else {
+                        s.texture.eval(uv)
+                    };
+                    b.set_param(p, v);
+                }
+                Target::NormalMap => set_normal(b, s.texture.eval(uv) * 2.0 - 1.0),
+                Target::BumpMap { scale } => {
+                    set_normal(b, bump_normal(scale * s.texture.eval_1_grad(uv), d));
+                }
             }
         }
         out
+    }
+}
+
+/// Sets a perturbed material's normal.
+fn set_normal(b: &mut AnyBsdf, n: Vec3) {
+    if let AnyBsdf::Perturbed(p) = b {
+        p.normal = n;
     }
 }
 
@@ -143,10 +208,27 @@ fn collect(desc: &BsdfDesc, path: &mut Vec<u8>, out: &mut Vec<Slot>) {
         BsdfDesc::Textured { inner, textures } => {
             out.extend(textures.iter().map(|(param, texture)| Slot {
                 path: path.clone(),
-                param: *param,
+                target: Target::Param(*param),
                 texture: texture.clone(),
             }));
             collect(inner, path, out);
+        }
+        BsdfDesc::Perturbed {
+            perturbation,
+            inner,
+        } => {
+            let target = match perturbation.source {
+                NormalSource::NormalMap(_) => Target::NormalMap,
+                NormalSource::BumpMap { scale, .. } => Target::BumpMap { scale },
+            };
+            out.push(Slot {
+                path: path.clone(),
+                target,
+                texture: perturbation.texture().clone(),
+            });
+            path.push(0);
+            collect(inner, path, out);
+            path.pop();
         }
         BsdfDesc::TwoSided(inner) => collect(inner, path, out),
         BsdfDesc::Blend { first, second, .. } => {

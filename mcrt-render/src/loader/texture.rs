@@ -5,7 +5,7 @@ use super::context::{Ctx, Res};
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
-use crate::description::BsdfDesc;
+use crate::description::{BsdfDesc, Roughness};
 use crate::scene_error::SceneErrorKind;
 use crate::texture::{
     read_image_beside, uv_transform, Bitmap, Checkerboard, FilterType, Texture, TextureParam,
@@ -215,12 +215,30 @@ pub(crate) fn attach(
         }
         if let Some(slot) = colour_mut(&mut desc, *param) {
             *slot = stand_in(texture);
+        } else if param.is_roughness() {
+            roughness_stand_in(&mut desc, *param, texture.mean());
         }
     }
     Ok(BsdfDesc::Textured {
         inner: Box::new(desc),
         textures: textures.into_iter().map(|(p, t, _)| (p, t)).collect(),
     })
+}
+
+/// Puts a roughness texture's mean (limited to [`Roughness`]'s range) in the roughness `p`
+/// of a rough conductor or dielectric (`alpha`: both αᵤ and αᵥ).
+fn roughness_stand_in(desc: &mut BsdfDesc, p: TextureParam, mean: f32) {
+    let (BsdfDesc::RoughConductor { microfacet, .. }
+    | BsdfDesc::RoughDielectric { microfacet, .. }) = desc
+    else {
+        return;
+    };
+    let a = Roughness::new(mean.clamp(Roughness::MIN, Roughness::MAX)).unwrap_or_default();
+    match p {
+        TextureParam::AlphaU => microfacet.alpha = a,
+        TextureParam::AlphaV => microfacet.alpha_v = a,
+        _ => (microfacet.alpha, microfacet.alpha_v) = (a, a),
+    }
 }
 
 /// The colour parameter `p` of a material description.

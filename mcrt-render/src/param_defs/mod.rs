@@ -13,6 +13,7 @@
 //! line that uses it.
 
 pub(crate) mod bsdf;
+pub(crate) mod bsdf_maps;
 #[cfg(test)]
 mod doc_tests;
 pub(crate) mod integrator;
@@ -227,6 +228,8 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     bsdf::ROUGHPLASTIC,
     shape::INSTANCE,
     shape::SHAPEGROUP,
+    bsdf_maps::NORMALMAP,
+    bsdf_maps::BUMPMAP,
 ];
 
 /// The table of plugin `plugin` of element `category`, if it has one.

@@ -1,7 +1,7 @@
 //! What the render loop stores per shape and how it forms the material of a hit: a stored
 //! material is used as it is; a textured one is formed at the hit's texture coordinates.
 
-use crate::bsdf::{AnyBsdf, Sided, TexturedBsdf};
+use crate::bsdf::{AnyBsdf, Sided, SurfaceDerivatives, TexturedBsdf};
 use crate::geometry::Geometry;
 use glam::{Vec2, Vec3};
 use mcrt::integrator::{Bsdf, BsdfFlags, BsdfSample, SurfacePoint};
@@ -34,16 +34,34 @@ impl Material for TexturedBsdf {
 
     #[inline]
     fn at<'a>(&'a self, geometry: &Geometry, sp: &SurfacePoint) -> HitBsdf<'a> {
+        let turn = self.needs_tangent().then(|| geometry.tangent_turn(sp));
         let formed = if self.is_textured() {
-            HitBsdf::Formed(self.at(geometry.tex_coords_at(sp.shape, sp.prim, sp.uv)))
+            let uv = geometry.tex_coords_at(sp.shape, sp.prim, sp.uv);
+            if self.needs_derivatives() {
+                let d = derivatives(geometry, sp, turn.unwrap_or(Vec2::X));
+                HitBsdf::Formed(self.at_with(uv, &d))
+            } else {
+                HitBsdf::Formed(self.at(uv))
+            }
         } else {
             HitBsdf::Stored(&self.base)
         };
-        if self.needs_tangent() {
-            HitBsdf::Turned(Box::new(formed), geometry.tangent_turn(sp))
-        } else {
-            formed
+        match turn {
+            Some(t) => HitBsdf::Turned(Box::new(formed), t),
+            None => formed,
         }
+    }
+}
+
+/// The surface's derivatives at `sp` in Mitsuba's shading frame (the hit's frame turned by
+/// `turn`, `Geometry::tangent_turn`), for bump maps.
+fn derivatives(geometry: &Geometry, sp: &SurfacePoint, turn: Vec2) -> SurfaceDerivatives {
+    let (dp_du, dp_dv) = geometry.uv_derivatives(sp);
+    let local = |w: Vec3| into_turned(turn, sp.frame.to_local(w));
+    SurfaceDerivatives {
+        dp_du: local(dp_du),
+        dp_dv: local(dp_dv),
+        ng: local(sp.ng),
     }
 }
 

@@ -141,6 +141,28 @@ impl Texture {
         }
     }
 
+    /// The gradient `(∂f/∂u, ∂f/∂v)` of the single value [`Texture::eval_1`] at `uv`, as
+    /// Mitsuba 3.9.1's `eval_1_grad` computes it (what `bumpmap` reads): for a bilinear
+    /// bitmap, the pixel-space gradient of its interpolated luminance
+    /// ([`Image::luminance_gradient`]) carried through `to_uv` by the transpose of its
+    /// linear part and scaled per axis by the resolution, `(w, h) ∘ (Aᵀ ∇ₓf)` (exact when
+    /// `to_uv` does not mix u and v, or the image is square; Mitsuba's form otherwise); 0
+    /// for a `nearest` bitmap and for a checkerboard (which Mitsuba 3.9.1 cannot
+    /// differentiate: its `bumpmap` fails on one, and the loader refuses it).
+    pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
+        match self {
+            Self::Bitmap(b) if b.filter == FilterType::Bilinear => {
+                let d = b
+                    .image
+                    .luminance_gradient(b.to_uv.transform_point2(uv), b.wrap);
+                let a = b.to_uv.matrix2;
+                let size = Vec2::new(b.image.width() as f32, b.image.height() as f32);
+                size * Vec2::new(a.x_axis.dot(d), a.y_axis.dot(d))
+            }
+            Self::Bitmap(_) | Self::Checkerboard(_) => Vec2::ZERO,
+        }
+    }
+
     /// The mean as Mitsuba 3.9.1 reports it: a bitmap's mean luminance over its pixels, a
     /// checkerboard's mean of its two colours' channel means.
     pub fn mean(&self) -> f32 {
@@ -168,11 +190,18 @@ pub enum TextureParam {
     Opacity,
     /// `principled`'s `base_color`.
     BaseColor,
+    /// The roughness `alpha` of `roughconductor` and `roughdielectric` (the texture's
+    /// luminance; both αᵤ and αᵥ).
+    Alpha,
+    /// Their roughness `alpha_u` along the shading tangent `dp/du`.
+    AlphaU,
+    /// Their roughness `alpha_v` along the bitangent.
+    AlphaV,
 }
 
 impl TextureParam {
     /// Every parameter, for lookups by name.
-    pub const ALL: [TextureParam; 7] = [
+    pub const ALL: [TextureParam; 10] = [
         Self::Reflectance,
         Self::DiffuseReflectance,
         Self::SpecularReflectance,
@@ -180,6 +209,9 @@ impl TextureParam {
         Self::Weight,
         Self::Opacity,
         Self::BaseColor,
+        Self::Alpha,
+        Self::AlphaU,
+        Self::AlphaV,
     ];
 
     /// The parameter's name in a scene file.
@@ -192,12 +224,23 @@ impl TextureParam {
             Self::Weight => "weight",
             Self::Opacity => "opacity",
             Self::BaseColor => "base_color",
+            Self::Alpha => "alpha",
+            Self::AlphaU => "alpha_u",
+            Self::AlphaV => "alpha_v",
         }
     }
 
     /// Whether the parameter is one number (the texture's luminance) rather than a colour.
     pub fn is_scalar(self) -> bool {
-        matches!(self, Self::Weight | Self::Opacity)
+        matches!(
+            self,
+            Self::Weight | Self::Opacity | Self::Alpha | Self::AlphaU | Self::AlphaV
+        )
+    }
+
+    /// Whether the parameter is a microfacet roughness (`alpha`, `alpha_u`, `alpha_v`).
+    pub fn is_roughness(self) -> bool {
+        matches!(self, Self::Alpha | Self::AlphaU | Self::AlphaV)
     }
 }
 
