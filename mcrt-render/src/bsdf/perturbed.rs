@@ -93,8 +93,9 @@ impl Perturbed {
     }
 }
 
+// No `#[inline]` on the methods that recurse into the nested material (as `Blend`, `Mask`):
+// `AnyBsdf`'s dispatch stays small enough to inline into the render loops.
 impl Bsdf for Perturbed {
-    #[inline]
     fn flags(&self) -> BsdfFlags {
         self.inner.flags()
     }
@@ -132,7 +133,6 @@ impl Bsdf for Perturbed {
         }
         self.inner.eval_adjoint(f.to_local(wo), pwi) * k
     }
-    #[inline]
     fn samples_component(&self) -> bool {
         self.inner.samples_component()
     }
@@ -302,16 +302,20 @@ mod tests {
         };
         let wo = Vec3::new(0.6, 0.0, 0.8);
         // Above the true surface, below the perturbed one.
-        let wi = Vec3::new(0.8, 0.0, 0.1).normalize();
+        let wi = Vec3::new(-0.8, 0.0, 0.1).normalize();
         assert!(p.frame(wo).to_local(wi).z < 0.0);
         assert_eq!(p.eval_pdf(wo, wi), (Vec3::ZERO, 0.0));
+        let mut kept = 0;
         for k in 0..64 {
             let u = Vec2::new((k % 8) as f32 / 8.0 + 0.06, (k / 8) as f32 / 8.0 + 0.06);
             if let Some(s) = p.sample(wo, 0.5, u) {
                 assert!(s.wi.z > 0.0 && p.frame(wo).to_local(s.wi).z > 0.0);
                 assert!(s.weight.is_finite() && s.pdf > 0.0);
+                kept += 1;
             }
         }
+        // The perturbed hemisphere reaches below the true surface: some samples drop.
+        assert!(kept > 0 && kept < 64, "{kept}");
     }
 
     #[test]

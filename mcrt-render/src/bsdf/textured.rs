@@ -84,23 +84,30 @@ fn textured_alpha(ndf: &super::Ndf, p: TextureParam, a: f32) -> super::Ndf {
     }
 }
 
-/// What a texture sets in a material.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Target {
-    /// A parameter.
-    Param(TextureParam),
-    /// A normal map's normal, `2 · rgb − 1`.
-    NormalMap,
-    /// A bump map's normal, from the gradient times `scale`.
-    BumpMap { scale: f32 },
-}
-
-/// One texture of a material: where its material sits among nested ones, what it sets,
+/// One textured parameter: where its material sits among nested ones, which parameter,
 /// and the texture.
 #[derive(Debug, Clone, PartialEq)]
 struct Slot {
     path: Vec<u8>,
-    target: Target,
+    param: TextureParam,
+    texture: Texture,
+}
+
+/// How a normal or bump map sets its normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum MapKind {
+    /// A normal map's normal, `2 · rgb − 1`.
+    Normal,
+    /// A bump map's normal, from the gradient times `scale`.
+    Bump { scale: f32 },
+}
+
+/// One normal or bump map: where its material sits among nested ones, its kind and its
+/// texture.
+#[derive(Debug, Clone, PartialEq)]
+struct MapSlot {
+    path: Vec<u8>,
+    kind: MapKind,
     texture: Texture,
 }
 
@@ -114,6 +121,11 @@ pub struct TexturedBsdf {
     /// The material with the textures' means in their parameters.
     pub base: Sided<AnyBsdf>,
     slots: Vec<Slot>,
+    /// The normal and bump maps (kept apart, so that materials without them loop over
+    /// their parameters as before).
+    maps: Vec<MapSlot>,
+    /// Whether a map is a bump map (which reads the surface's derivatives).
+    bump: bool,
     /// Whether the material turns with the shading tangent (anisotropic roughness, normal
     /// and bump maps).
     tangent: bool,
@@ -131,11 +143,13 @@ impl TexturedBsdf {
     /// The textured material of `desc` whose constant material `base` is already built
     /// (`AnyBsdf::from_desc(desc)`).
     pub fn with_base(base: Sided<AnyBsdf>, desc: &BsdfDesc) -> Self {
-        let mut slots = Vec::new();
-        collect(desc, &mut Vec::new(), &mut slots);
+        let (mut slots, mut maps) = (Vec::new(), Vec::new());
+        collect(desc, &mut Vec::new(), &mut slots, &mut maps);
         Self {
             base,
             slots,
+            bump: maps.iter().any(|m| matches!(m.kind, MapKind::Bump { .. })),
+            maps,
             tangent: desc.needs_tangent(),
         }
     }
@@ -147,100 +161,108 @@ impl TexturedBsdf {
         self.tangent
     }
 
-    /// Whether any parameter is textured.
+    /// Whether any parameter is textured, or the material has a normal or bump map.
     #[inline]
     pub fn is_textured(&self) -> bool {
-        !self.slots.is_empty()
+        !self.slots.is_empty() || !self.maps.is_empty()
     }
 
     /// Whether a bump map needs the surface's derivatives at each hit
     /// ([`TexturedBsdf::at_with`]).
     #[inline]
     pub fn needs_derivatives(&self) -> bool {
-        self.slots
-            .iter()
-            .any(|s| matches!(s.target, Target::BumpMap { .. }))
+        self.bump
     }
 
     /// The material at texture coordinates `uv` of a surface whose derivatives are
     /// [`SurfaceDerivatives::FLAT`] (which only bump maps read).
     pub fn at(&self, uv: Vec2) -> Sided<AnyBsdf> {
-        self.at_with(uv, &SurfaceDerivatives::FLAT)
+        let mut out = self.params_at(uv);
+        if !self.maps.is_empty() {
+            self.set_normals(&mut out, uv, &SurfaceDerivatives::FLAT);
+        }
+        out
     }
 
     /// The material at texture coordinates `uv` of a surface with derivatives `d` (in the
     /// hit's shading frame, for bump maps).
     pub fn at_with(&self, uv: Vec2, d: &SurfaceDerivatives) -> Sided<AnyBsdf> {
+        let mut out = self.params_at(uv);
+        self.set_normals(&mut out, uv, d);
+        out
+    }
+
+    /// The material with its textured parameters set at `uv` (normals not yet).
+    #[inline]
+    fn params_at(&self, uv: Vec2) -> Sided<AnyBsdf> {
         let mut out = self.base.clone();
         for s in &self.slots {
-            let Some(b) = out.bsdf.nested_mut(&s.path) else {
-                continue;
+            let v = if s.param.is_scalar() {
+                Vec3::splat(s.texture.eval_1(uv))
+            } else {
+                s.texture.eval(uv)
             };
-            match s.target {
-                Target::Param(p) => {
-                    let v = if p.is_scalar() {
-                        Vec3::splat(s.texture.eval_1(uv))
-                    } else {
-                        s.texture.eval(uv)
-                    };
-                    b.set_param(p, v);
-                }
-                Target::NormalMap => set_normal(b, s.texture.eval(uv) * 2.0 - 1.0),
-                Target::BumpMap { scale } => {
-                    set_normal(b, bump_normal(scale * s.texture.eval_1_grad(uv), d));
-                }
+            if let Some(b) = out.bsdf.nested_mut(&s.path) {
+                b.set_param(s.param, v);
             }
         }
         out
     }
-}
 
-/// Sets a perturbed material's normal.
-fn set_normal(b: &mut AnyBsdf, n: Vec3) {
-    if let AnyBsdf::Perturbed(p) = b {
-        p.normal = n;
+    /// Sets the normal of each normal or bump map of `out` at `uv` and derivatives `d`.
+    fn set_normals(&self, out: &mut Sided<AnyBsdf>, uv: Vec2, d: &SurfaceDerivatives) {
+        for m in &self.maps {
+            let n = match m.kind {
+                MapKind::Normal => m.texture.eval(uv) * 2.0 - 1.0,
+                MapKind::Bump { scale } => bump_normal(scale * m.texture.eval_1_grad(uv), d),
+            };
+            if let Some(AnyBsdf::Perturbed(p)) = out.bsdf.nested_mut(&m.path) {
+                p.normal = n;
+            }
+        }
     }
 }
 
-/// Records the textured parameters of `desc` and of the materials nested in it.
-fn collect(desc: &BsdfDesc, path: &mut Vec<u8>, out: &mut Vec<Slot>) {
+/// Records the textured parameters and the normal and bump maps of `desc` and of the
+/// materials nested in it.
+fn collect(desc: &BsdfDesc, path: &mut Vec<u8>, out: &mut Vec<Slot>, maps: &mut Vec<MapSlot>) {
     match desc {
         BsdfDesc::Textured { inner, textures } => {
             out.extend(textures.iter().map(|(param, texture)| Slot {
                 path: path.clone(),
-                target: Target::Param(*param),
+                param: *param,
                 texture: texture.clone(),
             }));
-            collect(inner, path, out);
+            collect(inner, path, out, maps);
         }
         BsdfDesc::Perturbed {
             perturbation,
             inner,
         } => {
-            let target = match perturbation.source {
-                NormalSource::NormalMap(_) => Target::NormalMap,
-                NormalSource::BumpMap { scale, .. } => Target::BumpMap { scale },
+            let kind = match perturbation.source {
+                NormalSource::NormalMap(_) => MapKind::Normal,
+                NormalSource::BumpMap { scale, .. } => MapKind::Bump { scale },
             };
-            out.push(Slot {
+            maps.push(MapSlot {
                 path: path.clone(),
-                target,
+                kind,
                 texture: perturbation.texture().clone(),
             });
             path.push(0);
-            collect(inner, path, out);
+            collect(inner, path, out, maps);
             path.pop();
         }
-        BsdfDesc::TwoSided(inner) => collect(inner, path, out),
+        BsdfDesc::TwoSided(inner) => collect(inner, path, out, maps),
         BsdfDesc::Blend { first, second, .. } => {
             for (step, d) in [(0, first), (1, second)] {
                 path.push(step);
-                collect(d, path, out);
+                collect(d, path, out, maps);
                 path.pop();
             }
         }
         BsdfDesc::Mask { inner, .. } => {
             path.push(0);
-            collect(inner, path, out);
+            collect(inner, path, out, maps);
             path.pop();
         }
         _ => {}

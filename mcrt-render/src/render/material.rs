@@ -38,8 +38,7 @@ impl Material for TexturedBsdf {
         let formed = if self.is_textured() {
             let uv = geometry.tex_coords_at(sp.shape, sp.prim, sp.uv);
             if self.needs_derivatives() {
-                let d = derivatives(geometry, sp, turn.unwrap_or(Vec2::X));
-                HitBsdf::Formed(self.at_with(uv, &d))
+                HitBsdf::Formed(bump_mapped(self, geometry, sp, uv, turn))
             } else {
                 HitBsdf::Formed(self.at(uv))
             }
@@ -53,16 +52,25 @@ impl Material for TexturedBsdf {
     }
 }
 
-/// The surface's derivatives at `sp` in Mitsuba's shading frame (the hit's frame turned by
-/// `turn`, `Geometry::tangent_turn`), for bump maps.
-fn derivatives(geometry: &Geometry, sp: &SurfacePoint, turn: Vec2) -> SurfaceDerivatives {
+/// The material of a bump-mapped `m` at `sp` (texture coordinates `uv`): the surface's
+/// derivatives in Mitsuba's shading frame (the hit's frame turned by `turn`,
+/// `Geometry::tangent_turn`). Out of line, so that the other materials' path stays small.
+#[inline(never)]
+fn bump_mapped(
+    m: &TexturedBsdf,
+    geometry: &Geometry,
+    sp: &SurfacePoint,
+    uv: Vec2,
+    turn: Option<Vec2>,
+) -> Sided<AnyBsdf> {
     let (dp_du, dp_dv) = geometry.uv_derivatives(sp);
-    let local = |w: Vec3| into_turned(turn, sp.frame.to_local(w));
-    SurfaceDerivatives {
+    let local = |w: Vec3| into_turned(turn.unwrap_or(Vec2::X), sp.frame.to_local(w));
+    let d = SurfaceDerivatives {
         dp_du: local(dp_du),
         dp_dv: local(dp_dv),
         ng: local(sp.ng),
-    }
+    };
+    m.at_with(uv, &d)
 }
 
 /// The material of a hit in a scene with textures: the stored one, or one formed at the hit.
@@ -110,7 +118,7 @@ fn from_turned(t: Vec2, w: Vec3) -> Vec3 {
 }
 
 impl Bsdf for HitBsdf<'_> {
-    #[inline]
+    #[inline(always)]
     fn flags(&self) -> BsdfFlags {
         self.get().flags()
     }
