@@ -83,12 +83,14 @@ impl Perturbed {
     /// different sides (Mitsuba's `cos θ · cos θ' > 0` test), else the shadowing term if on.
     #[inline]
     fn factor(&self, f: &Frame, wi: Vec3, pwi: Vec3) -> f32 {
-        if !(wi.z * pwi.z > 0.0) {
-            0.0
-        } else if self.use_shadowing_function {
-            shadowing(f.n, wi)
+        if wi.z * pwi.z > 0.0 {
+            if self.use_shadowing_function {
+                shadowing(f.n, wi)
+            } else {
+                1.0
+            }
         } else {
-            1.0
+            0.0
         }
     }
 }

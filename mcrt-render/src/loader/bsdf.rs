@@ -1,6 +1,6 @@
 //! `<bsdf>`: `diffuse`, `conductor`, `roughconductor`, `dielectric`, `roughdielectric`,
 //! `thindielectric`, `plastic`, `roughplastic`, `principled` and `twosided`, and `<ref>` to a BSDF
-//! declared elsewhere.
+//! declared elsewhere (`normalmap` and `bumpmap` are read in `bsdf_maps`).
 
 use super::context::{Ctx, Res};
 use super::props::{Props, Value};
