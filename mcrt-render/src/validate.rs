@@ -217,6 +217,13 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             bsdf(inner)
         }
         BsdfDesc::TwoSided(inner) => bsdf(inner),
+        BsdfDesc::Perturbed {
+            perturbation,
+            inner,
+        } => {
+            perturbation_values(perturbation)?;
+            bsdf(inner)
+        }
         BsdfDesc::Textured { inner, textures } => {
             if matches!(**inner, BsdfDesc::TwoSided(_) | BsdfDesc::Textured { .. }) {
                 return Err(invalid(
@@ -236,6 +243,30 @@ pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             bsdf(inner)
         }
     }
+}
+
+/// A normal or bump map: a bitmap (Mitsuba 3.9.1 cannot take a checkerboard's RGB normals
+/// nor its gradient: it fails when rendering), with finite numbers and a finite `scale`.
+fn perturbation_values(p: &crate::description::Perturbation) -> Result<(), Invalid> {
+    use crate::description::NormalSource;
+    use crate::texture::Texture;
+    let name = match p.source {
+        NormalSource::NormalMap(_) => "normalmap",
+        NormalSource::BumpMap { scale, .. } => {
+            if !scale.is_finite() {
+                return Err(invalid("scale", "must be finite"));
+            }
+            "texture"
+        }
+    };
+    if !matches!(p.texture(), Texture::Bitmap(_)) {
+        return Err(invalid(
+            name,
+            "must be a bitmap (Mitsuba 3.9.1 cannot evaluate a checkerboard's normals or \
+             gradient)",
+        ));
+    }
+    texture_values(name, p.texture())
 }
 
 /// A texture's own numbers: finite colours and a finite `to_uv`.

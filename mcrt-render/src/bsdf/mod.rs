@@ -1,7 +1,8 @@
 //! Materials: Mitsuba 3's `diffuse`, `conductor`, `roughconductor` (both with the named
 //! materials of [`named_conductor`]), `dielectric`, `roughdielectric`, `thindielectric`,
-//! `plastic`, `roughplastic`, `principled` and `twosided`, as [`Bsdf`] implementations in the local z-up
-//! frame.
+//! `plastic`, `roughplastic`, `principled` and `twosided`, and the adapters `blendbsdf`,
+//! `mask`, `normalmap` and `bumpmap` ([`Perturbed`]), as [`Bsdf`] implementations in the
+//! local z-up frame.
 //!
 //! One-sided BSDFs are black from the back (`wo.z ≤ 0`), as in Mitsuba; [`Sided`] adds the
 //! `twosided` flip. [`AnyBsdf`] dispatches over all of them; a scene made of diffuse surfaces
@@ -45,6 +46,7 @@ mod fresnel;
 mod mask;
 mod named_conductors;
 mod ndf;
+mod perturbed;
 mod plastic;
 mod principled;
 mod principled_lobes;
@@ -64,6 +66,7 @@ pub use fresnel::{fresnel_conductor, fresnel_dielectric, fresnel_diffuse_reflect
 pub use mask::Mask;
 pub use named_conductors::{conductor_names, named_conductor};
 pub use ndf::{Ndf, VisibleNdf};
+pub use perturbed::{bump_normal, perturbed_frame, shadowing, Perturbed, SurfaceDerivatives};
 pub use plastic::Plastic;
 pub use principled::Principled;
 pub use rough_conductor::RoughConductor;
@@ -103,6 +106,8 @@ pub enum AnyBsdf {
     Blend(Blend),
     /// A material with an opacity.
     Mask(Mask),
+    /// A material in a perturbed shading frame (`normalmap`, `bumpmap`).
+    Perturbed(Perturbed),
 }
 
 macro_rules! dispatch {
@@ -119,6 +124,7 @@ macro_rules! dispatch {
             AnyBsdf::Principled($b) => $e,
             AnyBsdf::Blend($b) => $e,
             AnyBsdf::Mask($b) => $e,
+            AnyBsdf::Perturbed($b) => $e,
         }
     };
 }
@@ -326,6 +332,16 @@ impl AnyBsdf {
             }),
             BsdfDesc::Mask { opacity, inner } => AnyBsdf::Mask(Mask {
                 opacity: *opacity,
+                inner: Box::new(Self::from_desc(inner)?),
+            }),
+            // The unperturbed frame stands in; `TexturedBsdf` sets the normal per hit.
+            BsdfDesc::Perturbed {
+                perturbation,
+                inner,
+            } => AnyBsdf::Perturbed(Perturbed {
+                normal: Vec3::Z,
+                flip_invalid_normals: perturbation.flip_invalid_normals,
+                use_shadowing_function: perturbation.use_shadowing_function,
                 inner: Box::new(Self::from_desc(inner)?),
             }),
         };

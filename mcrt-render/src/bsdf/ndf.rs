@@ -82,6 +82,46 @@ impl Ndf {
         }
     }
 
+    /// (αᵤ, αᵥ), equal for an isotropic distribution.
+    pub fn alphas(&self) -> (f32, f32) {
+        match self {
+            Ndf::Ggx(g) | Ndf::GgxAll(g) => (g.alpha(), g.alpha()),
+            Ndf::Beckmann(b) | Ndf::BeckmannAll(b) => (b.alpha(), b.alpha()),
+            Ndf::GgxAnisotropic(g, _) => g.alphas(),
+            Ndf::BeckmannAnisotropic(b, _) => b.alphas(),
+        }
+    }
+
+    /// The same distribution (GGX or Beckmann, sampled the same way) with the roughness
+    /// (`alpha_u`, `alpha_v`) a texture gives at a hit, taken as Mitsuba 3 takes it: below
+    /// 10⁻⁴ (and NaN) raised to 10⁻⁴ (Mitsuba's `MicrofacetDistribution::configure`), above
+    /// 10⁴ lowered to it (the warps' range); isotropic when the two are equal. Only
+    /// textured materials call it, once per hit.
+    pub fn with_alphas(&self, alpha_u: f32, alpha_v: f32) -> Self {
+        let limit = |a: f32| if a >= 1e-4 { a.min(1e4) } else { 1e-4 };
+        let (u, v) = (limit(alpha_u), limit(alpha_v));
+        let (ggx, visible) = match *self {
+            Ndf::Ggx(_) => (true, true),
+            Ndf::Beckmann(_) => (false, true),
+            Ndf::GgxAll(_) => (true, false),
+            Ndf::BeckmannAll(_) => (false, false),
+            Ndf::GgxAnisotropic(_, visible) => (true, visible),
+            Ndf::BeckmannAnisotropic(_, visible) => (false, visible),
+        };
+        let built = match (u == v, ggx, visible) {
+            (true, true, true) => Ggx::new(u).map(Ndf::Ggx),
+            (true, false, true) => Beckmann::new(u).map(Ndf::Beckmann),
+            (true, true, false) => Ggx::new(u).map(Ndf::GgxAll),
+            (true, false, false) => Beckmann::new(u).map(Ndf::BeckmannAll),
+            (false, true, _) => GgxAnisotropic::new(u, v).map(|g| Ndf::GgxAnisotropic(g, visible)),
+            (false, false, _) => {
+                BeckmannAnisotropic::new(u, v).map(|b| Ndf::BeckmannAnisotropic(b, visible))
+            }
+        };
+        // The limits keep both inside the warps' range, so this never falls back.
+        built.unwrap_or(*self)
+    }
+
     /// Whether the distribution is anisotropic (it turns with the shading tangent).
     #[inline]
     pub fn is_anisotropic(&self) -> bool {
@@ -257,5 +297,24 @@ mod tests {
                 assert_ne!(visible.pdf_visible(wo, m), pdf);
             }
         }
+    }
+
+    /// A textured roughness keeps the distribution's kind and sampling, is limited to the
+    /// warps' range as Mitsuba raises small values, and is anisotropic only when unequal.
+    #[test]
+    fn textured_alphas_keep_the_kind() {
+        let alpha = crate::description::Roughness::new(0.3).expect("a roughness");
+        let ggx_all = Ndf::of(&Microfacet {
+            sample_visible: false,
+            ..Microfacet::new(MicrofacetKind::Ggx, alpha)
+        });
+        assert!(matches!(ggx_all.with_alphas(0.2, 0.2), Ndf::GgxAll(g) if g.alpha() == 0.2));
+        let b = Ndf::of(&Microfacet::new(MicrofacetKind::Beckmann, alpha));
+        let aniso = b.with_alphas(0.05, 0.4);
+        assert!(matches!(aniso, Ndf::BeckmannAnisotropic(_, true)));
+        assert_eq!(aniso.alphas(), (0.05, 0.4));
+        assert_eq!(b.with_alphas(0.0, f32::NAN).alphas(), (1e-4, 1e-4));
+        assert_eq!(b.with_alphas(1e9, 1e9).alphas(), (1e4, 1e4));
+        assert_eq!(aniso.with_alphas(0.3, 0.3), b);
     }
 }

@@ -1,8 +1,10 @@
 //! Materials with textured parameters: the per-hit material is the constant one with each
-//! textured parameter replaced by the texture's value at the hit.
+//! textured parameter replaced by the texture's value at the hit, and each normal or bump
+//! map's normal set from its texture there.
 
+use super::perturbed::{bump_normal, SurfaceDerivatives};
 use super::{AnyBsdf, Sided};
-use crate::description::BsdfDesc;
+use crate::description::{BsdfDesc, NormalSource};
 use crate::texture::{Texture, TextureParam};
 use glam::{Vec2, Vec3};
 use mcrt::sampling::SamplingError;
@@ -41,14 +43,22 @@ impl AnyBsdf {
                 b.opacity = v.x.clamp(0.0, 1.0);
                 return true;
             }
+            (AnyBsdf::RoughConductor(b), P::Alpha | P::AlphaU | P::AlphaV) => {
+                b.ndf = textured_alpha(&b.ndf, p, v.x);
+                return true;
+            }
+            (AnyBsdf::RoughDielectric(b), P::Alpha | P::AlphaU | P::AlphaV) => {
+                b.ndf = textured_alpha(&b.ndf, p, v.x);
+                return true;
+            }
             _ => return false,
         };
         *slot = v;
         true
     }
 
-    /// The material nested at `path` (0: a blend's first or a mask's material, 1: a
-    /// blend's second), this one for an empty path.
+    /// The material nested at `path` (0: a blend's first or a mask's, normal map's or bump
+    /// map's material, 1: a blend's second), this one for an empty path.
     fn nested_mut(&mut self, path: &[u8]) -> Option<&mut AnyBsdf> {
         let Some((&step, rest)) = path.split_first() else {
             return Some(self);
@@ -57,9 +67,20 @@ impl AnyBsdf {
             (AnyBsdf::Blend(b), 0) => &mut b.first.bsdf,
             (AnyBsdf::Blend(b), 1) => &mut b.second.bsdf,
             (AnyBsdf::Mask(m), 0) => &mut m.inner.bsdf,
+            (AnyBsdf::Perturbed(m), 0) => &mut m.inner.bsdf,
             _ => return None,
         };
         next.nested_mut(rest)
+    }
+}
+
+/// `ndf` with the textured roughness `p` (`alpha`: both, `alpha_u`, `alpha_v`) set to `a`.
+fn textured_alpha(ndf: &super::Ndf, p: TextureParam, a: f32) -> super::Ndf {
+    let (u, v) = ndf.alphas();
+    match p {
+        TextureParam::AlphaU => ndf.with_alphas(a, v),
+        TextureParam::AlphaV => ndf.with_alphas(u, a),
+        _ => ndf.with_alphas(a, a),
     }
 }
 
@@ -69,6 +90,24 @@ impl AnyBsdf {
 struct Slot {
     path: Vec<u8>,
     param: TextureParam,
+    texture: Texture,
+}
+
+/// How a normal or bump map sets its normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum MapKind {
+    /// A normal map's normal, `2 · rgb − 1`.
+    Normal,
+    /// A bump map's normal, from the gradient times `scale`.
+    Bump { scale: f32 },
+}
+
+/// One normal or bump map: where its material sits among nested ones, its kind and its
+/// texture.
+#[derive(Debug, Clone, PartialEq)]
+struct MapSlot {
+    path: Vec<u8>,
+    kind: MapKind,
     texture: Texture,
 }
 
@@ -82,7 +121,13 @@ pub struct TexturedBsdf {
     /// The material with the textures' means in their parameters.
     pub base: Sided<AnyBsdf>,
     slots: Vec<Slot>,
-    /// Whether the material turns with the shading tangent (anisotropic roughness).
+    /// The normal and bump maps (kept apart, so that materials without them loop over
+    /// their parameters as before).
+    maps: Vec<MapSlot>,
+    /// Whether a map is a bump map (which reads the surface's derivatives).
+    bump: bool,
+    /// Whether the material turns with the shading tangent (anisotropic roughness, normal
+    /// and bump maps).
     tangent: bool,
 }
 
@@ -98,11 +143,13 @@ impl TexturedBsdf {
     /// The textured material of `desc` whose constant material `base` is already built
     /// (`AnyBsdf::from_desc(desc)`).
     pub fn with_base(base: Sided<AnyBsdf>, desc: &BsdfDesc) -> Self {
-        let mut slots = Vec::new();
-        collect(desc, &mut Vec::new(), &mut slots);
+        let (mut slots, mut maps) = (Vec::new(), Vec::new());
+        collect(desc, &mut Vec::new(), &mut slots, &mut maps);
         Self {
             base,
             slots,
+            bump: maps.iter().any(|m| matches!(m.kind, MapKind::Bump { .. })),
+            maps,
             tangent: desc.needs_tangent(),
         }
     }
@@ -114,14 +161,40 @@ impl TexturedBsdf {
         self.tangent
     }
 
-    /// Whether any parameter is textured.
+    /// Whether any parameter is textured, or the material has a normal or bump map.
     #[inline]
     pub fn is_textured(&self) -> bool {
-        !self.slots.is_empty()
+        !self.slots.is_empty() || !self.maps.is_empty()
     }
 
-    /// The material at texture coordinates `uv`.
+    /// Whether a bump map needs the surface's derivatives at each hit
+    /// ([`TexturedBsdf::at_with`]).
+    #[inline]
+    pub fn needs_derivatives(&self) -> bool {
+        self.bump
+    }
+
+    /// The material at texture coordinates `uv` of a surface whose derivatives are
+    /// [`SurfaceDerivatives::FLAT`] (which only bump maps read).
     pub fn at(&self, uv: Vec2) -> Sided<AnyBsdf> {
+        let mut out = self.params_at(uv);
+        if !self.maps.is_empty() {
+            self.set_normals(&mut out, uv, &SurfaceDerivatives::FLAT);
+        }
+        out
+    }
+
+    /// The material at texture coordinates `uv` of a surface with derivatives `d` (in the
+    /// hit's shading frame, for bump maps).
+    pub fn at_with(&self, uv: Vec2, d: &SurfaceDerivatives) -> Sided<AnyBsdf> {
+        let mut out = self.params_at(uv);
+        self.set_normals(&mut out, uv, d);
+        out
+    }
+
+    /// The material with its textured parameters set at `uv` (normals not yet).
+    #[inline]
+    fn params_at(&self, uv: Vec2) -> Sided<AnyBsdf> {
         let mut out = self.base.clone();
         for s in &self.slots {
             let v = if s.param.is_scalar() {
@@ -135,10 +208,24 @@ impl TexturedBsdf {
         }
         out
     }
+
+    /// Sets the normal of each normal or bump map of `out` at `uv` and derivatives `d`.
+    fn set_normals(&self, out: &mut Sided<AnyBsdf>, uv: Vec2, d: &SurfaceDerivatives) {
+        for m in &self.maps {
+            let n = match m.kind {
+                MapKind::Normal => m.texture.eval(uv) * 2.0 - 1.0,
+                MapKind::Bump { scale } => bump_normal(scale * m.texture.eval_1_grad(uv), d),
+            };
+            if let Some(AnyBsdf::Perturbed(p)) = out.bsdf.nested_mut(&m.path) {
+                p.normal = n;
+            }
+        }
+    }
 }
 
-/// Records the textured parameters of `desc` and of the materials nested in it.
-fn collect(desc: &BsdfDesc, path: &mut Vec<u8>, out: &mut Vec<Slot>) {
+/// Records the textured parameters and the normal and bump maps of `desc` and of the
+/// materials nested in it.
+fn collect(desc: &BsdfDesc, path: &mut Vec<u8>, out: &mut Vec<Slot>, maps: &mut Vec<MapSlot>) {
     match desc {
         BsdfDesc::Textured { inner, textures } => {
             out.extend(textures.iter().map(|(param, texture)| Slot {
@@ -146,19 +233,36 @@ fn collect(desc: &BsdfDesc, path: &mut Vec<u8>, out: &mut Vec<Slot>) {
                 param: *param,
                 texture: texture.clone(),
             }));
-            collect(inner, path, out);
+            collect(inner, path, out, maps);
         }
-        BsdfDesc::TwoSided(inner) => collect(inner, path, out),
+        BsdfDesc::Perturbed {
+            perturbation,
+            inner,
+        } => {
+            let kind = match perturbation.source {
+                NormalSource::NormalMap(_) => MapKind::Normal,
+                NormalSource::BumpMap { scale, .. } => MapKind::Bump { scale },
+            };
+            maps.push(MapSlot {
+                path: path.clone(),
+                kind,
+                texture: perturbation.texture().clone(),
+            });
+            path.push(0);
+            collect(inner, path, out, maps);
+            path.pop();
+        }
+        BsdfDesc::TwoSided(inner) => collect(inner, path, out, maps),
         BsdfDesc::Blend { first, second, .. } => {
             for (step, d) in [(0, first), (1, second)] {
                 path.push(step);
-                collect(d, path, out);
+                collect(d, path, out, maps);
                 path.pop();
             }
         }
         BsdfDesc::Mask { inner, .. } => {
             path.push(0);
-            collect(inner, path, out);
+            collect(inner, path, out, maps);
             path.pop();
         }
         _ => {}

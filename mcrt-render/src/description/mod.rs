@@ -7,6 +7,7 @@ mod colour;
 mod instancing;
 mod microfacet;
 mod origin;
+mod perturbation;
 mod principled;
 
 pub use crate::texture::{Texture, TextureParam};
@@ -17,6 +18,7 @@ pub(crate) use instancing::groups_of;
 pub use instancing::ShapeGroupDesc;
 pub use microfacet::Microfacet;
 pub use origin::{Origin, Origins};
+pub use perturbation::{NormalSource, Perturbation};
 pub use principled::{PrincipledParams, MAX_SPECULAR};
 use std::path::PathBuf;
 
@@ -726,6 +728,14 @@ pub enum BsdfDesc {
     },
     /// `twosided`: the nested BSDF on both sides of the surface.
     TwoSided(Box<BsdfDesc>),
+    /// `normalmap` or `bumpmap`: the nested material in a shading frame whose normal a
+    /// texture perturbs.
+    Perturbed {
+        /// The texture and how it perturbs the normal.
+        perturbation: Perturbation,
+        /// The nested material.
+        inner: Box<BsdfDesc>,
+    },
     /// A material (`diffuse`, a conductor, dielectric, plastic, `blendbsdf` or `mask`, never
     /// `twosided`) some of whose parameters are textures. `inner` holds, for each textured
     /// parameter, the texture's mean (Mitsuba 3 derives a plastic's sampling weights from
@@ -749,7 +759,9 @@ impl BsdfDesc {
             | Self::Mask { .. } => true,
             Self::Principled(p) => p.spec_trans > 0.0,
             Self::Blend { first, second, .. } => first.transmits() || second.transmits(),
-            Self::TwoSided(inner) | Self::Textured { inner, .. } => inner.transmits(),
+            Self::TwoSided(inner)
+            | Self::Textured { inner, .. }
+            | Self::Perturbed { inner, .. } => inner.transmits(),
             Self::Diffuse { .. }
             | Self::Conductor { .. }
             | Self::RoughConductor { .. }
@@ -763,7 +775,7 @@ impl BsdfDesc {
     /// Whether a texture drives any parameter of this material or of those nested in it.
     pub fn is_textured(&self) -> bool {
         match self {
-            Self::Textured { .. } => true,
+            Self::Textured { .. } | Self::Perturbed { .. } => true,
             Self::TwoSided(inner) | Self::Mask { inner, .. } => inner.is_textured(),
             Self::Blend { first, second, .. } => first.is_textured() || second.is_textured(),
             _ => false,
@@ -771,16 +783,22 @@ impl BsdfDesc {
     }
 
     /// Whether this material or one nested in it turns with the shading tangent `dp/du`
-    /// (anisotropic roughness, αᵤ ≠ αᵥ), so that its hits need the tangent.
+    /// (anisotropic roughness, αᵤ ≠ αᵥ or a textured `alpha_u` or `alpha_v`; a normal or
+    /// bump map, whose frame is built on the tangent), so that its hits need the tangent.
     pub fn needs_tangent(&self) -> bool {
         match self {
             Self::RoughConductor { microfacet, .. }
             | Self::RoughDielectric { microfacet, .. }
             | Self::RoughPlastic { microfacet, .. } => microfacet.is_anisotropic(),
             Self::Principled(p) => p.anisotropic > 0.0,
-            Self::TwoSided(inner) | Self::Mask { inner, .. } | Self::Textured { inner, .. } => {
-                inner.needs_tangent()
+            Self::Perturbed { .. } => true,
+            Self::Textured { inner, textures } => {
+                textures
+                    .iter()
+                    .any(|(p, _)| matches!(p, TextureParam::AlphaU | TextureParam::AlphaV))
+                    || inner.needs_tangent()
             }
+            Self::TwoSided(inner) | Self::Mask { inner, .. } => inner.needs_tangent(),
             Self::Blend { first, second, .. } => first.needs_tangent() || second.needs_tangent(),
             _ => false,
         }
@@ -810,6 +828,10 @@ impl BsdfDesc {
                     P::DiffuseReflectance | P::SpecularReflectance,
                 )
                 | (Self::Principled(_), P::BaseColor)
+                | (
+                    Self::RoughConductor { .. } | Self::RoughDielectric { .. },
+                    P::Alpha | P::AlphaU | P::AlphaV,
+                )
         )
     }
 }

@@ -59,6 +59,7 @@ mod offset;
 mod query;
 mod sample;
 mod tangent;
+mod uv_derivatives;
 mod vertex_attributes;
 
 pub use crate::accel::AccelKind;

@@ -1,6 +1,6 @@
 //! `<bsdf>`: `diffuse`, `conductor`, `roughconductor`, `dielectric`, `roughdielectric`,
 //! `thindielectric`, `plastic`, `roughplastic`, `principled` and `twosided`, and `<ref>` to a BSDF
-//! declared elsewhere.
+//! declared elsewhere (`normalmap` and `bumpmap` are read in `bsdf_maps`).
 
 use super::context::{Ctx, Res};
 use super::props::{Props, Value};
@@ -50,7 +50,8 @@ fn resolve<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<&'a Elem> {
     }
 }
 
-/// Deepest nesting of BSDFs inside `blendbsdf`, `mask` and `twosided` (through `ref`s too,
+/// Deepest nesting of BSDFs inside `blendbsdf`, `mask`, `twosided`, `normalmap` and
+/// `bumpmap` (through `ref`s too,
 /// so a cycle of references is an error, not endless recursion).
 const MAX_NESTING: u32 = 16;
 
@@ -71,6 +72,9 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
     }
     let ty = plugin_type(ctx, e)?;
     let mut p = Props::new(ctx, e)?;
+    if matches!(ty, "normalmap" | "bumpmap") {
+        return super::bsdf_maps::read(ctx, e, ty, p, depth);
+    }
     let textures = texture::take_textures(ctx, ty, &mut p)?;
     // A textured weight or opacity stands in as the texture's mean luminance.
     let scalar = |q: TextureParam| {
@@ -126,7 +130,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
         },
         "roughconductor" => BsdfDesc::RoughConductor {
-            microfacet: microfacet(e, &mut p, Anisotropy::Allowed)?,
+            microfacet: microfacet(ctx, e, &mut p, Anisotropy::Allowed, &textures)?,
             fresnel: fresnel(e, &mut p)?,
             specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
         },
@@ -137,7 +141,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             specular_transmittance: p.get_rgb(&SPECULAR_TRANSMITTANCE)?,
         },
         "roughdielectric" => BsdfDesc::RoughDielectric {
-            microfacet: microfacet(e, &mut p, Anisotropy::Allowed)?,
+            microfacet: microfacet(ctx, e, &mut p, Anisotropy::Allowed, &textures)?,
             int_ior: ior(e, &mut p, &INT_IOR)?,
             ext_ior: ior(e, &mut p, &EXT_IOR)?,
             specular_reflectance: p.get_rgb(&SPECULAR_REFLECTANCE)?,
@@ -157,7 +161,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             nonlinear: p.get_bool(&NONLINEAR)?,
         },
         "roughplastic" => BsdfDesc::RoughPlastic {
-            microfacet: microfacet(e, &mut p, Anisotropy::Refused)?,
+            microfacet: microfacet(ctx, e, &mut p, Anisotropy::Refused, &textures)?,
             int_ior: ior(e, &mut p, &COATING_IOR)?,
             ext_ior: ior(e, &mut p, &EXT_IOR)?,
             diffuse_reflectance: p.get_rgb(&DIFFUSE_REFLECTANCE)?,
@@ -181,7 +185,7 @@ fn checked(ctx: &Ctx, e: &Elem, desc: BsdfDesc) -> Res<BsdfDesc> {
 
 /// Exactly `N` nested `<bsdf>` or `<ref>` elements of a plugin with parameters `p` (whose
 /// other parameters must all have been read), read in file order.
-fn nested<'a, const N: usize>(
+pub(super) fn nested<'a, const N: usize>(
     ctx: &Ctx<'a>,
     e: &'a Elem,
     p: Props<'_, 'a>,
@@ -245,14 +249,24 @@ fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>, depth: u32) -> Res
     Ok(BsdfDesc::TwoSided(Box::new(inner)))
 }
 
-/// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`], and
-/// `sample_visible`, which only changes the noise, never the expected value.
-fn microfacet(e: &Elem, p: &mut Props, anisotropy: Anisotropy) -> Res<Microfacet> {
+/// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`] (or of
+/// [`textured_roughness`] when `textures` drive it), and `sample_visible`, which only
+/// changes the noise, never the expected value.
+fn microfacet(
+    ctx: &Ctx,
+    e: &Elem,
+    p: &mut Props,
+    anisotropy: Anisotropy,
+    textures: &[(TextureParam, crate::texture::Texture, &Elem)],
+) -> Res<Microfacet> {
     let distribution = match p.get_choice(&DISTRIBUTION)? {
         "ggx" => MicrofacetKind::Ggx,
         _ => MicrofacetKind::Beckmann,
     };
-    let (alpha_u, alpha_v) = roughness(e, p, anisotropy)?;
+    let (alpha_u, alpha_v) = match textured_roughness(ctx, e, p, anisotropy, textures)? {
+        Some(alphas) => alphas,
+        None => roughness(e, p, anisotropy)?,
+    };
     Ok(Microfacet {
         sample_visible: p.get_bool(&SAMPLE_VISIBLE)?,
         ..Microfacet::anisotropic(distribution, alpha_u, alpha_v)
@@ -289,6 +303,59 @@ fn roughness(e: &Elem, p: &mut Props, anisotropy: Anisotropy) -> Res<(Roughness,
     };
     let check = |name: &str, a: f32| ALPHA.check(a).map_err(|i| p.invalid(name, e, &i.message));
     Ok((check(ALPHA_U.name, u)?, check(ALPHA_V.name, v)?))
+}
+
+/// The roughness when a texture gives `alpha`, `alpha_u` or `alpha_v` (`None` when none
+/// does): Mitsuba 3's `roughconductor` and `roughdielectric` take a texture for `alpha`
+/// (both αᵤ and αᵥ) or for either of `alpha_u` and `alpha_v` (the other a texture or a
+/// number); its `roughplastic` takes numbers only. A textured value stands as
+/// [`Roughness::DEFAULT`] until `texture::attach` puts the texture's mean in.
+fn textured_roughness(
+    ctx: &Ctx,
+    e: &Elem,
+    p: &mut Props,
+    anisotropy: Anisotropy,
+    textures: &[(TextureParam, crate::texture::Texture, &Elem)],
+) -> Res<Option<(Roughness, Roughness)>> {
+    let textured = |q: TextureParam| textures.iter().find(|t| t.0 == q).map(|t| t.2);
+    let Some(first) = textures.iter().find(|t| t.0.is_roughness()) else {
+        return Ok(None);
+    };
+    if anisotropy == Anisotropy::Refused {
+        return Err(ctx.err(
+            first.2,
+            SceneErrorKind::Unsupported(format!(
+                "a texture for \"{}\" of roughplastic (Mitsuba 3.9.1's roughplastic takes a \
+                 number only; roughconductor and roughdielectric take a texture)",
+                first.0.name()
+            )),
+        ));
+    }
+    let either = "give either alpha or both alpha_u and alpha_v";
+    if textured(TextureParam::Alpha).is_some() {
+        let stray = [ALPHA_U.name, ALPHA_V.name]
+            .into_iter()
+            .find(|n| p.has(n) || textures.iter().any(|t| t.0.name() == *n));
+        return match stray {
+            Some(n) => Err(p.invalid(n, e, either)),
+            None => Ok(Some((Roughness::DEFAULT, Roughness::DEFAULT))),
+        };
+    }
+    if p.has(ALPHA.name) {
+        return Err(p.invalid(ALPHA.name, e, either));
+    }
+    let mut one = |q: TextureParam, name: &str| -> Res<Roughness> {
+        if textured(q).is_some() {
+            return Ok(Roughness::DEFAULT);
+        }
+        let Some(a) = p.float(name)? else {
+            return Err(p.invalid(name, e, either));
+        };
+        ALPHA.check(a).map_err(|i| p.invalid(name, e, &i.message))
+    };
+    let u = one(TextureParam::AlphaU, ALPHA_U.name)?;
+    let v = one(TextureParam::AlphaV, ALPHA_V.name)?;
+    Ok(Some((u, v)))
 }
 
 /// Mitsuba's conductor rule: `material = "none"` (the default) without `eta` or `k` is a

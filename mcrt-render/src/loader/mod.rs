@@ -30,6 +30,7 @@
 //! ```
 
 mod bsdf;
+mod bsdf_maps;
 mod cie_tables;
 mod context;
 mod elem;

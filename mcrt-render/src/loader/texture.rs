@@ -5,7 +5,7 @@ use super::context::{Ctx, Res};
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
-use crate::description::{BsdfDesc, Colour};
+use crate::description::{BsdfDesc, Colour, Roughness};
 use crate::param_defs::texture as defs;
 use crate::scene_error::SceneErrorKind;
 use crate::texture::{
@@ -223,6 +223,9 @@ pub(crate) fn attach(
                     .map_err(|i| ctx.err(e, SceneErrorKind::InvalidValue(i.to_string())))?;
             }
             Some(Slot::Plain(slot)) => *slot = stand_in(texture),
+            None if param.is_roughness() => {
+                roughness_stand_in(&mut desc, *param, texture.mean());
+            }
             None => {}
         }
     }
@@ -230,6 +233,22 @@ pub(crate) fn attach(
         inner: Box::new(desc),
         textures: textures.into_iter().map(|(p, t, _)| (p, t)).collect(),
     })
+}
+
+/// Puts a roughness texture's mean (limited to [`Roughness`]'s range) in the roughness `p`
+/// of a rough conductor or dielectric (`alpha`: both αᵤ and αᵥ).
+fn roughness_stand_in(desc: &mut BsdfDesc, p: TextureParam, mean: f32) {
+    let (BsdfDesc::RoughConductor { microfacet, .. }
+    | BsdfDesc::RoughDielectric { microfacet, .. }) = desc
+    else {
+        return;
+    };
+    let a = Roughness::new(mean.clamp(Roughness::MIN, Roughness::MAX)).unwrap_or_default();
+    match p {
+        TextureParam::AlphaU => microfacet.alpha = a,
+        TextureParam::AlphaV => microfacet.alpha_v = a,
+        _ => (microfacet.alpha, microfacet.alpha_v) = (a, a),
+    }
 }
 
 /// Where a colour parameter of a description lives: a checked [`Colour`], or the plain

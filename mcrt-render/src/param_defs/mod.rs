@@ -14,6 +14,7 @@
 
 pub(crate) mod bsdf;
 pub(crate) mod bsdf_composite;
+pub(crate) mod bsdf_maps;
 #[cfg(test)]
 mod doc_tests;
 pub(crate) mod emitter;
@@ -262,6 +263,8 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     film::GAUSSIAN,
     texture::BITMAP,
     texture::CHECKERBOARD,
+    bsdf_maps::NORMALMAP,
+    bsdf_maps::BUMPMAP,
 ];
 
 /// The table of plugin `plugin` of element `category`, if it has one.

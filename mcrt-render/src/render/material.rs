@@ -1,7 +1,7 @@
 //! What the render loop stores per shape and how it forms the material of a hit: a stored
 //! material is used as it is; a textured one is formed at the hit's texture coordinates.
 
-use crate::bsdf::{AnyBsdf, Sided, TexturedBsdf};
+use crate::bsdf::{AnyBsdf, Sided, SurfaceDerivatives, TexturedBsdf};
 use crate::geometry::Geometry;
 use glam::{Vec2, Vec3};
 use mcrt::integrator::{Bsdf, BsdfFlags, BsdfSample, SurfacePoint};
@@ -34,17 +34,43 @@ impl Material for TexturedBsdf {
 
     #[inline]
     fn at<'a>(&'a self, geometry: &Geometry, sp: &SurfacePoint) -> HitBsdf<'a> {
+        let turn = self.needs_tangent().then(|| geometry.tangent_turn(sp));
         let formed = if self.is_textured() {
-            HitBsdf::Formed(self.at(geometry.tex_coords_at(sp.shape, sp.prim, sp.uv)))
+            let uv = geometry.tex_coords_at(sp.shape, sp.prim, sp.uv);
+            if self.needs_derivatives() {
+                HitBsdf::Formed(bump_mapped(self, geometry, sp, uv, turn))
+            } else {
+                HitBsdf::Formed(self.at(uv))
+            }
         } else {
             HitBsdf::Stored(&self.base)
         };
-        if self.needs_tangent() {
-            HitBsdf::Turned(Box::new(formed), geometry.tangent_turn(sp))
-        } else {
-            formed
+        match turn {
+            Some(t) => HitBsdf::Turned(Box::new(formed), t),
+            None => formed,
         }
     }
+}
+
+/// The material of a bump-mapped `m` at `sp` (texture coordinates `uv`): the surface's
+/// derivatives in Mitsuba's shading frame (the hit's frame turned by `turn`,
+/// `Geometry::tangent_turn`). Out of line, so that the other materials' path stays small.
+#[inline(never)]
+fn bump_mapped(
+    m: &TexturedBsdf,
+    geometry: &Geometry,
+    sp: &SurfacePoint,
+    uv: Vec2,
+    turn: Option<Vec2>,
+) -> Sided<AnyBsdf> {
+    let (dp_du, dp_dv) = geometry.uv_derivatives(sp);
+    let local = |w: Vec3| into_turned(turn.unwrap_or(Vec2::X), sp.frame.to_local(w));
+    let d = SurfaceDerivatives {
+        dp_du: local(dp_du),
+        dp_dv: local(dp_dv),
+        ng: local(sp.ng),
+    };
+    m.at_with(uv, &d)
 }
 
 /// The material of a hit in a scene with textures: the stored one, or one formed at the hit.
@@ -92,7 +118,7 @@ fn from_turned(t: Vec2, w: Vec3) -> Vec3 {
 }
 
 impl Bsdf for HitBsdf<'_> {
-    #[inline]
+    #[inline(always)]
     fn flags(&self) -> BsdfFlags {
         self.get().flags()
     }

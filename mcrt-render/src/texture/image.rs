@@ -179,6 +179,27 @@ impl Image {
         }
     }
 
+    /// The gradient `(∂f/∂x, ∂f/∂y)` of `f`, the bilinear interpolation of the pixels'
+    /// luminance, at texture coordinates `uv`, per unit of the pixel coordinates
+    /// `(x, y) = (u·w − ½, v·h − ½)` (the derivative of the tent weights of
+    /// [`Image::lookup`], as Mitsuba 3's `bitmap::eval_1_grad` takes it; a non-finite `uv`
+    /// reads pixel (0, 0)'s neighbourhood).
+    pub fn luminance_gradient(&self, uv: Vec2, wrap: WrapMode) -> Vec2 {
+        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
+        let size = Vec2::new(self.width as f32, self.height as f32);
+        let bound = Vec2::splat(LIMIT);
+        let p = (uv * size - 0.5).clamp(-bound, bound);
+        let p0 = p.floor();
+        let f = p - p0;
+        let (x, y) = (p0.x as i64, p0.y as i64);
+        let lum = |dx: i64, dy: i64| super::luminance(self.texel(x + dx, y + dy, wrap));
+        let (f00, f10, f01, f11) = (lum(0, 0), lum(1, 0), lum(0, 1), lum(1, 1));
+        Vec2::new(
+            (1.0 - f.y) * (f10 - f00) + f.y * (f11 - f01),
+            (1.0 - f.x) * (f01 - f00) + f.x * (f11 - f10),
+        )
+    }
+
     /// The mean luminance of the pixels (what Mitsuba's `bitmap` reports as its mean).
     pub fn mean_luminance(&self) -> f32 {
         let sum: f64 = (0..self.pixels.len())

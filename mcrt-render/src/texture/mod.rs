@@ -141,6 +141,28 @@ impl Texture {
         }
     }
 
+    /// The gradient `(∂f/∂u, ∂f/∂v)` of the single value [`Texture::eval_1`] at `uv`, as
+    /// Mitsuba 3.9.1's `eval_1_grad` computes it (what `bumpmap` reads): for a bilinear
+    /// bitmap, the pixel-space gradient of its interpolated luminance
+    /// ([`Image::luminance_gradient`]) carried through `to_uv` by the transpose of its
+    /// linear part and scaled per axis by the resolution, `(w, h) ∘ (Aᵀ ∇ₓf)` (exact when
+    /// `to_uv` does not mix u and v, or the image is square; Mitsuba's form otherwise); 0
+    /// for a `nearest` bitmap and for a checkerboard (which Mitsuba 3.9.1 cannot
+    /// differentiate: its `bumpmap` fails on one, and the loader refuses it).
+    pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
+        match self {
+            Self::Bitmap(b) if b.filter == FilterType::Bilinear => {
+                let d = b
+                    .image
+                    .luminance_gradient(b.to_uv.transform_point2(uv), b.wrap);
+                let a = b.to_uv.matrix2;
+                let size = Vec2::new(b.image.width() as f32, b.image.height() as f32);
+                size * Vec2::new(a.x_axis.dot(d), a.y_axis.dot(d))
+            }
+            Self::Bitmap(_) | Self::Checkerboard(_) => Vec2::ZERO,
+        }
+    }
+
     /// The mean as Mitsuba 3.9.1 reports it: a bitmap's mean luminance over its pixels, a
     /// checkerboard's mean of its two colours' channel means.
     pub fn mean(&self) -> f32 {
@@ -168,11 +190,18 @@ pub enum TextureParam {
     Opacity,
     /// `principled`'s `base_color`.
     BaseColor,
+    /// The roughness `alpha` of `roughconductor` and `roughdielectric` (the texture's
+    /// luminance; both αᵤ and αᵥ).
+    Alpha,
+    /// Their roughness `alpha_u` along the shading tangent `dp/du`.
+    AlphaU,
+    /// Their roughness `alpha_v` along the bitangent.
+    AlphaV,
 }
 
 impl TextureParam {
     /// Every parameter, for lookups by name.
-    pub const ALL: [TextureParam; 7] = [
+    pub const ALL: [TextureParam; 10] = [
         Self::Reflectance,
         Self::DiffuseReflectance,
         Self::SpecularReflectance,
@@ -180,6 +209,9 @@ impl TextureParam {
         Self::Weight,
         Self::Opacity,
         Self::BaseColor,
+        Self::Alpha,
+        Self::AlphaU,
+        Self::AlphaV,
     ];
 
     /// The parameter's name in a scene file.
@@ -192,12 +224,23 @@ impl TextureParam {
             Self::Weight => "weight",
             Self::Opacity => "opacity",
             Self::BaseColor => "base_color",
+            Self::Alpha => "alpha",
+            Self::AlphaU => "alpha_u",
+            Self::AlphaV => "alpha_v",
         }
     }
 
     /// Whether the parameter is one number (the texture's luminance) rather than a colour.
     pub fn is_scalar(self) -> bool {
-        matches!(self, Self::Weight | Self::Opacity)
+        matches!(
+            self,
+            Self::Weight | Self::Opacity | Self::Alpha | Self::AlphaU | Self::AlphaV
+        )
+    }
+
+    /// Whether the parameter is a microfacet roughness (`alpha`, `alpha_u`, `alpha_v`).
+    pub fn is_roughness(self) -> bool {
+        matches!(self, Self::Alpha | Self::AlphaU | Self::AlphaV)
     }
 }
 
@@ -269,6 +312,75 @@ mod tests {
         let c = with(Mat4::from_rotation_z(std::f32::consts::FRAC_PI_2));
         let got = [(0.1, 0.1), (0.6, 0.1)].map(|(u, v)| c.eval(Vec2::new(u, v)).x);
         assert_eq!(got, [0.2, 0.4]);
+    }
+
+    /// The bump gradient of a linear ramp is its slope: f = 0.1 i at pixel column i of an
+    /// 8-pixel row, so ∂f/∂u = 0.1 · 8 anywhere between the outer pixel centres and ∂f/∂v
+    /// = 0; a `to_uv` that scales u by 2 doubles it; a `nearest` bitmap has none.
+    #[test]
+    fn gradient_of_a_ramp_is_its_slope() {
+        let px: Vec<Vec3> = (0..16).map(|k| Vec3::splat(0.1 * (k % 8) as f32)).collect();
+        let image = Arc::new(Image::new(8, 2, px).unwrap());
+        let bitmap = |to_uv, filter| {
+            Texture::Bitmap(Bitmap {
+                image: image.clone(),
+                filter,
+                wrap: WrapMode::Clamp,
+                to_uv,
+            })
+        };
+        let t = bitmap(Affine2::IDENTITY, FilterType::Bilinear);
+        for u in [0.2, 0.35, 0.5, 0.8] {
+            let g = t.eval_1_grad(Vec2::new(u, 0.4));
+            assert!(
+                g.is_finite() && (g - Vec2::new(0.8, 0.0)).length() < 1e-5,
+                "{u}: {g}"
+            );
+        }
+        let t = bitmap(
+            Affine2::from_scale(Vec2::new(2.0, 1.0)),
+            FilterType::Bilinear,
+        );
+        let g = t.eval_1_grad(Vec2::new(0.2, 0.4));
+        assert!(
+            g.is_finite() && (g - Vec2::new(1.6, 0.0)).length() < 1e-5,
+            "{g}"
+        );
+        let t = bitmap(Affine2::IDENTITY, FilterType::Nearest);
+        assert_eq!(t.eval_1_grad(Vec2::new(0.3, 0.4)), Vec2::ZERO);
+    }
+
+    /// On a square image the gradient is the derivative of `eval_1`, through a `to_uv` that
+    /// turns and scales (central differences inside a pixel cell, where the bilinear
+    /// interpolation is smooth).
+    #[test]
+    fn gradient_is_the_derivative_of_the_value() {
+        let px: Vec<Vec3> = (0..16u32)
+            .map(|k| {
+                let h = k.wrapping_mul(2_654_435_761) >> 8;
+                Vec3::new((h % 97) as f32, (h % 89) as f32, (h % 83) as f32) / 100.0
+            })
+            .collect();
+        let t = Texture::Bitmap(Bitmap {
+            image: Arc::new(Image::new(4, 4, px).unwrap()),
+            filter: FilterType::Bilinear,
+            wrap: WrapMode::Repeat,
+            to_uv: Affine2::from_scale_angle_translation(Vec2::new(1.5, 0.7), 0.5, Vec2::ZERO),
+        });
+        let h = 1e-3;
+        for uv in [
+            Vec2::new(0.31, 0.62),
+            Vec2::new(0.77, 0.18),
+            Vec2::new(0.05, 0.93),
+        ] {
+            let d = |e: Vec2| (t.eval_1(uv + e * h) - t.eval_1(uv - e * h)) / (2.0 * h);
+            let want = Vec2::new(d(Vec2::X), d(Vec2::Y));
+            let got = t.eval_1_grad(uv);
+            assert!(
+                got.is_finite() && (got - want).length() < 2e-2 * want.length().max(1.0),
+                "{uv}: {got} vs {want}"
+            );
+        }
     }
 
     /// Mitsuba 3.9.1: an RGB texture used as one number gives its luminance.

@@ -42,7 +42,13 @@ pub fn worst_z_beyond(
             }
             for c in 0..3 {
                 let dev = ((m[c] - r[c]).abs() - allowance * r[c].abs()).max(0.0) / k;
-                let z = dev / (v[c] / (k * k)).sqrt();
+                // Within the allowance is z = 0 even without noise (a block of constant
+                // sky has no variance); a NaN deviation still fails below.
+                let z = if dev == 0.0 {
+                    0.0
+                } else {
+                    dev / (v[c] / (k * k)).sqrt()
+                };
                 worst = if z.is_nan() {
                     f64::INFINITY
                 } else {
