@@ -5,6 +5,7 @@
 #![allow(dead_code)] // each test file uses a different subset
 
 pub mod blocks;
+pub mod published;
 pub mod replicates;
 #[path = "../../../tests/common/suite.rs"]
 mod suite;
