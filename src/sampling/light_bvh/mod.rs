@@ -35,9 +35,8 @@ const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
 /// path, so the two agree bit for bit. The importance is 0 only where no light of the node
 /// can reach the point (behind every emitter: outside the cones its bounding sphere allows,
 /// or behind the plane of its box for lights that face one way); where both children of a
-/// node are 0 the
-/// descent goes on by power, so the probabilities always sum to 1 unless the root's
-/// importance is 0 (then nothing is sampled). Lights of power 0 are never chosen. Below a
+/// node are 0 the descent goes on by power, so the probabilities always sum to 1 unless the
+/// root's importance is 0 (then nothing is sampled). Lights of power 0 are never chosen. Below a
 /// node whose lights face one way and which the point sees from afar, the descent stops
 /// and picks among its lights by power (the *cut*, which saves the deep levels where the
 /// importances differ little). The derivations are in `docs/derivations.md`, Part V.
@@ -256,8 +255,9 @@ impl LightBvh {
 
     /// The probability that [`LightBvh::sample`] at `p` with normal `n` chooses `light`
     /// (the same arithmetic along the light's path, so it equals the probability `sample`
-    /// returns bit for bit). 0 for a light of power 0, an index out of range, a light that
-    /// cannot reach `p`, or a `p` that is not finite.
+    /// returns bit for bit). 0 for a light of power 0, an index out of range, or a `p` that
+    /// is not finite; 0 for a light that cannot reach `p`, except below a cut, where the
+    /// lights of a node are chosen by power (a light that can reach `p` is never 0).
     pub fn pmf(&self, p: Vec3, n: Vec3, light: usize) -> f32 {
         let (Some((p, n)), Some(&Some((mut trail, leaf)))) =
             (Self::query(p, n), self.trails.get(light))
