@@ -1,7 +1,8 @@
 //! Chi-square tests of `LightBvh::sample` against `LightBvh::pmf` over the lights (a
 //! `Discrete` domain, one category per light) at the suite's settings: random sets of 17,
 //! 1000 and 10⁴ lights of mixed kind, size, orientation and power (some of power 0), at
-//! points on surfaces, in a medium (no normal), and inside a light's box. 6 runs.
+//! points on surfaces, in a medium (no normal), and inside a light's box; and panels on the
+//! walls of a room (the half-space test and the cut), near and far. 8 runs.
 
 use mcrt::glam::Vec3;
 use mcrt::sampling::light_bvh::{LightBounds, LightBvh};
@@ -54,6 +55,27 @@ fn lights(n: usize, seed: u64) -> Vec<LightBounds> {
             }
         })
         .collect()
+}
+
+/// `n` small panels on each of a room's ceiling (facing down) and two side walls (facing in),
+/// powers over three decades.
+fn room_lights(n: usize, seed: u64) -> Vec<LightBounds> {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    let mut out = Vec::new();
+    for wall in 0..3 {
+        for _ in 0..n {
+            let (a, b): (f32, f32) = (rng.random_range(-0.9..0.9), rng.random_range(-0.9..0.9));
+            let power = 10f32.powf(rng.random_range(-1.5..1.5));
+            let h = 0.035;
+            let (c, normal, e) = match wall {
+                0 => (Vec3::new(a, 0.995, b), Vec3::NEG_Y, Vec3::new(h, 0.0, h)),
+                1 => (Vec3::new(-0.995, a, b), Vec3::X, Vec3::new(0.0, h, h)),
+                _ => (Vec3::new(0.995, a, b), Vec3::NEG_X, Vec3::new(0.0, h, h)),
+            };
+            out.push(LightBounds::planar(c - e, c + e, normal, false, power));
+        }
+    }
+    out
 }
 
 /// `sample` against `pmf` at `p` with normal `n` (`None` from `sample` is a rejection; the
@@ -109,6 +131,25 @@ fn light_bvh_sample_matches_pmf() {
         Vec3::new(-30.0, 5.0, 0.0),
         Vec3::ZERO,
         "LightBvh-1000-far",
+    );
+
+    // Panels on three walls of a room, each wall's facing one way: nodes below a wall are
+    // cut (chosen among by power) from afar, and points behind a wall's plane rule it out.
+    let room = room_lights(300, SEED + 300);
+    let bvh = LightBvh::new(&room).unwrap();
+    check(
+        &bvh,
+        room.len(),
+        Vec3::new(0.2, -0.9, 0.3),
+        Vec3::Y,
+        "LightBvh-room-floor",
+    );
+    check(
+        &bvh,
+        room.len(),
+        Vec3::new(0.0, 8.0, -9.0),
+        Vec3::ZERO,
+        "LightBvh-room-far",
     );
 
     let set10k = lights(10_000, SEED + 10_000);

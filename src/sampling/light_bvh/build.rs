@@ -30,8 +30,13 @@ pub(super) fn max_depth(n: usize) -> u32 {
 /// The tree under construction.
 pub(super) struct Builder {
     pub nodes: Vec<Node>,
-    /// The bit trail of each input light's leaf (`None`: power 0, not in the tree).
-    pub trails: Vec<Option<u64>>,
+    /// The bit trail of each input light's leaf and the leaf's place in depth-first order
+    /// (`None`: power 0, not in the tree).
+    pub trails: Vec<Option<(u64, u32)>>,
+    /// The power of each leaf, in depth-first order.
+    pub leaf_power: Vec<f64>,
+    /// The light of each leaf, in depth-first order.
+    pub leaf_light: Vec<usize>,
     pub depth: u32,
     max_depth: u32,
 }
@@ -42,6 +47,8 @@ impl Builder {
         Self {
             nodes: Vec::with_capacity(2 * n_items),
             trails: vec![None; n_lights],
+            leaf_power: Vec::with_capacity(n_items),
+            leaf_light: Vec::with_capacity(n_items),
             depth: 0,
             max_depth: max_depth(n_items),
         }
@@ -50,21 +57,26 @@ impl Builder {
     /// Builds the subtree of `items` (non-empty) at `depth` with the bit trail `trail`;
     /// returns its bounds. The node goes at the end of `nodes`, its first child right after.
     pub fn build(&mut self, items: &mut [Item], depth: u32, trail: u64) -> Bound {
+        let first_leaf = self.leaf_light.len() as u32;
         if let [(light, b)] = items {
-            self.nodes.push(Node::new(b, true, *light));
-            self.trails[*light] = Some(trail);
+            self.nodes
+                .push(Node::new(b, true, *light, (first_leaf, first_leaf + 1)));
+            self.trails[*light] = Some((trail, first_leaf));
+            self.leaf_power.push(b.phi);
+            self.leaf_light.push(*light);
             self.depth = self.depth.max(depth);
             return *b;
         }
         let mid = self.split(items, depth);
         let at = self.nodes.len();
-        self.nodes.push(Node::new(&Bound::EMPTY, false, 0));
+        self.nodes.push(Node::new(&Bound::EMPTY, false, 0, (0, 0)));
         let (first, second) = items.split_at_mut(mid);
         let b0 = self.build(first, depth + 1, trail);
         let second_at = self.nodes.len();
         let b1 = self.build(second, depth + 1, trail | 1 << depth);
         let b = b0.union(&b1);
-        self.nodes[at] = Node::new(&b, false, second_at);
+        let end = self.leaf_light.len() as u32;
+        self.nodes[at] = Node::new(&b, false, second_at, (first_leaf, end));
         b
     }
 

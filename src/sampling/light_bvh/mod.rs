@@ -33,9 +33,13 @@ const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
 /// importances at the point (power over squared distance, times bounds on the emitter's and
 /// the receiver's cosines). [`LightBvh::pmf`] repeats the same arithmetic along the light's
 /// path, so the two agree bit for bit. The importance is 0 only where no light of the node
-/// can reach the point (behind every emitter); where both children of a node are 0 the
-/// descent goes on by power, so the probabilities always sum to 1 unless the root's
-/// importance is 0 (then nothing is sampled). Lights of power 0 are never chosen.
+/// can reach the point (behind every emitter: outside the cones its bounding sphere allows,
+/// or behind the plane of its box for lights that face one way); where both children of a
+/// node are 0 the descent goes on by power, so the probabilities always sum to 1 unless the
+/// root's importance is 0 (then nothing is sampled). Lights of power 0 are never chosen. Below a
+/// node whose lights face one way and which the point sees from afar, the descent stops
+/// and picks among its lights by power (the *cut*, which saves the deep levels where the
+/// importances differ little). The derivations are in `docs/derivations.md`, Part V.
 ///
 /// Build `O(n log n)` (binned surface area orientation heuristic, one light per leaf,
 /// depth at most `min(64, 2⌈log₂ n⌉ + 8)`); `sample` and `pmf` `O(log n)`.
@@ -64,9 +68,24 @@ const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
 #[derive(Clone, Debug)]
 pub struct LightBvh {
     nodes: Vec<Node>,
-    trails: Vec<Option<u64>>,
+    /// Per input light: its leaf's bit trail and its place in depth-first order.
+    trails: Vec<Option<(u64, u32)>>,
+    /// The prefix sums of the leaves' powers in depth-first order (`cdf[k]`: leaves `..k`).
+    cdf: Vec<f64>,
+    /// The light of each leaf in depth-first order.
+    leaf_light: Vec<usize>,
     depth: u32,
 }
+
+/// The cut (derivations, Part V §6): below a node whose lights' normals lie within
+/// `acos(CUT_MIN_COS_O)` of each other and emit at least as widely as `acos(CUT_MAX_COS_E)`,
+/// seen from at least `1/CUT_TAU` of its radii away, the descent stops and picks among the
+/// node's lights by power.
+const CUT_MIN_COS_O: f64 = 0.9;
+/// See [`CUT_MIN_COS_O`].
+const CUT_MAX_COS_E: f64 = 0.5;
+/// See [`CUT_MIN_COS_O`].
+const CUT_TAU: f64 = 0.45;
 
 /// The probabilities of the two children from their weights (`w₀ + w₁ > 0`); a child of
 /// positive weight never gets probability 0.
@@ -112,11 +131,49 @@ impl LightBvh {
         if !items.is_empty() {
             builder.build(&mut items, 0, 0);
         }
+        let mut cdf = Vec::with_capacity(builder.leaf_power.len() + 1);
+        let mut acc = 0.0f64;
+        cdf.push(acc);
+        for &phi in &builder.leaf_power {
+            acc += phi;
+            cdf.push(acc);
+        }
+        let mut nodes = builder.nodes;
+        for node in &mut nodes {
+            // Every light of a cut node must keep a positive share of the sums.
+            let (a, b) = (node.first_leaf as usize, node.end_leaf as usize);
+            if cdf[a..=b].windows(2).all(|w| w[1] > w[0]) {
+                node.allow_cut(CUT_MIN_COS_O, CUT_MAX_COS_E, CUT_TAU);
+            }
+        }
         Ok(Self {
-            nodes: builder.nodes,
+            nodes,
             trails: builder.trails,
+            cdf,
+            leaf_light: builder.leaf_light,
             depth: builder.depth,
         })
+    }
+
+    /// Whether some interior node is cut at `p` (for the tests: the cut is exercised).
+    #[cfg(test)]
+    fn cuts_at(&self, p: Vec3) -> bool {
+        self.nodes.iter().any(|n| n.cut_at(p.as_dvec3()))
+    }
+
+    /// The probability of leaf `k` (depth-first) among the leaves of `node` by power.
+    #[inline]
+    fn power_share(&self, node: &Node, k: usize) -> f64 {
+        let total = self.cdf[node.end_leaf as usize] - self.cdf[node.first_leaf as usize];
+        (self.cdf[k + 1] - self.cdf[k]) / total
+    }
+
+    /// A leaf (depth-first) of `node` chosen by power with `u ∈ [0, 1)`.
+    #[inline]
+    fn pick_by_power(&self, node: &Node, u: f64) -> usize {
+        let (a, b) = (node.first_leaf as usize, node.end_leaf as usize);
+        let t = self.cdf[a] + u * (self.cdf[b] - self.cdf[a]);
+        a + self.cdf[a + 1..b].partition_point(|&c| c <= t)
     }
 
     /// The number of lights given to [`LightBvh::new`] (including those of power 0).
@@ -176,6 +233,12 @@ impl LightBvh {
         let mut prob = 1.0f64;
         let mut at = 0;
         while !self.nodes[at].leaf {
+            let node = &self.nodes[at];
+            if node.cut_at(p) {
+                let k = self.pick_by_power(node, u);
+                prob *= self.power_share(node, k);
+                return Some((self.leaf_light[k], to_probability(prob)));
+            }
             let (p0, p1, second) = self.step(at, p, n);
             if u < p0 {
                 prob *= p0;
@@ -192,10 +255,12 @@ impl LightBvh {
 
     /// The probability that [`LightBvh::sample`] at `p` with normal `n` chooses `light`
     /// (the same arithmetic along the light's path, so it equals the probability `sample`
-    /// returns bit for bit). 0 for a light of power 0, an index out of range, a light that
-    /// cannot reach `p`, or a `p` that is not finite.
+    /// returns bit for bit). 0 for a light of power 0, an index out of range, or a `p` that
+    /// is not finite; 0 for a light that cannot reach `p`, except below a cut, where the
+    /// lights of a node are chosen by power (a light that can reach `p` is never 0).
     pub fn pmf(&self, p: Vec3, n: Vec3, light: usize) -> f32 {
-        let (Some((p, n)), Some(&Some(mut trail))) = (Self::query(p, n), self.trails.get(light))
+        let (Some((p, n)), Some(&Some((mut trail, leaf)))) =
+            (Self::query(p, n), self.trails.get(light))
         else {
             return 0.0;
         };
@@ -205,6 +270,11 @@ impl LightBvh {
         let mut prob = 1.0f64;
         let mut at = 0;
         while !self.nodes[at].leaf {
+            let node = &self.nodes[at];
+            if node.cut_at(p) {
+                prob *= self.power_share(node, leaf as usize);
+                return to_probability(prob);
+            }
             let (p0, p1, second) = self.step(at, p, n);
             let (pc, next) = if trail & 1 == 0 {
                 (p0, at + 1)

@@ -314,3 +314,61 @@ fn nearer_and_brighter_lights_are_more_likely() {
     // Power over squared distance: 1, 0.01, 1.
     assert!(pmf[0] > 10.0 * pmf[1] && pmf[2] > 10.0 * pmf[1], "{pmf:?}");
 }
+
+/// `n` small square panels on each of a room's ceiling (`y = 0.995`, facing down) and two
+/// walls (`x = ±0.995`, facing in), powers over three decades: the lights of one wall face
+/// one way, so the tree's nodes below a wall are cut from afar.
+pub(super) fn room_lights(n: usize, seed: u64) -> Vec<LightBounds> {
+    let mut rng = Pcg32::seed_from_u64(seed);
+    let mut lights = Vec::new();
+    for wall in 0..3 {
+        for _ in 0..n {
+            let (a, b) = (range(&mut rng, -0.9, 0.9), range(&mut rng, -0.9, 0.9));
+            let h = 0.035;
+            let power = 10f32.powf(range(&mut rng, -1.5, 1.5));
+            let (c, normal, e) = match wall {
+                0 => (Vec3::new(a, 0.995, b), Vec3::NEG_Y, Vec3::new(h, 0.0, h)),
+                1 => (Vec3::new(-0.995, a, b), Vec3::X, Vec3::new(0.0, h, h)),
+                _ => (Vec3::new(0.995, a, b), Vec3::NEG_X, Vec3::new(0.0, h, h)),
+            };
+            lights.push(LightBounds::planar(c - e, c + e, normal, false, power));
+        }
+    }
+    lights
+}
+
+#[test]
+fn cut_nodes_keep_sample_and_pmf_in_agreement() {
+    let lights = room_lights(150, 8);
+    let bvh = LightBvh::new(&lights).unwrap();
+    let mut rng = Pcg32::seed_from_u64(9);
+    let mut cut = 0;
+    for k in 0..80 {
+        // Inside the room, and far outside it (where whole walls are cut).
+        let s = if k % 4 == 0 { 20.0 } else { 0.99 };
+        let p = point(&mut rng, s);
+        let nrm = direction(&mut rng);
+        let pmf: Vec<f32> = (0..lights.len()).map(|i| bvh.pmf(p, nrm, i)).collect();
+        let total: f64 = pmf.iter().map(|&x| f64::from(x)).sum();
+        assert!(total.is_finite());
+        if total == 0.0 {
+            assert_eq!(bvh.sample(p, nrm, 0.5), None);
+            continue;
+        }
+        assert!((total - 1.0).abs() < 1e-5, "Σ pmf = {total} at {p}");
+        if bvh.cuts_at(p) {
+            cut += 1;
+        }
+        for j in 0..50 {
+            let u = if j == 0 { 0.0 } else { uni(&mut rng) };
+            let (i, prob) = bvh.sample(p, nrm, u).expect("Σ pmf = 1");
+            assert!(prob.is_finite() && prob > 0.0);
+            assert_eq!(
+                prob.to_bits(),
+                pmf[i].to_bits(),
+                "light {i} at {p}, u = {u}"
+            );
+        }
+    }
+    assert!(cut >= 20, "only {cut} points pass a cut");
+}

@@ -185,3 +185,32 @@ fn merged_cones_contain_both() {
         }
     }
 }
+
+#[test]
+fn a_point_behind_the_plane_of_a_panel_gets_zero() {
+    // A downward lamp 5 mm below a ceiling at y = 1, and a point lamp.
+    let h = 0.035;
+    let lights = [
+        LightBounds::planar(
+            Vec3::new(-h, 0.995, -h),
+            Vec3::new(h, 0.995, h),
+            Vec3::NEG_Y,
+            false,
+            1.0,
+        ),
+        LightBounds::point(Vec3::new(0.0, 0.0, 0.0), 1.0),
+    ];
+    let bvh = LightBvh::new(&lights).unwrap();
+    // On the ceiling beside the lamp, inside its bounding sphere's cone: behind its plane.
+    for x in [0.02f32, 0.05, 0.1, 0.5] {
+        assert_eq!(
+            bvh.pmf(Vec3::new(x, 1.0, 0.0), Vec3::NEG_Y, 0),
+            0.0,
+            "x = {x}"
+        );
+    }
+    // Just in front of its plane, beside it: reached at grazing angles.
+    for x in [0.05f32, 0.5] {
+        assert!(bvh.pmf(Vec3::new(x, 0.995 - 1e-4, 0.0), Vec3::NEG_Y, 0) > 0.0);
+    }
+}
