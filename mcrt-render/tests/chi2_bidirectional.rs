@@ -184,5 +184,6 @@ fn bare(p: Vec3) -> SurfacePoint {
         shape: 0,
         prim: 0,
         uv: Vec2::ZERO,
+        instance: 0,
     }
 }

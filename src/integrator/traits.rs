@@ -7,8 +7,8 @@ use glam::{Vec2, Vec3};
 /// A point where a ray met a surface: what the built-in renderer's ray queries return
 /// (`mcrt::scene::geometry::Geometry::intersect`) and what the estimators take.
 ///
-/// The estimators read `p`, `ng` and `frame`; `t`, `shape`, `prim` and `uv` are the scene's
-/// own (its [`Scene::bsdf`] or [`Scene::emitted`] may look them up). [`SurfacePoint::new`]
+/// The estimators read `p`, `ng` and `frame`; `t`, `shape`, `prim`, `instance` and `uv` are
+/// the scene's own (its [`Scene::bsdf`] or [`Scene::emitted`] may look them up). [`SurfacePoint::new`]
 /// fills those with 0; set the ones a scene uses with struct update syntax:
 ///
 /// ```
@@ -36,13 +36,16 @@ pub struct SurfacePoint {
     pub prim: u32,
     /// Surface parameters of the hit (opaque to the estimators).
     pub uv: Vec2,
+    /// The renderer's instance index, for a hit on a shape reached through an instance of a
+    /// shape group (Mitsuba 3's `si.instance`); 0 otherwise (opaque to the estimators).
+    pub instance: u32,
 }
 
 impl SurfacePoint {
     /// A surface point at `p` with unit geometric normal `ng` (of the surface's front side)
     /// and shading frame `frame` (whose `n` is the shading normal; often
-    /// `Frame::from_normal(ng)`): the fields the estimators read. `t`, `shape`, `prim` and
-    /// `uv` are 0.
+    /// `Frame::from_normal(ng)`): the fields the estimators read. `t`, `shape`, `prim`,
+    /// `instance` and `uv` are 0.
     #[inline]
     #[must_use]
     pub fn new(p: Vec3, ng: Vec3, frame: Frame) -> Self {
@@ -54,6 +57,7 @@ impl SurfacePoint {
             shape: 0,
             prim: 0,
             uv: Vec2::ZERO,
+            instance: 0,
         }
     }
 }

@@ -140,11 +140,14 @@ impl std::error::Error for MergeError {}
 /// Merges parts of one render into the film a single render of the whole would have given,
 /// equal up to floating-point rounding: every pixel's sums and sample count are those of the
 /// single render, added in f64 in another order. The splat sums are added likewise and
-/// scaled as the single render scales them.
+/// scaled as the single render scales them, and so are the sums of the `moment` channels'
+/// squared XYZ samples (the second moment, a mean of squares, is their merged sum over the
+/// merged sample count: the parts' means weighted by their sample counts).
 ///
 /// # Errors
 /// A part from another render (image size, samples per pixel, seed, or scene identity
-/// differ from the first part's), a part whose pixels do not hold the samples its header
+/// differ from the first part's, or one part has `moment` channels another lacks), a part
+/// whose pixels do not hold the samples its header
 /// names, a part whose sums hold NaN or infinite values, two parts holding the same samples
 /// of a pixel, or a pixel lacking samples.
 pub fn merge_parts(parts: &[Part]) -> Result<Film, MergeError> {
@@ -159,7 +162,10 @@ pub fn merge_parts(parts: &[Part]) -> Result<Film, MergeError> {
     check_no_overlap(parts)?;
     let (w, h) = (first.info.width, first.info.height);
     check_no_gap(parts, w, h)?;
-    let mut film = Film::new(w, h);
+    let mut film = match &first.moment {
+        Some(m) => Film::new(w, h).with_moment(&m.name),
+        None => Film::new(w, h),
+    };
     let mut splats = false;
     for p in parts {
         let win = p.window;
@@ -173,6 +179,9 @@ pub fn merge_parts(parts: &[Part]) -> Result<Film, MergeError> {
                 // Inside the image: `read_part` checked the window.
                 let merged = film.merge(index, a);
                 debug_assert!(merged.is_ok());
+                if let Some(m) = &p.moment {
+                    film.add_moment(index, m.sum_sq_xyz[k]);
+                }
             }
             if let Some(s) = &p.splats {
                 film.add_splat_sum(index, s[k]);
@@ -189,7 +198,12 @@ pub fn merge_parts(parts: &[Part]) -> Result<Film, MergeError> {
 
 fn check_same_render(first: &Part, p: &Part) -> Result<(), MergeError> {
     let (a, b) = (&first.info, &p.info);
-    let checks: [(&'static str, String, String); 4] = [
+    let moment = |p: &Part| {
+        p.moment
+            .as_ref()
+            .map_or("none".to_string(), |m| format!("\"{}\"", m.name))
+    };
+    let checks: [(&'static str, String, String); 5] = [
         (
             "image size",
             format!("{}×{}", a.width, a.height),
@@ -202,6 +216,7 @@ fn check_same_render(first: &Part, p: &Part) -> Result<(), MergeError> {
             format!("{} {:016x}", a.scene, a.identity),
             format!("{} {:016x}", b.scene, b.identity),
         ),
+        ("moment channels", moment(first), moment(p)),
     ];
     for (what, expected, found) in checks {
         if expected != found {
@@ -253,11 +268,18 @@ fn check_finite(p: &Part) -> Result<(), MergeError> {
             .and_then(|s| s.get(k))
             .into_iter()
             .flatten();
+        let moment = p
+            .moment
+            .as_ref()
+            .and_then(|m| m.sum_sq_xyz.get(k))
+            .into_iter()
+            .flatten();
         let bad = a
             .sum
             .iter()
             .chain(&a.sum_sq)
             .chain(splat)
+            .chain(moment)
             .filter(|v| !v.is_finite())
             .count() as u64;
         if bad > 0 {

@@ -26,7 +26,7 @@ pub use compare::{compare_blocks, z_two_sided, BlockReport};
 pub use filter::PixelFilter;
 pub use merge::{merge_parts, MergeError};
 pub use output::{OutputError, OutputPlan, DEFAULT_FOLDER, EXIT_INTERRUPTED};
-pub use part::{read_part, write_part, Part, PartInfo};
+pub use part::{read_part, write_part, Part, PartInfo, PartMoment};
 pub use window::{Crop, SampleRange, WindowError};
 pub use write::{write_exr, write_exr_with_channels, write_png};
 

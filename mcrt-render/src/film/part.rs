@@ -47,7 +47,23 @@ pub struct Part {
     pub pixels: Vec<PixelAccum>,
     /// For every pixel of `window`, row-major: the splat sums, if the part has any.
     pub splats: Option<Vec<[f64; 3]>>,
+    /// The `moment` integrator's sums, if the render has its channels.
+    pub moment: Option<PartMoment>,
 }
+
+/// A part's sums for Mitsuba 3's `moment` channels: the second moment is a mean of squares,
+/// so parts keep the sums of the squared XYZ samples, which add, and `merge` divides by the
+/// merged sample count (the mean channels come from the merged image itself).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartMoment {
+    /// The nested integrator's name, the prefix of the channel names (`mcrt.moment`).
+    pub name: String,
+    /// For every pixel of the part's window, row-major: the sum of the squared XYZ samples.
+    pub sum_sq_xyz: Vec<[f64; 3]>,
+}
+
+/// Channel names of an XYZ triple.
+const XYZ: [&str; 3] = ["X", "Y", "Z"];
 
 /// Channel names of an RGB triple.
 const RGB: [&str; 3] = ["R", "G", "B"];
@@ -85,7 +101,10 @@ fn text(s: &str) -> exr::prelude::Text {
 ///   importance sampling (see [`film`](super)) a sample weighs 1 in the pixel it was drawn
 ///   for and nothing elsewhere, so this is the pixel's sample count;
 /// - `splat.R` … (if the film has splats): per pixel, the sum of the contributions splatted
-///   onto it, before the splat scale. A Gaussian filter spreads each over several pixels.
+///   onto it, before the splat scale. A Gaussian filter spreads each over several pixels;
+/// - `m2sum.X`, `m2sum.Y`, `m2sum.Z` (if the render has Mitsuba 3's `moment` channels, and
+///   then the string attribute `mcrt.moment`, the nested integrator's name): per pixel, the
+///   sums of the squared CIE XYZ samples.
 ///
 /// The renderer keeps every sum in f64; each is stored as two floats, its nearest f32
 /// (`sum.R`) and the rounded remainder (`sum.lo.R`), which carry 48 of its 53 significant
@@ -120,17 +139,20 @@ pub fn write_part(path: &Path, film: &Film, info: &PartInfo) -> Result<(), Image
     for (c, n) in RGB.iter().enumerate() {
         channels.push(f32s(n, index.iter().map(|&i| mean[i][c]).collect()));
     }
-    let mut sums = |name: &str, get: &dyn Fn(usize) -> [f64; 3]| {
-        for (c, n) in RGB.iter().enumerate() {
+    let mut sums = |name: &str, get: &dyn Fn(usize) -> [f64; 3], axes: [&str; 3]| {
+        for (c, n) in axes.iter().enumerate() {
             let (hi, lo): (Vec<f32>, Vec<f32>) = index.iter().map(|&i| split(get(i)[c])).unzip();
             channels.push(f32s(&format!("{name}.{n}"), hi));
             channels.push(f32s(&format!("{name}.lo.{n}"), lo));
         }
     };
-    sums("sum", &|i| film.pixel(i).sum);
-    sums("sumsq", &|i| film.pixel(i).sum_sq);
+    sums("sum", &|i| film.pixel(i).sum, RGB);
+    sums("sumsq", &|i| film.pixel(i).sum_sq, RGB);
     if film.has_splats() {
-        sums("splat", &|i| film.splat_sum(i));
+        sums("splat", &|i| film.splat_sum(i), RGB);
+    }
+    if let Some(m) = &film.moment {
+        sums("m2sum", &|i| m.sum_sq_xyz[i], XYZ);
     }
     let weight = index.iter().map(|&i| film.pixel(i).count).collect();
     channels.push(AnyChannel::new(text("weight"), FlatSamples::U32(weight)));
@@ -138,6 +160,11 @@ pub fn write_part(path: &Path, film: &Film, info: &PartInfo) -> Result<(), Image
         layer_position: Vec2(window.x0 as i32, window.y0 as i32),
         ..LayerAttributes::default()
     };
+    if let Some(m) = &film.moment {
+        attributes
+            .other
+            .insert(text("mcrt.moment"), AttributeValue::Text(text(&m.name)));
+    }
     for (k, v) in [
         ("mcrt.part", FORMAT.to_string()),
         ("mcrt.scene", info.scene.clone()),
@@ -295,9 +322,9 @@ pub fn read_part(path: &Path) -> Result<Part, ImageError> {
             format!("channel \"{name}\": expected {n} 32-bit floats"),
         )),
     };
-    let sums = |name: &str| -> Result<Vec<[f64; 3]>, ImageError> {
+    let sums = |name: &str, axes: [&str; 3]| -> Result<Vec<[f64; 3]>, ImageError> {
         let mut out = vec![[0.0; 3]; n];
-        for (c, ch) in RGB.iter().enumerate() {
+        for (c, ch) in axes.iter().enumerate() {
             let hi = floats(&format!("{name}.{ch}"))?;
             let lo = floats(&format!("{name}.lo.{ch}"))?;
             for (o, (h, l)) in out.iter_mut().zip(hi.iter().zip(lo)) {
@@ -315,7 +342,7 @@ pub fn read_part(path: &Path) -> Result<Part, ImageError> {
             ))
         }
     };
-    let (sum, sum_sq) = (sums("sum")?, sums("sumsq")?);
+    let (sum, sum_sq) = (sums("sum", RGB)?, sums("sumsq", RGB)?);
     let pixels = (0..n)
         .map(|i| PixelAccum {
             sum: sum[i],
@@ -324,7 +351,14 @@ pub fn read_part(path: &Path) -> Result<Part, ImageError> {
         })
         .collect();
     let splats = match channel("splat.R") {
-        Ok(_) => Some(sums("splat")?),
+        Ok(_) => Some(sums("splat", RGB)?),
+        Err(_) => None,
+    };
+    let moment = match get("mcrt.moment") {
+        Ok(name) => Some(PartMoment {
+            name,
+            sum_sq_xyz: sums("m2sum", XYZ)?,
+        }),
         Err(_) => None,
     };
     Ok(Part {
@@ -333,6 +367,7 @@ pub fn read_part(path: &Path) -> Result<Part, ImageError> {
         window,
         pixels,
         splats,
+        moment,
     })
 }
 

@@ -187,14 +187,29 @@ impl Instancing {
     }
 
     /// A hit in instance `k`'s group space carried to world space: the point by
-    /// `to_world`, the normals by its inverse transpose (renormalised).
+    /// `to_world`, the normals by its inverse transpose (renormalised); its `instance` is
+    /// `k`.
     pub(super) fn hit_to_world(&self, k: u32, mut sp: SurfacePoint) -> SurfacePoint {
         let inst = &self.list[k as usize];
+        sp.instance = k;
         let ng = inst.normal.mul_vec3(sp.ng).normalize_or(sp.ng);
         let ns = inst.normal.mul_vec3(sp.frame.n).normalize_or(ng);
         sp.p = inst.to_world.transform_point3(sp.p);
         sp.ng = ng;
         sp.frame = Frame::from_normal(ns);
         sp
+    }
+
+    /// A world-space hit through instance `hit.instance` with its point carried back into
+    /// the group's space (the rest as it is), and the instance's `to_world` linear part,
+    /// which carries the group's tangent vectors (`dp/du`, `dp/dv`) to world space, as
+    /// Mitsuba 3's `instance.cpp` does. `None` for an instance index out of range.
+    pub(super) fn hit_to_group(&self, hit: &SurfacePoint) -> Option<(SurfacePoint, Mat3A)> {
+        let inst = self.list.get(hit.instance as usize)?;
+        let local = SurfacePoint {
+            p: inst.to_object.transform_point3(hit.p),
+            ..*hit
+        };
+        Some((local, inst.to_world.matrix3))
     }
 }

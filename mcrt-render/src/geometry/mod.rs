@@ -286,6 +286,19 @@ impl Geometry {
         Some(inst.hit_to_world(k, self.make_hit(group, &local, t, rec)))
     }
 
+    /// For a hit on a shape group's shape: `f` of the hit carried into the group's space
+    /// (through instance `hit.instance`), with the instance's `to_world` linear part, which
+    /// carries tangent vectors back to world space. `None` without such an instance.
+    #[inline(never)]
+    fn through_instance<T>(
+        &self,
+        hit: &SurfacePoint,
+        f: impl FnOnce(&SurfacePoint) -> T,
+    ) -> Option<(glam::Mat3, T)> {
+        let (local, to_world) = self.instancing.as_ref()?.hit_to_group(hit)?;
+        Some((glam::Mat3::from(to_world), f(&local)))
+    }
+
     /// True when anything is hit with `0 < t < t_max`.
     #[inline(never)]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
@@ -356,6 +369,7 @@ impl Geometry {
             shape: id.shape,
             prim: id.prim,
             uv,
+            instance: 0,
         }
     }
 }

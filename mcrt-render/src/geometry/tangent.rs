@@ -16,13 +16,20 @@ impl Geometry {
     /// the direction of growing φ about its object-space z axis; on a disk, the radial
     /// direction. Zero where it is undefined (a degenerate triangle).
     ///
-    /// A hit on a shape group's shape (through an instance) gets zero: its tangent would have
-    /// to be carried through the instance's transform, which is not done yet, so such a
-    /// material keeps the frame built from the normal.
+    /// A hit on a shape group's shape (through an instance) gets the group shape's `dp/du`
+    /// in the group's space carried to world space by the instance's `to_world` linear part,
+    /// as Mitsuba 3's `instance.cpp` does.
     pub fn tangent(&self, hit: &SurfacePoint) -> Vec3 {
-        if hit.shape >= self.own_shapes {
-            return Vec3::ZERO;
+        if hit.shape < self.own_shapes {
+            return self.shape_tangent(hit);
         }
+        self.through_instance(hit, |local| self.shape_tangent(local))
+            .map_or(Vec3::ZERO, |(m, t)| m * t)
+    }
+
+    /// `dp/du` at `hit` in the space of its shape's data (world space for the scene's own
+    /// shapes, the group's space for a group's shape).
+    fn shape_tangent(&self, hit: &SurfacePoint) -> Vec3 {
         match self.shapes.get(hit.shape as usize) {
             Some(ShapeData::Mesh(m)) => {
                 let Some(idx) = m.indices.get(hit.prim as usize) else {

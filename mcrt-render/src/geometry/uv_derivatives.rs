@@ -17,13 +17,21 @@ impl Geometry {
     /// `r`, `2π r (−y, x, 0)` and `π r (z cos φ, z sin φ, −sin θ)` in its object frame
     /// (`(x, y, z)` the unit normal there); on a disk, `(cos φ, sin φ, 0)` and
     /// `2π ρ (−sin φ, cos φ, 0)` through its `to_world`; on a cylinder, `2π (−y, x, 0)`
-    /// (its radius in `(x, y)`) and its axis times its length. Zero for a hit on a shape
-    /// group's shape (through an instance), whose derivatives are not carried through the
-    /// instance's transform yet.
+    /// (its radius in `(x, y)`) and its axis times its length. For a hit on a shape group's
+    /// shape (through an instance), the group shape's derivatives in the group's space
+    /// carried to world space by the instance's `to_world` linear part (Mitsuba 3's
+    /// `instance.cpp`).
     pub fn uv_derivatives(&self, hit: &SurfacePoint) -> (Vec3, Vec3) {
-        if hit.shape >= self.own_shapes {
-            return (Vec3::ZERO, Vec3::ZERO);
+        if hit.shape < self.own_shapes {
+            return self.shape_uv_derivatives(hit);
         }
+        self.through_instance(hit, |local| self.shape_uv_derivatives(local))
+            .map_or((Vec3::ZERO, Vec3::ZERO), |(m, (du, dv))| (m * du, m * dv))
+    }
+
+    /// `(dp/du, dp/dv)` at `hit` in the space of its shape's data (world space for the
+    /// scene's own shapes, the group's space for a group's shape).
+    fn shape_uv_derivatives(&self, hit: &SurfacePoint) -> (Vec3, Vec3) {
         match self.shapes.get(hit.shape as usize) {
             Some(ShapeData::Mesh(m)) => {
                 let Some(idx) = m.indices.get(hit.prim as usize) else {
@@ -163,6 +171,103 @@ mod tests {
                     "{kind}: {got} vs {want}"
                 );
             }
+        }
+    }
+
+    /// A shape inside a shape group, instanced by a rotation, a scale and a translation,
+    /// has the frame, `dp/du` and `dp/dv` of the same shape written without instancing
+    /// (its `to_world` the instance's times its own), as in Mitsuba 3, where the instance
+    /// carries the group shape's derivatives by its `to_world` and builds the frame from
+    /// them. Each shape kind, rays from several origins.
+    #[test]
+    fn instanced_frame_equals_plain_frame() {
+        use crate::description::ShapeGroupDesc;
+        use std::sync::Arc;
+        let own =
+            Mat4::from_rotation_z(25f32.to_radians()) * Mat4::from_scale(Vec3::new(1.0, 0.6, 1.0));
+        let kinds = [
+            ShapeKind::Rectangle,
+            ShapeKind::Disk,
+            ShapeKind::Sphere {
+                center: Vec3::new(0.1, -0.2, 0.3),
+                radius: 0.8,
+            },
+            ShapeKind::Cylinder {
+                p0: Vec3::new(-0.2, 0.0, -1.0),
+                p1: Vec3::new(0.3, 0.1, 1.0),
+                radius: 0.7,
+            },
+        ];
+        let instance = Mat4::from_translation(Vec3::new(0.2, -0.1, -4.0))
+            * Mat4::from_axis_angle(Vec3::new(1.0, 2.0, 0.5).normalize(), 0.7)
+            * Mat4::from_scale(Vec3::splat(1.3));
+        for kind in kinds {
+            // The sphere and the cylinder keep a uniform cross-section (as Mitsuba's).
+            let own = if matches!(kind, ShapeKind::Sphere { .. } | ShapeKind::Cylinder { .. }) {
+                Mat4::from_rotation_z(25f32.to_radians())
+            } else {
+                own
+            };
+            let inner = ShapeDesc {
+                to_world: own,
+                ..ShapeDesc::new(kind.clone())
+            };
+            let group = Arc::new(ShapeGroupDesc {
+                id: Some("g".into()),
+                shapes: vec![inner],
+            });
+            let instanced = ShapeDesc {
+                to_world: instance,
+                ..ShapeDesc::new(ShapeKind::Instance(group))
+            };
+            let plain = ShapeDesc {
+                to_world: instance * own,
+                ..ShapeDesc::new(kind.clone())
+            };
+            let a = Geometry::new(&[instanced], None, AccelKind::Bvh).expect("instanced");
+            let b = Geometry::new(&[plain], None, AccelKind::Bvh).expect("plain");
+            let mut hits = 0;
+            for (x, y) in [(0.0, 0.0), (0.3, 0.2), (-0.4, 0.5), (0.6, -0.3)] {
+                let ray = Ray {
+                    origin: Vec3::new(x, y, 0.0),
+                    dir: -Vec3::Z,
+                };
+                let (Some(ha), Some(hb)) = (
+                    a.intersect(&ray, f32::INFINITY),
+                    b.intersect(&ray, f32::INFINITY),
+                ) else {
+                    continue;
+                };
+                hits += 1;
+                assert!(ha.shape >= 1 && hb.shape == 0, "{kind:?}");
+                let frame = |g: &Geometry, h: &mcrt::integrator::SurfacePoint| {
+                    let turn = g.tangent_turn(h);
+                    [turn.x * h.frame.s + turn.y * h.frame.t, h.frame.n, h.ng]
+                };
+                let (du_a, dv_a) = a.uv_derivatives(&ha);
+                let (du_b, dv_b) = b.uv_derivatives(&hb);
+                let pairs = [
+                    (ha.p, hb.p),
+                    // Only its direction is defined (`Geometry::tangent`).
+                    (
+                        a.tangent(&ha).normalize_or_zero(),
+                        b.tangent(&hb).normalize_or_zero(),
+                    ),
+                    (du_a, du_b),
+                    (dv_a, dv_b),
+                ]
+                .into_iter()
+                .chain(frame(&a, &ha).into_iter().zip(frame(&b, &hb)));
+                for (got, want) in pairs {
+                    assert!(
+                        got.is_finite()
+                            && want.length() > 0.0
+                            && (got - want).length() <= 2e-5 * want.length().max(1.0),
+                        "{kind:?} at ({x}, {y}): {got} vs {want}"
+                    );
+                }
+            }
+            assert!(hits >= 2, "{kind:?}: only {hits} hits");
         }
     }
 }

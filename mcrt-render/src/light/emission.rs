@@ -33,6 +33,7 @@ fn bare(p: Vec3, n: Vec3, shape: u32) -> SurfacePoint {
         shape,
         prim: 0,
         uv: Vec2::ZERO,
+        instance: 0,
     }
 }
 

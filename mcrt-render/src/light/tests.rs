@@ -37,6 +37,7 @@ fn point(p: Vec3) -> SurfacePoint {
         shape: 0,
         prim: 0,
         uv: Vec2::ZERO,
+        instance: 0,
     }
 }
 

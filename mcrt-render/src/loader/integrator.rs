@@ -48,20 +48,28 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<ReadIntegrator> {
 }
 
 /// `moment`: exactly one nested `path` or `direct`, whose image it keeps; the mean and second
-/// moment channels are added when the film is written.
+/// moment channels are added when the film is written. Several nested integrators (Mitsuba
+/// 3 runs each on the same camera ray, one after the other on one sampler stream, and keeps
+/// the first one's image) are refused at the second: the render loop runs one estimator per
+/// sample (docs/scene-format.md, "The `moment` integrator around another").
 fn read_moment(ctx: &Ctx, e: &Elem) -> Res<ReadIntegrator> {
     let p = Props::new(ctx, e)?;
     let objects = p.objects.clone();
     let mut nested = objects.iter().copied();
     let (Some(inner), None) = (nested.next(), nested.next()) else {
-        let at = objects.get(1).copied().unwrap_or(e);
+        let (at, what) = match objects.get(1) {
+            Some(second) => (
+                *second,
+                "; several, which Mitsuba 3 runs one after the other on each camera ray, are \
+                 not supported (the render loop runs one estimator per sample)",
+            ),
+            None => (e, ""),
+        };
         return Err(ctx.err(
             at,
-            SceneErrorKind::Unsupported(
-                "integrator \"moment\" needs exactly one nested <integrator> (several are not \
-                 supported)"
-                    .into(),
-            ),
+            SceneErrorKind::Unsupported(format!(
+                "integrator \"moment\" needs exactly one nested <integrator>{what}"
+            )),
         ));
     };
     if inner.tag != "integrator" {

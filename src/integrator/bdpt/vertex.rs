@@ -73,6 +73,7 @@ pub(crate) fn bare_point(p: Vec3) -> SurfacePoint {
         shape: u32::MAX,
         prim: 0,
         uv: Vec2::ZERO,
+        instance: 0,
     }
 }
 
