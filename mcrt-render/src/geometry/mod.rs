@@ -142,17 +142,17 @@ impl Geometry {
     /// A transform that is not finite, affine and invertible; a sphere under a non-uniform
     /// scale; an invalid mesh; an unreadable OBJ file; an instance inside a shape group
     /// (nested instancing, refused as by Mitsuba 3).
-    pub fn new(
-        shapes: &[ShapeDesc],
+    pub fn new<S: std::borrow::Borrow<ShapeDesc>>(
+        shapes: &[S],
         base_dir: Option<&Path>,
         accel: AccelKind,
     ) -> Result<Self, GeometryError> {
         let groups = crate::description::groups_of(shapes);
-        let mut all: Vec<&ShapeDesc> = shapes.iter().collect();
+        let mut all: Vec<&ShapeDesc> = shapes.iter().map(|s| s.borrow()).collect();
         let mut firsts = Vec::with_capacity(groups.len());
         for g in &groups {
             firsts.push(all.len() as u32);
-            all.extend(g.shapes.iter());
+            all.extend(g.shapes.iter().map(|s| &**s));
         }
         if let Some(i) =
             (shapes.len()..all.len()).find(|&i| matches!(all[i].kind, ShapeKind::Instance(_)))
