@@ -1,6 +1,12 @@
-//! What a scene file says, as plain data: the output of the XML loader and the input of the
+//! What a scene file says, as data: the output of the XML loader and the input of the
 //! renderer. Every default is Mitsuba 3's, so a description built in code with
 //! [`Default`] values means what the same XML without those attributes means to Mitsuba.
+//!
+//! A [`SceneDescription`] holds only checked values: its parts (the integrator, the sensor
+//! and its film, each shape with its material and area emitter, each shape group, each
+//! emitter) are [`Checked`] ones, made by [`Checked::new`], and the numbers inside them that
+//! have a type of their own ([`Roughness`], [`SampleCount`], [`Colour`], [`Ior`]) were
+//! checked when those were made. Nothing downstream checks them again.
 
 mod check;
 mod checked;
