@@ -142,8 +142,10 @@ mod tests {
 
     #[test]
     fn a_bad_value_cannot_be_made_and_the_error_names_it() {
-        let mut film = FilmDesc::default();
-        film.filter = super::super::FilterDesc::Gaussian { stddev: f32::NAN };
+        let film = FilmDesc {
+            filter: super::super::FilterDesc::Gaussian { stddev: f32::NAN },
+            ..FilmDesc::default()
+        };
         assert_eq!(Checked::new(film).unwrap_err().param, "stddev");
         let mut sensor = SensorDesc::default();
         sensor.to_world.w_axis.w = 2.0;

@@ -61,9 +61,9 @@ impl Instancing {
     /// Builds the instances among `shapes` (the scene's own shapes) over `groups`, already
     /// built in the order `order` (that of
     /// `description::groups_of`).
-    pub(super) fn build<S: std::borrow::Borrow<ShapeDesc>>(
+    pub(super) fn build(
         accel: AccelKind,
-        shapes: &[S],
+        shapes: &[&ShapeDesc],
         order: &[&Arc<Checked<ShapeGroupDesc>>],
         groups: Vec<Level>,
     ) -> Result<Self, GeometryError> {
@@ -74,12 +74,11 @@ impl Instancing {
             .collect();
         let count = shapes
             .iter()
-            .filter(|s| matches!(s.borrow().kind, ShapeKind::Instance(_)))
+            .filter(|s| matches!(s.kind, ShapeKind::Instance(_)))
             .count();
         let mut list = Vec::with_capacity(count);
         let mut boxes = Vec::with_capacity(count);
-        for (i, s) in shapes.iter().enumerate() {
-            let s = s.borrow();
+        for (i, &s) in shapes.iter().enumerate() {
             let ShapeKind::Instance(g) = &s.kind else {
                 continue;
             };

@@ -147,8 +147,18 @@ impl Geometry {
         base_dir: Option<&Path>,
         accel: AccelKind,
     ) -> Result<Self, GeometryError> {
+        let shapes: Vec<&ShapeDesc> = shapes.iter().map(|s| s.borrow()).collect();
+        Self::of_shapes(&shapes, base_dir, accel)
+    }
+
+    /// [`Geometry::new`] of the shapes, one build whatever holds them.
+    fn of_shapes(
+        shapes: &[&ShapeDesc],
+        base_dir: Option<&Path>,
+        accel: AccelKind,
+    ) -> Result<Self, GeometryError> {
         let groups = crate::description::groups_of(shapes);
-        let mut all: Vec<&ShapeDesc> = shapes.iter().map(|s| s.borrow()).collect();
+        let mut all: Vec<&ShapeDesc> = shapes.to_vec();
         let mut firsts = Vec::with_capacity(groups.len());
         for g in &groups {
             firsts.push(all.len() as u32);
