@@ -1,16 +1,18 @@
 //! What the renderer can use: the checks on the parts of a [`SceneDescription`] that their
 //! types do not already make, and the bounds that keep any scene's memory and work finite.
-//! They are the checked constructors of the description's parts: [`Checked::new`](crate::description::Checked::new) runs a
-//! part's [`Check`](crate::description::Check), whose impls (at the bottom of this file) call the functions here, once,
-//! when the part is made. The XML loader makes each part where it reads the element (so its
-//! errors name file, line and element); a description built in code goes through the same
-//! constructors. A [`SceneDescription`] holds only [`Checked`](crate::description::Checked) parts, so nothing downstream,
-//! [`Renderer::new`](crate::render::Renderer::new) included, walks it to check it again:
-//! the renderer checks only the total [`work`], which depends on the render's overrides
-//! (`render/samples.rs`). A roughness ([`Roughness`]), a sample count ([`SampleCount`]), a
-//! colour ([`Colour`]: every reflectance, transmittance, conductor index and emitted colour)
-//! and an index of refraction ([`Ior`]) are checked when they are made, and never again; the
-//! integrators' parameters are checked against their one definition each (`param_defs`).
+//! They are the checked constructors of the description's parts:
+//! [`Checked::new`](crate::description::Checked::new) runs a part's [`Check`], whose impls
+//! (at the bottom of this file) call the functions here, once, when the part is made. The
+//! XML loader makes each part where it reads the element (so its errors name file, line and
+//! element); a description built in code goes through the same constructors. A
+//! [`SceneDescription`] holds only [`Checked`](crate::description::Checked) parts, so
+//! nothing downstream, [`Renderer::new`](crate::render::Renderer::new) included, walks it to
+//! check it again: the renderer checks only the total [`work`], which depends on the
+//! render's overrides (`render/samples.rs`). A roughness ([`Roughness`]), a sample count
+//! ([`SampleCount`]), a colour ([`Colour`]: every reflectance, transmittance, conductor
+//! index and emitted colour) and an index of refraction ([`Ior`]) are checked when they are
+//! made, and never again; the integrators' parameters are checked against their one
+//! definition each (`param_defs`).
 //!
 //! [`SceneDescription`]: crate::description::SceneDescription
 //!
