@@ -273,17 +273,18 @@ impl Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::description::FilmDesc;
+    use crate::description::{Checked, FilmDesc};
 
     fn sensor(fov: f32, axis: FovAxis, w: u32, h: u32) -> SensorDesc {
         SensorDesc {
             fov,
             fov_axis: axis,
-            film: FilmDesc {
+            film: Checked::new(FilmDesc {
                 width: w,
                 height: h,
                 ..FilmDesc::default()
-            },
+            })
+            .unwrap(),
             ..SensorDesc::default()
         }
     }
@@ -292,12 +293,16 @@ mod tests {
     fn a_crop_window_is_exactly_that_part_of_the_image() {
         let full = sensor(50.0, FovAxis::X, 120, 90);
         let mut cropped = full.clone();
-        cropped.film.crop = Some(crate::description::CropWindow {
-            offset_x: 30,
-            offset_y: 20,
-            width: 40,
-            height: 25,
-        });
+        cropped.film = (cropped.film)
+            .changed(|f| {
+                f.crop = Some(crate::description::CropWindow {
+                    offset_x: 30,
+                    offset_y: 20,
+                    width: 40,
+                    height: 25,
+                })
+            })
+            .unwrap();
         let (a, b) = (Camera::new(&full).unwrap(), Camera::new(&cropped).unwrap());
         assert_eq!((b.width(), b.height()), (40, 25));
         let off = Vec2::new(30.0, 20.0);
@@ -319,14 +324,16 @@ mod tests {
             b.direction_pdf(a.generate_ray(Vec2::new(5.0, 5.0)).dir),
             0.0
         );
-        let mut past = cropped.clone();
-        past.film.crop = Some(crate::description::CropWindow {
-            offset_x: 100,
-            offset_y: 0,
-            width: 40,
-            height: 10,
+        // A window past the film cannot be made (the film's checked constructor refuses it).
+        let past = cropped.film.changed(|f| {
+            f.crop = Some(crate::description::CropWindow {
+                offset_x: 100,
+                offset_y: 0,
+                width: 40,
+                height: 10,
+            })
         });
-        assert!(Camera::new(&past).is_err());
+        assert_eq!(past.unwrap_err().param, "crop_width");
     }
 
     #[test]
@@ -354,7 +361,13 @@ mod tests {
     fn rejects_bad_sensors() {
         assert!(Camera::new(&sensor(0.0, FovAxis::X, 10, 10)).is_err());
         assert!(Camera::new(&sensor(180.0, FovAxis::X, 10, 10)).is_err());
-        assert!(Camera::new(&sensor(45.0, FovAxis::X, 0, 10)).is_err());
+        // An empty film cannot even be made (its checked constructor refuses it).
+        let empty = FilmDesc {
+            width: 0,
+            height: 10,
+            ..FilmDesc::default()
+        };
+        assert_eq!(Checked::new(empty).unwrap_err().param, "width");
         let mut s = sensor(45.0, FovAxis::X, 10, 10);
         s.near_clip = 2.0 * s.far_clip;
         assert!(Camera::new(&s).is_err());

@@ -2,8 +2,9 @@
 //! 3's `cornell_box()` with a box pixel filter), so the renderer needs no file to run.
 
 use crate::description::{
-    AreaEmitterDesc, BsdfDesc, Colour, FilmDesc, FilterDesc, FovAxis, IntegratorDesc, SampleCount,
-    SamplerDesc, SamplerKind, SceneDescription, SensorDesc, ShapeDesc, ShapeKind,
+    AreaEmitterDesc, BsdfDesc, Check, Checked, Colour, FilmDesc, FilterDesc, FovAxis,
+    IntegratorDesc, SampleCount, SamplerDesc, SamplerKind, SceneDescription, SensorDesc, ShapeDesc,
+    ShapeKind,
 };
 use crate::transform::look_at;
 use glam::{Mat4, Vec3};
@@ -25,8 +26,9 @@ pub fn cornell_box() -> SceneDescription {
 /// `-D spp=… -D res=… -D max_depth=…`.
 ///
 /// # Panics
-/// If `spp` is 0 or above [`SampleCount::MAX`] (the sample count is made by its checked
-/// constructor, as the loader makes it).
+/// If `spp` is 0 or above [`SampleCount::MAX`], `res` is 0 or too large a film, or
+/// `max_depth` is below −1: every part is made by its checked constructor
+/// ([`Checked::new`]), as the loader makes it.
 pub fn cornell_box_with(spp: u32, res: u32, max_depth: i32) -> SceneDescription {
     let white = diffuse(0.885809, 0.698859, 0.666422);
     let red = diffuse(0.570068, 0.0430135, 0.0443706);
@@ -43,7 +45,7 @@ pub fn cornell_box_with(spp: u32, res: u32, max_depth: i32) -> SceneDescription 
     light.emitter = Some(AreaEmitterDesc {
         radiance: Colour::known(Vec3::new(18.387, 13.9873, 6.75357)),
     });
-    let shapes = vec![
+    let shapes = [
         light,
         rect(
             "floor",
@@ -96,16 +98,22 @@ pub fn cornell_box_with(spp: u32, res: u32, max_depth: i32) -> SceneDescription 
         ),
     ];
     SceneDescription {
-        integrator: IntegratorDesc::Path {
+        integrator: checked(IntegratorDesc::Path {
             max_depth,
             rr_depth: 5,
-        },
-        sensor: sensor(spp, res),
-        shapes,
+        }),
+        sensor: checked(sensor(spp, res)),
+        shapes: shapes.into_iter().map(checked).collect(),
         emitters: Vec::new(),
         source: None,
         ..SceneDescription::default()
     }
+}
+
+/// `value` through its checked constructor; a refusal is a bad argument of
+/// [`cornell_box_with`].
+fn checked<T: Check>(value: T) -> Checked<T> {
+    Checked::new(value).unwrap_or_else(|e| panic!("cornell_box_with: {e}"))
 }
 
 fn sensor(spp: u32, res: u32) -> SensorDesc {
@@ -116,12 +124,12 @@ fn sensor(spp: u32, res: u32) -> SensorDesc {
         near_clip: 0.001,
         far_clip: 100.0,
         to_world,
-        film: FilmDesc {
+        film: checked(FilmDesc {
             width: res,
             height: res,
             filter: FilterDesc::Box,
             crop: None,
-        },
+        }),
         sampler: SamplerDesc {
             kind: SamplerKind::Independent,
             sample_count: SampleCount::new(spp).unwrap_or_else(|e| panic!("cornell_box_with: {e}")),

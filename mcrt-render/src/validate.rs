@@ -1,11 +1,20 @@
-//! What the renderer can use: the checks on a [`SceneDescription`] that its types do not
-//! already make, and the bounds that keep any scene's memory and work finite. The XML loader
-//! applies them to each element as it reads it (so its errors name file, line and element),
-//! and [`Renderer::new`](crate::render::Renderer::new) applies them to descriptions built in
-//! code. A roughness ([`Roughness`]), a sample count ([`SampleCount`]), a colour
-//! ([`Colour`]: every reflectance, transmittance, conductor index and emitted colour) and an
-//! index of refraction ([`Ior`]) are checked when they are made, and never again; the
-//! integrators' parameters are checked against their one definition each (`param_defs`).
+//! What the renderer can use: the checks on the parts of a [`SceneDescription`] that their
+//! types do not already make, and the bounds that keep any scene's memory and work finite.
+//! They are the checked constructors of the description's parts:
+//! [`Checked::new`](crate::description::Checked::new) runs a part's [`Check`], whose impls
+//! (at the bottom of this file) call the functions here, once, when the part is made. The
+//! XML loader makes each part where it reads the element (so its errors name file, line and
+//! element); a description built in code goes through the same constructors. A
+//! [`SceneDescription`] holds only [`Checked`](crate::description::Checked) parts, so
+//! nothing downstream, [`Renderer::new`](crate::render::Renderer::new) included, walks it to
+//! check it again: the renderer checks only the total [`work`], which depends on the
+//! render's overrides (`render/samples.rs`). A roughness ([`Roughness`]), a sample count
+//! ([`SampleCount`]), a colour ([`Colour`]: every reflectance, transmittance, conductor
+//! index and emitted colour) and an index of refraction ([`Ior`]) are checked when they are
+//! made, and never again; the integrators' parameters are checked against their one
+//! definition each (`param_defs`).
+//!
+//! [`SceneDescription`]: crate::description::SceneDescription
 //!
 //! The bounds, also listed in `docs/scene-format.md`:
 //!
@@ -18,8 +27,8 @@
 //! | roughness α | [[`MIN_ROUGHNESS`], 10] ([`Roughness`]); the loader clamps smaller α to 10⁻⁴ as Mitsuba 3 does |
 
 use crate::description::{
-    BsdfDesc, Colour, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc, Ior, Roughness,
-    SampleCount, SceneDescription, ShapeDesc, ShapeKind,
+    BsdfDesc, Check, Colour, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc, Ior, Roughness,
+    SampleCount, SensorDesc, ShapeDesc, ShapeGroupDesc, ShapeKind,
 };
 use glam::{Mat4, Vec3, Vec4};
 
@@ -49,6 +58,20 @@ pub use crate::invalid::Invalid;
 /// π in f64, for the bounds on the lights' power.
 const PI64: f64 = std::f64::consts::PI;
 
+#[cfg(test)]
+thread_local! {
+    /// How many of the checks here have run on this thread: the test that preparing a
+    /// render checks no part of its description reads it.
+    pub(crate) static CHECKS_RUN: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// Counts a check in [`CHECKS_RUN`] (nothing outside the unit tests).
+#[inline]
+fn tally() {
+    #[cfg(test)]
+    CHECKS_RUN.with(|c| c.set(c.get() + 1));
+}
+
 fn invalid(param: &'static str, message: impl Into<String>) -> Invalid {
     Invalid::new(param, message)
 }
@@ -75,6 +98,7 @@ pub fn emission_power(param: &'static str, v: Vec3, factor: f64) -> Result<(), I
 
 /// An object-to-world transform: finite, affine (last row 0 0 0 1) and invertible.
 pub fn transform(param: &'static str, m: &Mat4) -> Result<(), Invalid> {
+    tally();
     if !m.is_finite() {
         return Err(invalid(param, "is not finite"));
     }
@@ -92,7 +116,8 @@ pub fn transform(param: &'static str, m: &Mat4) -> Result<(), Invalid> {
 }
 
 /// A film: non-empty, at most [`MAX_FILM_PIXELS`], with a usable filter.
-pub fn film(f: &FilmDesc) -> Result<(), Invalid> {
+fn film(f: &FilmDesc) -> Result<(), Invalid> {
+    tally();
     let pixels = f.width as u64 * f.height as u64;
     if pixels == 0 {
         return Err(invalid("width", "and height must be positive"));
@@ -140,7 +165,8 @@ pub fn film(f: &FilmDesc) -> Result<(), Invalid> {
 }
 
 /// The integrator's parameters, each against its definition (`param_defs::integrator`).
-pub fn integrator(i: &IntegratorDesc) -> Result<(), Invalid> {
+fn integrator(i: &IntegratorDesc) -> Result<(), Invalid> {
+    tally();
     crate::param_defs::integrator::check(i)
 }
 
@@ -180,7 +206,8 @@ pub fn work(pixels: u64, spp: u32, i: &IntegratorDesc) -> Result<(), Invalid> {
 /// indices [`Ior`]s, checked when they were made): a plastic's internal scattering, a
 /// blend's weight, a mask's opacity, a principled material's parameters, and where textures
 /// are attached.
-pub fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
+pub(crate) fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
+    tally();
     match b {
         BsdfDesc::Diffuse { .. }
         | BsdfDesc::Conductor { .. }
@@ -332,7 +359,8 @@ fn plastic(int_ior: Ior, ext_ior: Ior, diffuse: Colour, nonlinear: bool) -> Resu
 }
 
 /// An emitter that is not attached to a shape.
-pub fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
+fn emitter(e: &EmitterDesc) -> Result<(), Invalid> {
+    tally();
     match e {
         EmitterDesc::Point {
             position,
@@ -445,7 +473,8 @@ pub(crate) fn is_similarity(m: &Mat4) -> bool {
 }
 
 /// A shape: its geometry, transform, material and area emitter.
-pub fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
+fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
+    tally();
     if let ShapeKind::Sphere { center, radius } = s.kind {
         if !center.is_finite() {
             return Err(invalid("center", "must be finite"));
@@ -485,9 +514,10 @@ pub fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
     bsdf(&s.bsdf)
 }
 
-/// A shape inside a shape group: a [`shape`] that is neither an instance nor an emitter
-/// (Mitsuba 3's `shapegroup.cpp` refuses both).
-pub fn grouped_shape(s: &ShapeDesc) -> Result<(), Invalid> {
+/// The rules of a shape group for a shape in it (a checked shape, so its own checks have
+/// passed): neither an instance nor an emitter (Mitsuba 3's `shapegroup.cpp` refuses both).
+fn grouped_shape(s: &ShapeDesc) -> Result<(), Invalid> {
+    tally();
     if let ShapeKind::Instance(_) = s.kind {
         return Err(invalid(
             "type",
@@ -502,50 +532,60 @@ pub fn grouped_shape(s: &ShapeDesc) -> Result<(), Invalid> {
              in Mitsuba 3)",
         ));
     }
-    shape(s)
+    Ok(())
 }
 
-/// Every check above on a whole description but the total [`work`], which depends on the
-/// render's overrides (the renderer checks it once it has resolved the sample count). The
-/// message names the part of the scene.
-pub fn scene(d: &SceneDescription) -> Result<(), String> {
-    let film = &d.sensor.film;
-    let part = |what: String| move |e: Invalid| format!("{what}: {e}");
-    self::film(film).map_err(part("film".into()))?;
-    integrator(&d.integrator).map_err(part("integrator".into()))?;
-    transform("to_world", &d.sensor.to_world).map_err(part("sensor".into()))?;
-    for (i, s) in d.shapes.iter().enumerate() {
-        let id =
-            s.id.as_deref()
-                .map(|x| format!(" ({x})"))
-                .unwrap_or_default();
-        shape(s).map_err(part(format!("shape {i}{id}")))?;
+// The checks above are the checked constructors of the description's parts
+// (`Checked::new`): each part is checked once, when it is made, and trusted after.
+
+impl Check for FilmDesc {
+    fn check(&self) -> Result<(), Invalid> {
+        film(self)
     }
-    for (g, group) in d.shape_groups().into_iter().enumerate() {
-        let gid = group
-            .id
-            .as_deref()
-            .map(|x| format!(" ({x})"))
-            .unwrap_or_default();
-        for (i, s) in group.shapes.iter().enumerate() {
-            let at = format!("shape group {g}{gid}, shape {i}");
-            grouped_shape(s).map_err(part(at))?;
-        }
+}
+
+/// The sensor's transform (its film is a checked one already).
+impl Check for SensorDesc {
+    fn check(&self) -> Result<(), Invalid> {
+        transform("to_world", &self.to_world)
     }
-    for (i, e) in d.emitters.iter().enumerate() {
-        emitter(e).map_err(part(format!("emitter {i}")))?;
+}
+
+impl Check for IntegratorDesc {
+    fn check(&self) -> Result<(), Invalid> {
+        integrator(self)
     }
-    Ok(())
+}
+
+impl Check for ShapeDesc {
+    fn check(&self) -> Result<(), Invalid> {
+        shape(self)
+    }
+}
+
+/// The group's rules for each of its shapes (each a checked one already).
+impl Check for ShapeGroupDesc {
+    fn check(&self) -> Result<(), Invalid> {
+        self.shapes.iter().try_for_each(|s| grouped_shape(s))
+    }
+}
+
+impl Check for EmitterDesc {
+    fn check(&self) -> Result<(), Invalid> {
+        emitter(self)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::description::Checked;
 
     #[test]
     fn the_shipped_defaults_pass_and_hostile_values_fail() {
         let d = crate::cornell_box::cornell_box();
-        assert_eq!(scene(&d), Ok(()));
+        assert_eq!(d.integrator.check(), Ok(()));
+        assert!(d.shapes.iter().all(|s| s.check().is_ok()));
         // Colours and indices cannot even be made invalid.
         for bad in [f32::NAN, f32::INFINITY, -1.0] {
             let e = Colour::named("reflectance", Vec3::new(0.5, bad, 0.5)).unwrap_err();
@@ -557,19 +597,18 @@ mod tests {
         for bad in [0.0, f32::NAN, -1.5, f32::INFINITY] {
             assert!(Ior::new(bad).is_err(), "{bad}");
         }
-        let mut x = d.clone();
-        x.integrator = IntegratorDesc::Path {
+        let bad = IntegratorDesc::Path {
             max_depth: -1,
             rr_depth: 0,
         };
-        assert!(scene(&x).unwrap_err().contains("rr_depth"));
-        let mut x = d.clone();
-        x.sensor.film.filter = FilterDesc::Gaussian { stddev: f32::NAN };
-        assert!(scene(&x).unwrap_err().contains("stddev"));
-        let mut x = d.clone();
-        x.sensor.film.width = 32768;
-        x.sensor.film.height = 32768;
-        assert!(scene(&x).unwrap_err().contains("pixels"));
+        assert_eq!(Checked::new(bad).unwrap_err().param, "rr_depth");
+        let mut f = *d.sensor.film;
+        f.filter = FilterDesc::Gaussian { stddev: f32::NAN };
+        assert_eq!(Checked::new(f).unwrap_err().param, "stddev");
+        let mut f = *d.sensor.film;
+        f.width = 32768;
+        f.height = 32768;
+        assert!(Checked::new(f).unwrap_err().message.contains("pixels"));
         let spp = SampleCount::new(SampleCount::MAX).unwrap();
         assert!(work(768 * 576, spp.get(), &d.integrator).is_err());
         let mut p = Mat4::IDENTITY;

@@ -357,7 +357,7 @@ fn planar_scene_and_empty_scene() {
         AccelKind::KdTree,
         AccelKind::BruteForce,
     ] {
-        let g = Geometry::new(&[], None, kind).unwrap();
+        let g = Geometry::new(&[] as &[ShapeDesc], None, kind).unwrap();
         let ray = Ray {
             origin: Vec3::ZERO,
             dir: Vec3::Z,

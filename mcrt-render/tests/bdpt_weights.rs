@@ -37,16 +37,24 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
         fresnel: ConductorFresnel::Perfect,
         specular_reflectance: mcrt_render::description::Colour::WHITE,
     };
-    mixed.shapes.push(mirror);
-    mixed.emitters.push(EmitterDesc::Point {
-        position: Vec3::new(0.3, 0.5, 0.4),
-        intensity: mcrt_render::description::Colour::new(Vec3::splat(0.5)).unwrap(),
-    });
+    mixed
+        .shapes
+        .push(mcrt_render::description::Checked::new(mirror).unwrap());
+    mixed.emitters.push(
+        mcrt_render::description::Checked::new(EmitterDesc::Point {
+            position: Vec3::new(0.3, 0.5, 0.4),
+            intensity: mcrt_render::description::Colour::new(Vec3::splat(0.5)).unwrap(),
+        })
+        .unwrap(),
+    );
     // An open box would let rays escape; a dim environment is still sampled and hit by the
     // camera paths that leave through the open front.
-    mixed.emitters.push(EmitterDesc::Constant {
-        radiance: mcrt_render::description::Colour::new(Vec3::splat(0.2)).unwrap(),
-    });
+    mixed.emitters.push(
+        mcrt_render::description::Checked::new(EmitterDesc::Constant {
+            radiance: mcrt_render::description::Colour::new(Vec3::splat(0.2)).unwrap(),
+        })
+        .unwrap(),
+    );
     let mut materials = cornell.clone();
     let sphere = |x: f32, bsdf: BsdfDesc| {
         let mut s = ShapeDesc::new(ShapeKind::Sphere {
@@ -56,45 +64,62 @@ fn scenes() -> Vec<(&'static str, SceneDescription)> {
         s.bsdf = bsdf;
         s
     };
-    materials.shapes.push(sphere(
-        -0.5,
-        BsdfDesc::Plastic {
-            int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
-            ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
-            diffuse_reflectance: mcrt_render::description::Colour::new(Vec3::new(0.8, 0.4, 0.1))
+    materials.shapes.push(
+        mcrt_render::description::Checked::new(sphere(
+            -0.5,
+            BsdfDesc::Plastic {
+                int_ior: mcrt_render::description::Ior::new(1.49).unwrap(),
+                ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
+                diffuse_reflectance: mcrt_render::description::Colour::new(Vec3::new(
+                    0.8, 0.4, 0.1,
+                ))
                 .unwrap(),
-            specular_reflectance: mcrt_render::description::Colour::WHITE,
-            nonlinear: false,
-        },
-    ));
-    materials.shapes.push(sphere(
-        0.0,
-        BsdfDesc::RoughDielectric {
-            microfacet: Microfacet::new(
-                MicrofacetKind::Ggx,
-                Roughness::new(0.3).expect("a roughness"),
-            ),
-            int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
-            ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
-            specular_reflectance: mcrt_render::description::Colour::WHITE,
-            specular_transmittance: mcrt_render::description::Colour::WHITE,
-        },
-    ));
-    materials.shapes.push(sphere(
-        0.5,
-        BsdfDesc::Mask {
-            opacity: 0.5,
-            inner: Box::new(BsdfDesc::TwoSided(Box::new(BsdfDesc::Diffuse {
-                reflectance: mcrt_render::description::Colour::new(Vec3::splat(0.6)).unwrap(),
-            }))),
-        },
-    ));
+                specular_reflectance: mcrt_render::description::Colour::WHITE,
+                nonlinear: false,
+            },
+        ))
+        .unwrap(),
+    );
+    materials.shapes.push(
+        mcrt_render::description::Checked::new(sphere(
+            0.0,
+            BsdfDesc::RoughDielectric {
+                microfacet: Microfacet::new(
+                    MicrofacetKind::Ggx,
+                    Roughness::new(0.3).expect("a roughness"),
+                ),
+                int_ior: mcrt_render::description::Ior::new(1.5).unwrap(),
+                ext_ior: mcrt_render::description::Ior::new(1.0).unwrap(),
+                specular_reflectance: mcrt_render::description::Colour::WHITE,
+                specular_transmittance: mcrt_render::description::Colour::WHITE,
+            },
+        ))
+        .unwrap(),
+    );
+    materials.shapes.push(
+        mcrt_render::description::Checked::new(sphere(
+            0.5,
+            BsdfDesc::Mask {
+                opacity: 0.5,
+                inner: Box::new(BsdfDesc::TwoSided(Box::new(BsdfDesc::Diffuse {
+                    reflectance: mcrt_render::description::Colour::new(Vec3::splat(0.6)).unwrap(),
+                }))),
+            },
+        ))
+        .unwrap(),
+    );
     // A thin lens: the camera vertex is a point on the aperture, not the pinhole.
     let mut lens = mixed.clone();
-    lens.sensor.lens = Some(ThinLensDesc {
-        aperture_radius: 0.2,
-        focus_distance: 2.5,
-    });
+    lens.sensor = lens
+        .sensor
+        .clone()
+        .changed(|s| {
+            s.lens = Some(ThinLensDesc {
+                aperture_radius: 0.2,
+                focus_distance: 2.5,
+            })
+        })
+        .unwrap();
     vec![
         ("cornell", cornell),
         ("caustic", caustic),

@@ -47,14 +47,15 @@ fn opts(kind: IntegratorKind, spp: u32) -> RenderOptions {
 /// MLT with a bound on the length (the references are unbounded: paths above 12 segments
 /// carry about 0.1% of the Cornell box) and a smaller bootstrap, for test time.
 fn mlt_desc(mut desc: SceneDescription) -> SceneDescription {
-    desc.integrator = IntegratorDesc::Mlt {
+    desc.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Mlt {
         max_depth: 12,
         bootstrap_samples: 20_000,
         chains: 64,
         mutations_per_pixel: 1,
         large_step_prob: 0.3,
         sigma: 0.01,
-    };
+    })
+    .unwrap();
     desc
 }
 
@@ -235,23 +236,31 @@ fn furnace(bsdf: BsdfDesc, integrator: IntegratorDesc) -> SceneDescription {
     });
     sphere.bsdf = bsdf;
     SceneDescription {
-        integrator,
-        sensor: SensorDesc {
+        integrator: mcrt_render::description::Checked::new(integrator).unwrap(),
+        sensor: mcrt_render::description::Checked::new(SensorDesc {
             fov: 8.0,
             to_world: Mat4::look_at_rh(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::Y).inverse()
                 * Mat4::from_scale(Vec3::new(-1.0, 1.0, -1.0)),
-            film: FilmDesc {
+            film: mcrt_render::description::Checked::new(FilmDesc {
                 width: 16,
                 height: 16,
                 filter: FilterDesc::Box,
                 crop: None,
-            },
+            })
+            .unwrap(),
             ..SensorDesc::default()
-        },
-        shapes: vec![sphere],
+        })
+        .unwrap(),
+        shapes: vec![sphere]
+            .into_iter()
+            .map(|x| mcrt_render::description::Checked::new(x).unwrap())
+            .collect(),
         emitters: vec![EmitterDesc::Constant {
             radiance: mcrt_render::description::Colour::WHITE,
-        }],
+        }]
+        .into_iter()
+        .map(|x| mcrt_render::description::Checked::new(x).unwrap())
+        .collect(),
         source: None,
         ..SceneDescription::default()
     }
@@ -329,8 +338,16 @@ fn furnaces_return_the_albedo() {
 fn images_do_not_depend_on_the_thread_count() {
     for kind in [IntegratorKind::Bdpt, IntegratorKind::Mlt] {
         let mut desc = mlt_desc(load("cornell-box-caustic.xml"));
-        desc.sensor.film.width = 32;
-        desc.sensor.film.height = 32;
+        desc.sensor = desc
+            .sensor
+            .clone()
+            .changed(|s| s.film = s.film.changed(|f| f.width = 32).unwrap())
+            .unwrap();
+        desc.sensor = desc
+            .sensor
+            .clone()
+            .changed(|s| s.film = s.film.changed(|f| f.height = 32).unwrap())
+            .unwrap();
         let image = |threads: usize| {
             let o = RenderOptions {
                 threads,
@@ -369,14 +386,34 @@ fn bdpt_with_a_gaussian_filter_keeps_its_border_pixels() {
             rr_depth: 5,
         },
     );
-    desc.sensor.fov = 40.0;
-    desc.sensor.film.filter = FilterDesc::Gaussian { stddev: 0.5 };
-    desc.sensor.film.width = 32;
-    desc.sensor.film.height = 32;
-    desc.emitters.push(EmitterDesc::Point {
-        position: Vec3::new(1.0, 2.0, 3.0),
-        intensity: mcrt_render::description::Colour::new(Vec3::splat(5.0)).unwrap(),
-    });
+    desc.sensor = desc.sensor.clone().changed(|s| s.fov = 40.0).unwrap();
+    desc.sensor = desc
+        .sensor
+        .clone()
+        .changed(|s| {
+            s.film = s
+                .film
+                .changed(|f| f.filter = FilterDesc::Gaussian { stddev: 0.5 })
+                .unwrap()
+        })
+        .unwrap();
+    desc.sensor = desc
+        .sensor
+        .clone()
+        .changed(|s| s.film = s.film.changed(|f| f.width = 32).unwrap())
+        .unwrap();
+    desc.sensor = desc
+        .sensor
+        .clone()
+        .changed(|s| s.film = s.film.changed(|f| f.height = 32).unwrap())
+        .unwrap();
+    desc.emitters.push(
+        mcrt_render::description::Checked::new(EmitterDesc::Point {
+            position: Vec3::new(1.0, 2.0, 3.0),
+            intensity: mcrt_render::description::Colour::new(Vec3::splat(5.0)).unwrap(),
+        })
+        .unwrap(),
+    );
     let pt = RenderOptions {
         spp: Some(1024),
         seed: Some(11),
@@ -418,7 +455,7 @@ fn path_traced(desc: &SceneDescription) -> (u32, u32, Vec<Vec3>) {
 fn bdpt_with_a_spot_light_matches_the_path_tracer() {
     let mut desc = load("spot-directional.xml");
     desc.emitters
-        .retain(|e| !matches!(e, EmitterDesc::Directional { .. }));
+        .retain(|e| !matches!(**e, EmitterDesc::Directional { .. }));
     assert_eq!(desc.emitters.len(), 1, "the spot light alone");
     let (w, h, reference) = path_traced(&desc);
     let (_, _, images) = render_replicates(&desc, &opts(IntegratorKind::Bdpt, 4), REPLICATES, SEED);
@@ -453,9 +490,14 @@ fn bdpt_and_mlt_with_a_thin_lens_match_mitsuba() {
         0.01,
     );
     let mut d = mlt_desc(d);
-    if let IntegratorDesc::Mlt { max_depth, .. } = &mut d.integrator {
-        *max_depth = 8;
-    }
+    d.integrator = d
+        .integrator
+        .changed(|i| {
+            if let IntegratorDesc::Mlt { max_depth, .. } = i {
+                *max_depth = 8;
+            }
+        })
+        .unwrap();
     against_mitsuba(
         "mlt thin lens",
         &d,
@@ -474,10 +516,16 @@ fn each_strategy_alone_through_a_thin_lens_makes_the_path_tracers_image() {
     let res = 64;
     let with_lens = |spp: u32, depth: i32| {
         let mut desc = mcrt_render::cornell_box::cornell_box_with(spp, res, depth);
-        desc.sensor.lens = Some(ThinLensDesc {
-            aperture_radius: 0.15,
-            focus_distance: 2.5,
-        });
+        desc.sensor = desc
+            .sensor
+            .clone()
+            .changed(|s| {
+                s.lens = Some(ThinLensDesc {
+                    aperture_radius: 0.15,
+                    focus_distance: 2.5,
+                })
+            })
+            .unwrap();
         desc
     };
     let render = |d: i32| {

@@ -69,8 +69,13 @@ fn load_cases() -> Vec<Case> {
                 format!(r#"<scene version="3.0.0"><shape type="sphere">{xml}</shape></scene>"#);
             let (scene, anisotropic) = without_anisotropy(&scene);
             let mut desc = parse_scene(&scene, None, &[]).expect("our loader reads the case");
-            if let (Some(a), BsdfDesc::Principled(p)) = (anisotropic, &mut desc.shapes[0].bsdf) {
-                p.anisotropic = a;
+            if let Some(a) = anisotropic {
+                let anisotropic = |s: &mut mcrt_render::description::ShapeDesc| {
+                    if let BsdfDesc::Principled(p) = &mut s.bsdf {
+                        p.anisotropic = a;
+                    }
+                };
+                desc.shapes[0] = desc.shapes[0].clone().changed(anisotropic).unwrap();
             }
             let bsdf = AnyBsdf::from_desc(&desc.shapes[0].bsdf).expect("valid BSDF");
             cases.push(Case {

@@ -27,11 +27,12 @@ fn cornell_sensor(w: u32, h: u32) -> SensorDesc {
         near_clip: 0.001,
         far_clip: 100.0,
         to_world: lookat(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y),
-        film: FilmDesc {
+        film: mcrt_render::description::Checked::new(FilmDesc {
             width: w,
             height: h,
             ..FilmDesc::default()
-        },
+        })
+        .unwrap(),
         ..SensorDesc::default()
     }
 }

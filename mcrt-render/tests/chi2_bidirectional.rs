@@ -43,8 +43,9 @@ fn lights_of(desc: &SceneDescription) -> (Geometry, Lights) {
 #[test]
 fn camera_ray_directions_follow_the_camera_density() {
     let desc = mcrt_render::cornell_box::cornell_box_with(1, 64, -1);
-    let mut sensor = desc.sensor.clone();
-    sensor.film.width = 96; // not square: both tangents matter
+    // Not square: both tangents matter.
+    let film = desc.sensor.film.changed(|f| f.width = 96).unwrap();
+    let sensor = desc.sensor.clone().changed(|s| s.film = film).unwrap();
     let cam = Camera::new(&sensor).expect("camera builds");
     let size = Vec2::new(cam.width() as f32, cam.height() as f32);
     // Half the diagonal field of view, with a margin.
@@ -64,8 +65,9 @@ fn camera_ray_directions_follow_the_camera_density() {
 #[test]
 fn thin_lens_ray_directions_follow_the_lens_density() {
     let desc = mcrt_render::cornell_box::cornell_box_with(1, 64, -1);
-    let mut sensor = desc.sensor.clone();
-    sensor.film.width = 96;
+    let film = desc.sensor.film.changed(|f| f.width = 96).unwrap();
+    let mut sensor = desc.sensor.clone().into_inner();
+    sensor.film = film;
     sensor.lens = Some(mcrt_render::description::ThinLensDesc {
         aperture_radius: 0.2,
         focus_distance: 2.5,
@@ -120,10 +122,15 @@ fn area_light_emission_directions_are_cosine_distributed() {
 #[test]
 fn environment_emission_directions_follow_their_density() {
     let mut desc = mcrt_render::cornell_box::cornell_box();
-    desc.shapes.iter_mut().for_each(|s| s.emitter = None);
-    desc.emitters.push(EmitterDesc::Constant {
-        radiance: mcrt_render::description::Colour::WHITE,
-    });
+    for s in &mut desc.shapes {
+        *s = s.clone().changed(|s| s.emitter = None).unwrap();
+    }
+    desc.emitters.push(
+        mcrt_render::description::Checked::new(EmitterDesc::Constant {
+            radiance: mcrt_render::description::Colour::WHITE,
+        })
+        .unwrap(),
+    );
     let (geo, lights) = lights_of(&desc);
     let world = geo.bounding_sphere();
     let env = lights.environment_index().expect("an environment");
@@ -153,7 +160,10 @@ fn sphere_light_emission_points_are_uniform_by_area() {
         radiance: mcrt_render::description::Colour::WHITE,
     });
     let desc = SceneDescription {
-        shapes: vec![s],
+        shapes: vec![s]
+            .into_iter()
+            .map(|x| mcrt_render::description::Checked::new(x).unwrap())
+            .collect(),
         ..SceneDescription::default()
     };
     let (geo, lights) = lights_of(&desc);

@@ -21,7 +21,16 @@ const SPP: u32 = 8;
 fn scene(gaussian: bool) -> SceneDescription {
     let mut d = mcrt_render::cornell_box::cornell_box_with(SPP, RES, -1);
     if gaussian {
-        d.sensor.film.filter = FilterDesc::Gaussian { stddev: 0.5 };
+        d.sensor = d
+            .sensor
+            .clone()
+            .changed(|s| {
+                s.film = s
+                    .film
+                    .changed(|f| f.filter = FilterDesc::Gaussian { stddev: 0.5 })
+                    .unwrap()
+            })
+            .unwrap();
     }
     d
 }
@@ -239,7 +248,10 @@ fn parts_of_other_renders_are_refused() {
         "{seed}"
     );
     let mut moved = desc.clone();
-    moved.shapes[0].to_world.w_axis.x += 1e-3;
+    moved.shapes[0] = moved.shapes[0]
+        .clone()
+        .changed(|s| s.to_world.w_axis.x += 1e-3)
+        .unwrap();
     let scene_differs = other(RenderOptions::default(), &moved, "scene");
     assert!(
         matches!(&scene_differs, MergeError::Mismatch { what, .. } if what.starts_with("scene")),

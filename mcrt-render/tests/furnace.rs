@@ -35,12 +35,13 @@ fn camera(from: Vec3, fov: f32, res: u32) -> SensorDesc {
         fov,
         to_world: Mat4::look_at_rh(from, Vec3::ZERO, Vec3::Y).inverse()
             * Mat4::from_scale(Vec3::new(-1.0, 1.0, -1.0)),
-        film: FilmDesc {
+        film: mcrt_render::description::Checked::new(FilmDesc {
             width: res,
             height: res,
             filter: FilterDesc::Box,
             crop: None,
-        },
+        })
+        .unwrap(),
         ..SensorDesc::default()
     }
 }
@@ -72,13 +73,21 @@ fn furnace_with(bsdf: BsdfDesc, spp: u32, env: EmitterDesc) -> (Vec3, Vec3) {
     });
     sphere.bsdf = bsdf;
     let desc = SceneDescription {
-        integrator: IntegratorDesc::Path {
+        integrator: mcrt_render::description::Checked::new(IntegratorDesc::Path {
             max_depth: -1,
             rr_depth: 5,
-        },
-        sensor: camera(Vec3::new(0.0, 0.0, 5.0), 8.0, 32),
-        shapes: vec![sphere],
-        emitters: vec![env],
+        })
+        .unwrap(),
+        sensor: mcrt_render::description::Checked::new(camera(Vec3::new(0.0, 0.0, 5.0), 8.0, 32))
+            .unwrap(),
+        shapes: vec![sphere]
+            .into_iter()
+            .map(|x| mcrt_render::description::Checked::new(x).unwrap())
+            .collect(),
+        emitters: vec![env]
+            .into_iter()
+            .map(|x| mcrt_render::description::Checked::new(x).unwrap())
+            .collect(),
         source: None,
         ..SceneDescription::default()
     };
@@ -184,10 +193,17 @@ fn check_lit_plane(light: EmitterDesc, integrator: IntegratorDesc, want: Vec3) {
         reflectance: mcrt_render::description::Colour::new(PLANE_RHO).unwrap(),
     };
     let desc = SceneDescription {
-        integrator,
-        sensor: camera(Vec3::new(0.0, 0.0, 5.0), 0.45, 16),
-        shapes: vec![floor],
-        emitters: vec![light.clone()],
+        integrator: mcrt_render::description::Checked::new(integrator).unwrap(),
+        sensor: mcrt_render::description::Checked::new(camera(Vec3::new(0.0, 0.0, 5.0), 0.45, 16))
+            .unwrap(),
+        shapes: vec![floor]
+            .into_iter()
+            .map(|x| mcrt_render::description::Checked::new(x).unwrap())
+            .collect(),
+        emitters: vec![light.clone()]
+            .into_iter()
+            .map(|x| mcrt_render::description::Checked::new(x).unwrap())
+            .collect(),
         source: None,
         ..SceneDescription::default()
     };

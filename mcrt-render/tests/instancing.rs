@@ -4,7 +4,7 @@
 //! instances.
 
 use mcrt::glam::{DVec3, Mat4, Quat, Vec2, Vec3};
-use mcrt_render::description::{ShapeDesc, ShapeGroupDesc, ShapeKind};
+use mcrt_render::description::{Checked, ShapeDesc, ShapeGroupDesc, ShapeKind};
 use mcrt_render::geometry::{AccelKind, Geometry, Ray};
 use mcrt_render::loader::{load_scene, parse_scene, SceneError, SceneErrorKind};
 use std::path::{Path, PathBuf};
@@ -53,6 +53,7 @@ fn the_published_style_scene_shares_one_group_among_its_instances() {
         .shapes
         .iter()
         .filter(|s| matches!(s.kind, ShapeKind::Instance(_)))
+        .map(|s| &**s)
         .collect();
     assert_eq!(instances.len(), 4);
     for s in &instances {
@@ -256,7 +257,7 @@ fn group_shapes() -> Vec<ShapeDesc> {
     vec![mesh, sphere]
 }
 
-fn instanced(group: &Arc<ShapeGroupDesc>) -> Vec<ShapeDesc> {
+fn instanced(group: &Arc<Checked<ShapeGroupDesc>>) -> Vec<ShapeDesc> {
     transforms()
         .into_iter()
         .map(|m| {
@@ -304,10 +305,16 @@ fn an_instanced_mesh_is_hit_where_its_flattened_copy_is() {
     else {
         unreachable!()
     };
-    let group = Arc::new(ShapeGroupDesc {
-        id: Some("g".into()),
-        shapes: vec![mesh.clone()],
-    });
+    let group = Arc::new(
+        Checked::new(ShapeGroupDesc {
+            id: Some("g".into()),
+            shapes: vec![mesh.clone()]
+                .into_iter()
+                .map(|x| Checked::new(x).unwrap())
+                .collect(),
+        })
+        .unwrap(),
+    );
     let inst = instanced(&group);
     let flat: Vec<ShapeDesc> = inst
         .iter()
@@ -380,10 +387,16 @@ fn an_instanced_mesh_is_hit_where_its_flattened_copy_is() {
 #[test]
 fn an_instanced_sphere_is_an_ellipsoid_with_inverse_transpose_normals() {
     let sphere = group_shapes().remove(1);
-    let group = Arc::new(ShapeGroupDesc {
-        id: None,
-        shapes: vec![sphere.clone()],
-    });
+    let group = Arc::new(
+        Checked::new(ShapeGroupDesc {
+            id: None,
+            shapes: vec![sphere.clone()]
+                .into_iter()
+                .map(|x| Checked::new(x).unwrap())
+                .collect(),
+        })
+        .unwrap(),
+    );
     let inst = instanced(&group);
     let geo = Geometry::new(&inst, None, AccelKind::Bvh).expect("builds");
     let mut hits = 0;
@@ -439,10 +452,16 @@ fn an_instanced_sphere_is_an_ellipsoid_with_inverse_transpose_normals() {
 /// store the same primitives, and the structure grows by a few hundred bytes per instance.
 #[test]
 fn memory_stays_flat_in_the_number_of_instances() {
-    let group = Arc::new(ShapeGroupDesc {
-        id: None,
-        shapes: vec![ShapeDesc::new(blob(48))],
-    });
+    let group = Arc::new(
+        Checked::new(ShapeGroupDesc {
+            id: None,
+            shapes: vec![ShapeDesc::new(blob(48))]
+                .into_iter()
+                .map(|x| Checked::new(x).unwrap())
+                .collect(),
+        })
+        .unwrap(),
+    );
     let build = |n: u32| {
         let side = (n as f32).sqrt().ceil() as u32;
         let shapes: Vec<ShapeDesc> = (0..n)
@@ -479,33 +498,36 @@ fn memory_stays_flat_in_the_number_of_instances() {
     assert!((h.t - 9.0).abs() < 0.3, "{h:?}");
 }
 
-/// What the geometry refuses of a description built in code: an instance inside a group.
+/// What a shape group cannot hold, refused by its checked constructor (a description built
+/// in code meets the loader's rules): an instance (nested instancing) or an emitter.
 #[test]
-fn nested_instancing_is_refused_by_the_geometry_and_emitters_in_groups_by_validation() {
-    let inner = Arc::new(ShapeGroupDesc {
+fn nested_instancing_and_emitters_in_groups_cannot_be_made() {
+    let inner = Arc::new(
+        Checked::new(ShapeGroupDesc {
+            id: None,
+            shapes: vec![Checked::new(ShapeDesc::new(ShapeKind::Cube)).unwrap()],
+        })
+        .unwrap(),
+    );
+    let nested = Checked::new(ShapeDesc::new(ShapeKind::Instance(inner))).unwrap();
+    let outer = Checked::new(ShapeGroupDesc {
         id: None,
-        shapes: vec![ShapeDesc::new(ShapeKind::Cube)],
+        shapes: vec![nested],
     });
-    let outer = Arc::new(ShapeGroupDesc {
-        id: None,
-        shapes: vec![ShapeDesc::new(ShapeKind::Instance(inner))],
-    });
-    let shapes = vec![ShapeDesc::new(ShapeKind::Instance(outer))];
-    let e = Geometry::new(&shapes, None, AccelKind::Bvh).unwrap_err();
-    assert!(e.to_string().contains("nested instancing"), "{e}");
+    let e = outer.unwrap_err();
+    assert!(
+        e.param == "type" && e.message.contains("nested instancing"),
+        "{e}"
+    );
 
     let mut lit = ShapeDesc::new(ShapeKind::Cube);
     lit.emitter = Some(mcrt_render::description::AreaEmitterDesc {
         radiance: mcrt_render::description::Colour::WHITE,
     });
-    let group = Arc::new(ShapeGroupDesc {
+    let group = Checked::new(ShapeGroupDesc {
         id: Some("g".into()),
-        shapes: vec![lit],
+        shapes: vec![Checked::new(lit).unwrap()],
     });
-    let d = mcrt_render::description::SceneDescription {
-        shapes: vec![ShapeDesc::new(ShapeKind::Instance(group))],
-        ..Default::default()
-    };
-    let e = mcrt_render::validate::scene(&d).unwrap_err();
-    assert!(e.contains("shape group 0 (g)") && e.contains("emit"), "{e}");
+    let e = group.unwrap_err();
+    assert!(e.param == "emitter" && e.message.contains("emit"), "{e}");
 }

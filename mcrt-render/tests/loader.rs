@@ -511,7 +511,7 @@ fn spot_directional_and_thinlens_with_their_defaults() {
             focus_distance: 1e4
         })
     );
-    let spot = |i: usize| match &d.emitters[i] {
+    let spot = |i: usize| match &*d.emitters[i] {
         EmitterDesc::Spot {
             intensity,
             cutoff_angle,
@@ -525,7 +525,7 @@ fn spot_directional_and_thinlens_with_their_defaults() {
     let (i, c, b, m) = spot(2);
     assert_eq!((i, c, b), (Vec3::new(1.0, 2.0, 3.0), 40.0, 5.0));
     assert_eq!(m.transform_point3(Vec3::ZERO), Vec3::X);
-    let directional = |i: usize| match &d.emitters[i] {
+    let directional = |i: usize| match &*d.emitters[i] {
         EmitterDesc::Directional {
             irradiance,
             direction,

@@ -246,7 +246,8 @@ fn bidirectional_integrators_read_and_refuse_with_locations() {
         "<integrator type=\"mlt\"><integer name=\"chains\" value=\"10\"/>\
                 <float name=\"sigma\" value=\"0.02\"/></integrator>",
     )
-    .integrator;
+    .integrator
+    .into_inner();
     assert!(
         matches!(m, IntegratorDesc::Mlt { chains: 10, max_depth: 5, sigma, .. } if sigma == 0.02),
         "{m:?}"

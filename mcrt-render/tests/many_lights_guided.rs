@@ -216,8 +216,16 @@ fn guided_matches_mitsuba_on_the_door_scene() {
 #[test]
 fn guided_render_is_the_same_at_any_thread_count() {
     let mut desc = load("indirect.xml");
-    desc.sensor.film.width = 48;
-    desc.sensor.film.height = 40;
+    desc.sensor = desc
+        .sensor
+        .clone()
+        .changed(|s| s.film = s.film.changed(|f| f.width = 48).unwrap())
+        .unwrap();
+    desc.sensor = desc
+        .sensor
+        .clone()
+        .changed(|s| s.film = s.film.changed(|f| f.height = 40).unwrap())
+        .unwrap();
     let run = |threads| {
         let o = RenderOptions {
             threads,

@@ -144,10 +144,12 @@ fn ptracer_matches_the_cornell_box() {
 fn ptracer_hides_emitters_by_leaving_out_the_paths_of_one_segment() {
     // max_depth 1 is the light seen directly: black when hidden.
     let mut desc = load(&published("ptracer.xml"));
-    desc.integrator = mcrt_render::description::IntegratorDesc::Ptracer {
-        max_depth: 1,
-        rr_depth: 5,
-    };
+    desc.integrator =
+        mcrt_render::description::Checked::new(mcrt_render::description::IntegratorDesc::Ptracer {
+            max_depth: 1,
+            rr_depth: 5,
+        })
+        .unwrap();
     let shown = render(&desc, &opts(4, 1)).image();
     assert!(
         shown.iter().any(|v| v.max_element() > 1.0),

@@ -127,7 +127,11 @@ fn gaussian_filter_keeps_the_image_mean() {
     use mcrt_render::description::FilterDesc;
     let render = |filter| {
         let mut desc = small_box();
-        desc.sensor.film.filter = filter;
+        desc.sensor = desc
+            .sensor
+            .clone()
+            .changed(|s| s.film = s.film.changed(|f| f.filter = filter).unwrap())
+            .unwrap();
         let opts = RenderOptions {
             spp: Some(64),
             seed: Some(9),

@@ -63,25 +63,31 @@ fn all_agree(desc: &SceneDescription, spp: u32) {
 /// spp) and a rough GGX conductor on the tall box (so glossy MIS is exercised too).
 fn test_box(max_depth: i32) -> SceneDescription {
     let mut desc = mcrt_render::cornell_box::cornell_box_with(64, 64, max_depth);
-    let light = desc
-        .shapes
-        .iter_mut()
-        .find(|s| s.emitter.is_some())
-        .expect("the box has a light");
-    light.to_world *= Mat4::from_scale(Vec3::new(3.0, 3.0, 1.0));
-    let tall = desc
-        .shapes
-        .iter_mut()
-        .find(|s| s.id.as_deref() == Some("large-box"))
-        .expect("the box has a large box");
-    tall.bsdf = BsdfDesc::RoughConductor {
-        microfacet: Microfacet::new(
-            MicrofacetKind::Ggx,
-            Roughness::new(0.3).expect("a roughness"),
-        ),
-        fresnel: ConductorFresnel::Perfect,
-        specular_reflectance: mcrt_render::description::Colour::new(Vec3::splat(0.8)).unwrap(),
-    };
+    for s in &mut desc.shapes {
+        if s.emitter.is_some() {
+            *s = s
+                .clone()
+                .changed(|l| l.to_world *= Mat4::from_scale(Vec3::new(3.0, 3.0, 1.0)))
+                .expect("the wider light");
+        } else if s.id.as_deref() == Some("large-box") {
+            *s = s
+                .clone()
+                .changed(|tall| {
+                    tall.bsdf = BsdfDesc::RoughConductor {
+                        microfacet: Microfacet::new(
+                            MicrofacetKind::Ggx,
+                            Roughness::new(0.3).expect("a roughness"),
+                        ),
+                        fresnel: ConductorFresnel::Perfect,
+                        specular_reflectance: mcrt_render::description::Colour::new(Vec3::splat(
+                            0.8,
+                        ))
+                        .unwrap(),
+                    }
+                })
+                .expect("a rough conductor");
+        }
+    }
     desc
 }
 
@@ -93,10 +99,11 @@ fn cornell_box_strategies_agree() {
 #[test]
 fn cornell_box_direct_strategies_agree() {
     let mut desc = test_box(-1);
-    desc.integrator = IntegratorDesc::Direct {
+    desc.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Direct {
         emitter_samples: 2,
         bsdf_samples: 1,
-    };
+    })
+    .unwrap();
     all_agree(&desc, 64);
 }
 
@@ -104,10 +111,11 @@ fn cornell_box_direct_strategies_agree() {
 fn direct_integrator_equals_path_tracer_with_max_depth_2() {
     let path = test_box(2);
     let mut direct = test_box(2);
-    direct.integrator = IntegratorDesc::Direct {
+    direct.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Direct {
         emitter_samples: 1,
         bsdf_samples: 1,
-    };
+    })
+    .unwrap();
     let (w, h) = (path.sensor.film.width, path.sensor.film.height);
     let (a, va) = render(&path, Strategy::MisPower, 64, 11);
     let (b, vb) = render(&direct, Strategy::MisPower, 64, 12);

@@ -11,7 +11,9 @@
 use crate::image::Rgb;
 use crate::render_study::{Backend, SceneSpec};
 use mcrt::integrator::Strategy;
-use mcrt_render::description::{IntegratorDesc, IntegratorKind, SamplerKind, SceneDescription};
+use mcrt_render::description::{
+    Checked, IntegratorDesc, IntegratorKind, SamplerKind, SceneDescription,
+};
 use mcrt_render::render::{RenderOptions, Renderer};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -53,7 +55,10 @@ fn render(
     spp: u32,
 ) -> Result<(Rgb, f64), String> {
     let mut desc = scene(spec)?;
-    desc.sensor.sampler.kind = sampler_kind(sampler)?;
+    let kind = sampler_kind(sampler)?;
+    desc.sensor = (desc.sensor.clone())
+        .changed(|s| s.sampler.kind = kind)
+        .map_err(|e| e.to_string())?;
     let opts = RenderOptions {
         spp: Some(spp),
         seed: Some(1),
@@ -128,7 +133,7 @@ pub fn render_integrator(
     let integrator = IntegratorKind::parse(kind).ok_or(format!("unknown integrator {kind}"))?;
     if integrator == IntegratorKind::Mlt {
         let depth = desc.integrator.max_depth().unwrap_or(-1);
-        desc.integrator = match IntegratorDesc::MLT_DEFAULTS {
+        let mlt = match IntegratorDesc::MLT_DEFAULTS {
             IntegratorDesc::Mlt {
                 bootstrap_samples,
                 chains,
@@ -145,6 +150,7 @@ pub fn render_integrator(
             },
             d => d,
         };
+        desc.integrator = Checked::new(mlt).map_err(|e| e.to_string())?;
     }
     let opts = RenderOptions {
         spp: Some(spp),

@@ -3,7 +3,7 @@
 //! `docs/bsdf-models.md`, section "Principled".
 
 use glam::{Vec2, Vec3};
-use mcrt::sampling::warp::{GgxVisible, Warp};
+use mcrt::sampling::warp::{Ggx, GgxVisible, Warp};
 use std::f32::consts::PI;
 
 /// Schlick's weight `(1 − cos θ)⁵` (Schlick 1994, "An Inexpensive BRDF Model for
@@ -102,7 +102,7 @@ impl AnisoGgx {
     #[inline]
     pub fn sample_visible(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
         let w = Vec3::new(wo.x * self.ax, wo.y * self.ay, wo.z).try_normalize()?;
-        let n = GgxVisible::new(1.0, w).ok()?.sample(u);
+        let n = GgxVisible::from_distribution(Ggx::UNIT, w).ok()?.sample(u);
         Vec3::new(n.x * self.ax, n.y * self.ay, n.z.max(0.0)).try_normalize()
     }
 }

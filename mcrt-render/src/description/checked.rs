@@ -1,6 +1,7 @@
 //! Values that are checked once, when they are made, and trusted after: a [`Roughness`]
 //! and a [`SampleCount`] cannot hold a value the renderer refuses, so nothing downstream
-//! (the validation of a description, the materials, the per-sample code) checks them again.
+//! (the checks of the parts that hold them, the materials, the per-sample code) checks them
+//! again.
 //! The loader makes them from its parameter definitions (`params`); a scene built in code
 //! goes through the same constructors.
 

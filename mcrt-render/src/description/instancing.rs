@@ -8,7 +8,8 @@
 //! which are never hit themselves), then the shapes of each distinct group in the order its
 //! first instance appears ([`SceneDescription::all_shapes`]).
 
-use super::{SceneDescription, ShapeDesc, ShapeKind};
+use super::{Checked, SceneDescription, ShapeDesc, ShapeKind};
+use std::borrow::Borrow;
 use std::collections::HashSet;
 use std::fmt;
 use std::sync::Arc;
@@ -18,8 +19,8 @@ use std::sync::Arc;
 ///
 /// As in Mitsuba 3 (`src/render/shapegroup.cpp`), the shapes of a group carry their own
 /// materials, may not carry area emitters, and may not be instances themselves (no nested
-/// instancing); a description that breaks these rules is refused by
-/// [`validate::scene`](crate::validate::scene).
+/// instancing): a group is held as a [`Checked`] one, whose check refuses a group that
+/// breaks these rules.
 ///
 /// `Debug` prints the id and the number of shapes only, so that a description with many
 /// instances of a large group prints in size proportional to the instances.
@@ -28,7 +29,7 @@ pub struct ShapeGroupDesc {
     /// The `id` attribute, if any.
     pub id: Option<String>,
     /// The shapes, each with its `to_world` in the group's space.
-    pub shapes: Vec<ShapeDesc>,
+    pub shapes: Vec<Checked<ShapeDesc>>,
 }
 
 impl fmt::Debug for ShapeGroupDesc {
@@ -44,11 +45,11 @@ impl fmt::Debug for ShapeGroupDesc {
 
 /// The distinct groups that the instances among `shapes` refer to (by `Arc` identity), in
 /// the order of their first instance.
-pub fn groups_of(shapes: &[ShapeDesc]) -> Vec<&Arc<ShapeGroupDesc>> {
+pub fn groups_of<S: Borrow<ShapeDesc>>(shapes: &[S]) -> Vec<&Arc<Checked<ShapeGroupDesc>>> {
     let mut seen = HashSet::new();
     shapes
         .iter()
-        .filter_map(|s| match &s.kind {
+        .filter_map(|s| match &s.borrow().kind {
             ShapeKind::Instance(g) => seen.insert(Arc::as_ptr(g)).then_some(g),
             _ => None,
         })
@@ -58,7 +59,7 @@ pub fn groups_of(shapes: &[ShapeDesc]) -> Vec<&Arc<ShapeGroupDesc>> {
 impl SceneDescription {
     /// The distinct shape groups the scene's instances refer to, in the order of their
     /// first instance (see the module docs of `description::instancing`).
-    pub fn shape_groups(&self) -> Vec<&Arc<ShapeGroupDesc>> {
+    pub fn shape_groups(&self) -> Vec<&Arc<Checked<ShapeGroupDesc>>> {
         groups_of(&self.shapes)
     }
 
@@ -70,7 +71,12 @@ impl SceneDescription {
         let groups = self.shape_groups();
         self.shapes
             .iter()
-            .chain(groups.into_iter().flat_map(|g| g.shapes.iter()))
+            .map(|s| &**s)
+            .chain(
+                groups
+                    .into_iter()
+                    .flat_map(|g| g.shapes.iter().map(|s| &**s)),
+            )
             .collect()
     }
 }

@@ -1,7 +1,14 @@
-//! What a scene file says, as plain data: the output of the XML loader and the input of the
+//! What a scene file says, as data: the output of the XML loader and the input of the
 //! renderer. Every default is Mitsuba 3's, so a description built in code with
 //! [`Default`] values means what the same XML without those attributes means to Mitsuba.
+//!
+//! A [`SceneDescription`] holds only checked values: its parts (the integrator, the sensor
+//! and its film, each shape with its material and area emitter, each shape group, each
+//! emitter) are [`Checked`] ones, made by [`Checked::new`], and the numbers inside them that
+//! have a type of their own ([`Roughness`], [`SampleCount`], [`Colour`], [`Ior`]) were
+//! checked when those were made. Nothing downstream checks them again.
 
+mod check;
 mod checked;
 mod colour;
 mod instancing;
@@ -11,6 +18,7 @@ mod perturbation;
 mod principled;
 
 pub use crate::texture::{Texture, TextureParam};
+pub use check::{Check, Checked};
 pub use checked::{Roughness, SampleCount};
 pub use colour::{Colour, Ior};
 use glam::{Mat4, Vec3};
@@ -27,7 +35,7 @@ use std::path::PathBuf;
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SceneDescription {
     /// How light transport is estimated.
-    pub integrator: IntegratorDesc,
+    pub integrator: Checked<IntegratorDesc>,
     /// The integrator's `hide_emitters` (Mitsuba 3's meaning; default `false`): `path` and
     /// `direct` see through emitters and not the sky from the camera; `bdpt`, `mlt` and
     /// `ptracer` leave out paths of one segment, so emitters in view look black.
@@ -36,12 +44,12 @@ pub struct SceneDescription {
     /// image.
     pub moment: Option<MomentDesc>,
     /// The camera, its film and its sampler.
-    pub sensor: SensorDesc,
+    pub sensor: Checked<SensorDesc>,
     /// Every shape, in file order.
-    pub shapes: Vec<ShapeDesc>,
+    pub shapes: Vec<Checked<ShapeDesc>>,
     /// Emitters not attached to a shape (point, spot, directional, constant environment,
     /// environment map).
-    pub emitters: Vec<EmitterDesc>,
+    pub emitters: Vec<Checked<EmitterDesc>>,
     /// The file the description was read from, if any (for messages and relative paths).
     pub source: Option<PathBuf>,
     /// Where each top-level shape and emitter was written (filled by the loader; empty for
@@ -332,7 +340,7 @@ pub struct SensorDesc {
     /// (as in Mitsuba) +x to the left of the image.
     pub to_world: Mat4,
     /// The film.
-    pub film: FilmDesc,
+    pub film: Checked<FilmDesc>,
     /// The sampler.
     pub sampler: SamplerDesc,
     /// The thin lens of a `thinlens` sensor; `None` for a pinhole (`perspective`).
@@ -347,7 +355,7 @@ impl Default for SensorDesc {
             near_clip: 1e-2,
             far_clip: 1e4,
             to_world: Mat4::IDENTITY,
-            film: FilmDesc::default(),
+            film: Checked::default(),
             sampler: SamplerDesc::default(),
             lens: None,
         }
@@ -550,7 +558,7 @@ pub enum ShapeKind {
     /// shape's `to_world` on top of each one's own. The group is shared, not copied: every
     /// instance of it holds the same [`Arc`](std::sync::Arc), and the geometry builds it
     /// once ([`ShapeGroupDesc`] has the rules).
-    Instance(std::sync::Arc<ShapeGroupDesc>),
+    Instance(std::sync::Arc<Checked<ShapeGroupDesc>>),
 }
 
 /// A shape with its transform, material and optional area emitter.

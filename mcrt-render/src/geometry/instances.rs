@@ -18,7 +18,7 @@ use super::level::Level;
 use super::query::HitRecord;
 use super::Ray;
 use crate::accel::{vec_bytes, Aabb, Accel, AccelKind};
-use crate::description::{ShapeDesc, ShapeGroupDesc, ShapeKind};
+use crate::description::{Checked, ShapeDesc, ShapeGroupDesc, ShapeKind};
 use glam::{Affine3A, Mat3A, Vec3};
 use mcrt::integrator::SurfacePoint;
 use mcrt::sampling::Frame;
@@ -63,11 +63,11 @@ impl Instancing {
     /// `description::groups_of`).
     pub(super) fn build(
         accel: AccelKind,
-        shapes: &[ShapeDesc],
-        order: &[&Arc<ShapeGroupDesc>],
+        shapes: &[&ShapeDesc],
+        order: &[&Arc<Checked<ShapeGroupDesc>>],
         groups: Vec<Level>,
     ) -> Result<Self, GeometryError> {
-        let index: HashMap<*const ShapeGroupDesc, u32> = order
+        let index: HashMap<*const Checked<ShapeGroupDesc>, u32> = order
             .iter()
             .enumerate()
             .map(|(k, g)| (Arc::as_ptr(g), k as u32))
@@ -78,7 +78,7 @@ impl Instancing {
             .count();
         let mut list = Vec::with_capacity(count);
         let mut boxes = Vec::with_capacity(count);
-        for (i, s) in shapes.iter().enumerate() {
+        for (i, &s) in shapes.iter().enumerate() {
             let ShapeKind::Instance(g) = &s.kind else {
                 continue;
             };

@@ -142,17 +142,27 @@ impl Geometry {
     /// A transform that is not finite, affine and invertible; a sphere under a non-uniform
     /// scale; an invalid mesh; an unreadable OBJ file; an instance inside a shape group
     /// (nested instancing, refused as by Mitsuba 3).
-    pub fn new(
-        shapes: &[ShapeDesc],
+    pub fn new<S: std::borrow::Borrow<ShapeDesc>>(
+        shapes: &[S],
+        base_dir: Option<&Path>,
+        accel: AccelKind,
+    ) -> Result<Self, GeometryError> {
+        let shapes: Vec<&ShapeDesc> = shapes.iter().map(|s| s.borrow()).collect();
+        Self::of_shapes(&shapes, base_dir, accel)
+    }
+
+    /// [`Geometry::new`] of the shapes, one build whatever holds them.
+    fn of_shapes(
+        shapes: &[&ShapeDesc],
         base_dir: Option<&Path>,
         accel: AccelKind,
     ) -> Result<Self, GeometryError> {
         let groups = crate::description::groups_of(shapes);
-        let mut all: Vec<&ShapeDesc> = shapes.iter().collect();
+        let mut all: Vec<&ShapeDesc> = shapes.to_vec();
         let mut firsts = Vec::with_capacity(groups.len());
         for g in &groups {
             firsts.push(all.len() as u32);
-            all.extend(g.shapes.iter());
+            all.extend(g.shapes.iter().map(|s| &**s));
         }
         if let Some(i) =
             (shapes.len()..all.len()).find(|&i| matches!(all[i].kind, ShapeKind::Instance(_)))

@@ -53,7 +53,7 @@ impl Lights {
         let mut has_delta = false;
         for (j, e) in desc.emitters.iter().enumerate() {
             let at = |error: LightError| locate(desc, j, error);
-            match e {
+            match &**e {
                 EmitterDesc::Point {
                     position,
                     intensity,

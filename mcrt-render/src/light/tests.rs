@@ -178,17 +178,20 @@ fn light_choice_is_drawn_only_when_read() {
         .iter()
         .position(|s| s.emitter.is_some())
         .unwrap();
-    desc.shapes[i].kind = ShapeKind::Cube;
+    let light = desc.shapes[i].clone();
+    desc.shapes[i] = light.clone().changed(|s| s.kind = ShapeKind::Cube).unwrap();
     let geo = Geometry::new(&desc.shapes, None, AccelKind::Bvh).unwrap();
     assert!(
         Lights::new(&desc, &geo, 10.0).unwrap().reads_pick(),
         "a cube light"
     );
-    desc.shapes[i].kind = ShapeKind::Rectangle;
-    desc.emitters.push(EmitterDesc::Point {
+    desc.shapes[i] = light;
+    let point = EmitterDesc::Point {
         position: Vec3::Y,
         intensity: crate::description::Colour::WHITE,
-    });
+    };
+    desc.emitters
+        .push(crate::description::Checked::new(point).unwrap());
     let geo = Geometry::new(&desc.shapes, None, AccelKind::Bvh).unwrap();
     assert!(
         !Lights::new(&desc, &geo, 10.0).unwrap().reads_pick(),

@@ -6,7 +6,7 @@ use super::props::Props;
 use super::spectrum::SpectrumUse;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, texture, unknown_plugin};
-use crate::description::{AreaEmitterDesc, Colour, EmitterDesc};
+use crate::description::{AreaEmitterDesc, Checked, Colour, EmitterDesc};
 use crate::param_defs::emitter as defs;
 use crate::scene_error::SceneErrorKind;
 use crate::texture::Texture;
@@ -81,7 +81,7 @@ pub(crate) fn read_area(ctx: &Ctx, e: &Elem) -> Res<(AreaEmitterDesc, Option<Tex
 }
 
 /// Reads a top-level `<emitter>`: `point`, `spot`, `directional`, `constant` or `envmap`.
-pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
+pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<Checked<EmitterDesc>> {
     let ty = plugin_type(ctx, e)?;
     let mut p = Props::new(ctx, e)?;
     // The textures a spot (`texture`) and a projector (`irradiance`) take.
@@ -192,7 +192,7 @@ pub(crate) fn read_emitter(ctx: &Ctx, e: &Elem) -> Res<EmitterDesc> {
         }
         other => return Err(unknown_plugin(ctx, e, other)),
     };
-    validate::emitter(&desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    let desc = Checked::new(desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(desc)
 }

@@ -14,21 +14,20 @@ use super::plugin_type;
 use super::props::Props;
 use super::shape::read_shape;
 use super::tree::Elem;
-use crate::description::{ShapeDesc, ShapeGroupDesc, ShapeKind};
+use crate::description::{Checked, ShapeDesc, ShapeGroupDesc, ShapeKind};
 use crate::scene_error::SceneErrorKind;
-use crate::validate;
 use std::collections::HashMap;
 use std::sync::Arc;
 
 /// The groups read so far in one load, by element.
 #[derive(Default)]
 pub(crate) struct Groups {
-    read: HashMap<*const Elem, Arc<ShapeGroupDesc>>,
+    read: HashMap<*const Elem, Arc<Checked<ShapeGroupDesc>>>,
 }
 
 impl Groups {
     /// The group declared by `e`, read on first use.
-    fn get(&mut self, ctx: &Ctx, e: &Elem) -> Res<Arc<ShapeGroupDesc>> {
+    fn get(&mut self, ctx: &Ctx, e: &Elem) -> Res<Arc<Checked<ShapeGroupDesc>>> {
         let key = e as *const Elem;
         if let Some(g) = self.read.get(&key) {
             return Ok(Arc::clone(g));
@@ -45,7 +44,7 @@ pub(crate) fn read_top_shape<'a>(
     ctx: &Ctx<'a>,
     e: &'a Elem,
     groups: &mut Groups,
-) -> Res<Option<ShapeDesc>> {
+) -> Res<Option<Checked<ShapeDesc>>> {
     match e.attr("type") {
         Some("shapegroup") => {
             groups.get(ctx, e)?;
@@ -62,7 +61,7 @@ fn is_group(e: &Elem) -> bool {
 }
 
 /// Reads a `<shape type="shapegroup">`.
-fn read_group(ctx: &Ctx, e: &Elem) -> Res<ShapeGroupDesc> {
+fn read_group(ctx: &Ctx, e: &Elem) -> Res<Checked<ShapeGroupDesc>> {
     plugin_type(ctx, e)?;
     let mut p = Props::new(ctx, e)?;
     // Accepted and ignored, as by Mitsuba 3.9.1 (`docs/scene-format.md`).
@@ -112,10 +111,12 @@ fn read_group(ctx: &Ctx, e: &Elem) -> Res<ShapeGroupDesc> {
         shapes.push(shape);
     }
     p.finish()?;
-    Ok(ShapeGroupDesc {
+    // The rules were checked above, each at its element; the group's check repeats them.
+    Checked::new(ShapeGroupDesc {
         id: e.attr("id").map(str::to_string),
         shapes,
     })
+    .map_err(|i| ctx.err(e, SceneErrorKind::InvalidValue(i.to_string())))
 }
 
 /// The element a `<ref id>` names.
@@ -131,10 +132,10 @@ fn follow<'a>(ctx: &Ctx<'a>, r: &Elem) -> Res<&'a Elem> {
 }
 
 /// Reads a `<shape type="instance">`.
-fn read_instance<'a>(ctx: &Ctx<'a>, e: &'a Elem, groups: &mut Groups) -> Res<ShapeDesc> {
+fn read_instance<'a>(ctx: &Ctx<'a>, e: &'a Elem, groups: &mut Groups) -> Res<Checked<ShapeDesc>> {
     plugin_type(ctx, e)?;
     let mut p = Props::new(ctx, e)?;
-    let mut group: Option<(Arc<ShapeGroupDesc>, &Elem)> = None;
+    let mut group: Option<(Arc<Checked<ShapeGroupDesc>>, &Elem)> = None;
     for &o in &p.objects {
         let target = match o.tag.as_str() {
             "ref" => follow(ctx, o)?,
@@ -193,7 +194,7 @@ fn read_instance<'a>(ctx: &Ctx<'a>, e: &'a Elem, groups: &mut Groups) -> Res<Sha
     let mut shape = ShapeDesc::new(ShapeKind::Instance(group));
     shape.id = e.attr("id").map(str::to_string);
     shape.to_world = p.transform("to_world")?.unwrap_or(shape.to_world);
-    validate::shape(&shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    let shape = Checked::new(shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(shape)
 }

@@ -59,7 +59,7 @@ pub use crate::scene_error::{SceneError, SceneErrorKind};
 pub use crate::scene_warning::SceneWarning;
 pub use crate::transform::look_at;
 
-use crate::description::{EmitterDesc, SceneDescription};
+use crate::description::{Checked, EmitterDesc, SceneDescription};
 use context::{Ctx, Res};
 use props::Props;
 use std::path::Path;
@@ -136,7 +136,10 @@ pub fn parse_scene_with_warnings(
             "integrator" => {
                 once(&ctx, &mut integrator, c)?;
                 let read = integrator::read_integrator(&ctx, c)?;
-                desc.integrator = read.integrator;
+                // Each parameter was checked as it was read (`param_defs::integrator`);
+                // the integrator's check repeats that, once.
+                desc.integrator = Checked::new(read.integrator)
+                    .map_err(|i| ctx.err(c, SceneErrorKind::InvalidValue(i.to_string())))?;
                 desc.hide_emitters = read.hide_emitters;
                 desc.moment = read.moment;
             }
@@ -153,7 +156,7 @@ pub fn parse_scene_with_warnings(
             "emitter" => {
                 let em = emitter::read_emitter(&ctx, c)?;
                 if matches!(
-                    em,
+                    *em,
                     EmitterDesc::Constant { .. } | EmitterDesc::EnvMap { .. }
                 ) {
                     second_environment(&ctx, &mut environment, c)?;

@@ -6,15 +6,14 @@ use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::description::{
-    CropWindow, FilmDesc, FilterDesc, FovAxis, SampleCount, SamplerDesc, SamplerKind, SensorDesc,
-    ThinLensDesc,
+    Checked, CropWindow, FilmDesc, FilterDesc, FovAxis, SampleCount, SamplerDesc, SamplerKind,
+    SensorDesc, ThinLensDesc,
 };
 use crate::param_defs::{film as film_defs, sampler, sensor as defs};
 use crate::scene_error::SceneErrorKind;
-use crate::validate;
 
 /// Reads a `<sensor>` element.
-pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
+pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<Checked<SensorDesc>> {
     let ty = plugin_type(ctx, e)?;
     if ty != "perspective" && ty != "thinlens" {
         return Err(unknown_plugin(ctx, e, ty));
@@ -119,6 +118,8 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<SensorDesc> {
         }
     }
     s.sampler = sampler.unwrap_or_default();
+    // Its `to_world` was checked at its <transform>; the sensor's check repeats that.
+    let s = Checked::new(s).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(s)
 }
@@ -203,7 +204,7 @@ fn read_sampler(ctx: &Ctx, e: &Elem) -> Res<SamplerDesc> {
 }
 
 /// Reads a `<film>` element.
-fn read_film(ctx: &Ctx, e: &Elem) -> Res<FilmDesc> {
+fn read_film(ctx: &Ctx, e: &Elem) -> Res<Checked<FilmDesc>> {
     let ty = plugin_type(ctx, e)?;
     if ty != "hdrfilm" {
         return Err(unknown_plugin(ctx, e, ty));
@@ -258,7 +259,7 @@ fn read_film(ctx: &Ctx, e: &Elem) -> Res<FilmDesc> {
         }
     }
     f.filter = filter.unwrap_or_default();
-    validate::film(&f).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    let f = Checked::new(f).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(f)
 }

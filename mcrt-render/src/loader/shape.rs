@@ -7,10 +7,9 @@ use super::emitter::read_area;
 use super::props::Props;
 use super::tree::Elem;
 use super::{plugin_type, unknown_plugin};
-use crate::description::{BsdfDesc, Colour, ShapeDesc, ShapeKind};
+use crate::description::{BsdfDesc, Checked, Colour, ShapeDesc, ShapeKind};
 use crate::param_defs::shape_plugins as defs;
 use crate::scene_error::SceneErrorKind;
-use crate::validate;
 use glam::Vec3;
 
 /// The parameters of a shape read from a mesh file; the file must exist and be readable
@@ -43,7 +42,7 @@ fn mesh_file<'a>(ctx: &Ctx<'a>, e: &'a Elem, ty: &str, p: &mut Props) -> Res<Sha
 }
 
 /// Reads a `<shape>` element.
-pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
+pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<Checked<ShapeDesc>> {
     let ty = plugin_type(ctx, e)?;
     let mut p = Props::new(ctx, e)?;
     let kind = match ty {
@@ -105,7 +104,7 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<ShapeDesc> {
     });
     shape.emitter = emitter;
     shape.emission_texture = emission_texture;
-    validate::shape(&shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    let shape = Checked::new(shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(shape)
 }

@@ -12,8 +12,9 @@ use std::fmt;
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum RenderError {
-    /// The description breaks a rule of [`validate::scene`](crate::validate::scene)
-    /// (the message names the part of the scene).
+    /// What the render's options add is refused (the integrator `opts.integrator` makes of
+    /// the scene's, the sample count, the total work, the film's memory); the message names
+    /// the part.
     Invalid(String),
     /// The shapes could not be built.
     Geometry(GeometryError),

@@ -7,7 +7,7 @@ use super::{split, Effects, RenderError, RenderOptions, Renderer};
 use crate::bsdf::{AnyBsdf, TexturedBsdf};
 use crate::camera::Camera;
 use crate::description::{
-    IntegratorDesc, IntegratorKind, SceneDescription, ShapeDesc, ShapeGroupDesc, ShapeKind,
+    Checked, IntegratorDesc, IntegratorKind, SceneDescription, ShapeDesc, ShapeGroupDesc, ShapeKind,
 };
 use crate::film::{Film, PixelFilter};
 use crate::geometry::{Geometry, ShapeSampling};
@@ -25,7 +25,8 @@ impl Renderer {
         desc: &SceneDescription,
         opts: &RenderOptions,
     ) -> Result<Self, RenderError> {
-        crate::validate::scene(desc).map_err(RenderError::Invalid)?;
+        // No pass over `desc` to check it: it holds only `Checked` parts
+        // (`description::Checked`), checked when they were made.
         let film = &desc.sensor.film;
         let window = film.window();
         let resolved = resolve(desc, opts, window.width as u64 * window.height as u64)?;
@@ -138,11 +139,14 @@ impl Renderer {
         let (samples, crop) = split::window(opts, &integrator, spp, width, height)?;
         let mut described = desc.clone();
         described.integrator = resolved.integrator;
-        described.sensor.sampler = crate::description::SamplerDesc {
-            kind: resolved.kind,
-            sample_count: resolved.spp,
-            seed: resolved.seed,
-        };
+        // The sampler is no part of the sensor's check (its count is a checked one).
+        described.sensor.change_unchecked(|s| {
+            s.sampler = crate::description::SamplerDesc {
+                kind: resolved.kind,
+                sample_count: resolved.spp,
+                seed: resolved.seed,
+            }
+        });
         let identity = split::render_identity(
             &described,
             None,
@@ -337,7 +341,7 @@ fn check_bidirectional(
 /// points, computed once per group).
 fn scene_radius(desc: &SceneDescription) -> f32 {
     let mut r = 1.0f32;
-    let mut groups: HashMap<*const ShapeGroupDesc, Vec<Vec3>> = HashMap::new();
+    let mut groups: HashMap<*const Checked<ShapeGroupDesc>, Vec<Vec3>> = HashMap::new();
     for s in &desc.shapes {
         let pts = match &s.kind {
             ShapeKind::Instance(g) => groups
@@ -395,5 +399,29 @@ fn bit(i: u32, b: u32) -> f32 {
         1.0
     } else {
         -1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::description::IntegratorKind;
+    use crate::render::{RenderOptions, Renderer};
+    use crate::validate::CHECKS_RUN;
+
+    /// `Renderer::new` does not walk the description to check it: its parts are `Checked`
+    /// ones. Only an integrator it makes itself (`--integrator`) is checked, once.
+    #[test]
+    fn preparing_a_render_checks_no_part_of_the_description() {
+        let d = crate::cornell_box::cornell_box_with(1, 8, -1);
+        let count = || CHECKS_RUN.with(|c| c.get());
+        let before = count();
+        Renderer::prepare(&d, &RenderOptions::default()).expect("renders");
+        assert_eq!(count(), before);
+        let opts = RenderOptions {
+            integrator: Some(IntegratorKind::Bdpt),
+            ..RenderOptions::default()
+        };
+        Renderer::prepare(&d, &opts).expect("renders");
+        assert_eq!(count(), before + 1);
     }
 }

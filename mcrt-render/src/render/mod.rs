@@ -102,11 +102,12 @@ fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
 }
 
 impl Renderer {
-    /// Prepares a scene: geometry, lights, materials, camera and integrator. First refuses,
-    /// naming the part of the scene, whatever [`validate::scene`](crate::validate::scene)
-    /// refuses; then resolves the sample count once, after every override (`opts.spp`, or
-    /// `mutations_per_pixel` for `mlt`, rounded by the sampler), and refuses a render past
-    /// the work limit.
+    /// Prepares a scene: geometry, lights, materials, camera and integrator. The description
+    /// is not checked again: its parts are [`Checked`](crate::description::Checked) ones,
+    /// checked when they were made (by the loader, or in code). An `opts.integrator` of
+    /// another kind is made from the scene's and checked; then the sample count is resolved
+    /// once, after every override (`opts.spp`, or `mutations_per_pixel` for `mlt`, rounded
+    /// by the sampler), and a render past the work limit is refused.
     /// Mesh files are read and the acceleration structure built on `opts.threads` threads,
     /// as the render runs.
     pub fn new(desc: &SceneDescription, opts: &RenderOptions) -> Result<Self, RenderError> {

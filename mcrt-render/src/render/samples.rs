@@ -2,7 +2,7 @@
 //! `--spp`, `--sampler`) and the sampler's rounding, and only then held to the work limit.
 
 use super::{RenderError, RenderOptions};
-use crate::description::{IntegratorDesc, SampleCount, SamplerKind, SceneDescription};
+use crate::description::{Checked, IntegratorDesc, SampleCount, SamplerKind, SceneDescription};
 use mcrt::sampling::sampler::{
     AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, Sobol4dSampler,
     SobolSampler, StratifiedSampler,
@@ -12,7 +12,7 @@ use mcrt::sampling::SamplingError;
 /// What a render takes from the scene and the options together.
 pub(super) struct Resolved {
     /// The integrator, after `opts.integrator`.
-    pub integrator: IntegratorDesc,
+    pub integrator: Checked<IntegratorDesc>,
     /// The sampler's type, after `opts.sampler`.
     pub kind: SamplerKind,
     /// The seed, after `opts.seed`.
@@ -35,20 +35,12 @@ pub(super) fn resolve(
     opts: &RenderOptions,
     pixels: u64,
 ) -> Result<Resolved, RenderError> {
+    // The scene's integrator is a checked one; another kind from `opts` is made (and
+    // checked) here, from the scene's depths and that kind's defaults.
     let integrator = match opts.integrator {
-        Some(kind) => desc.integrator.with_kind(kind),
+        Some(kind) => overridden(desc.integrator.with_kind(kind))?,
         None => desc.integrator,
     };
-    if let IntegratorDesc::Mlt { max_depth, .. } = integrator {
-        let most = crate::validate::MAX_MLT_DEPTH;
-        if !(1..=most).contains(&max_depth) {
-            return Err(RenderError::Invalid(format!(
-                "integrator: max_depth {max_depth} (the scene's, carried over to mlt) must \
-                 lie in [1, {most}] for mlt: a chain keeps its length, and every length \
-                 has its own bootstrap samples and image; lower it in the scene or with -D"
-            )));
-        }
-    }
     let invalid = |e: crate::validate::Invalid| RenderError::Invalid(format!("sampler: {e}"));
     // Only `--spp` and `mutations_per_pixel` can be out of range: the file's
     // `sample_count` is a checked `SampleCount`.
@@ -73,6 +65,22 @@ pub(super) fn resolve(
         sampler,
         spp,
     })
+}
+
+/// The integrator that `--integrator` makes of the scene's, checked: MLT's depth with its
+/// own message (a scene's unlimited depth becomes MLT's default), then every parameter.
+fn overridden(integrator: IntegratorDesc) -> Result<Checked<IntegratorDesc>, RenderError> {
+    if let IntegratorDesc::Mlt { max_depth, .. } = integrator {
+        let most = crate::validate::MAX_MLT_DEPTH;
+        if !(1..=most).contains(&max_depth) {
+            return Err(RenderError::Invalid(format!(
+                "integrator: max_depth {max_depth} (the scene's, carried over to mlt) must \
+                 lie in [1, {most}] for mlt: a chain keeps its length, and every length \
+                 has its own bootstrap samples and image; lower it in the scene or with -D"
+            )));
+        }
+    }
+    Checked::new(integrator).map_err(|e| RenderError::Invalid(format!("integrator: {e}")))
 }
 
 /// The sampler for a scene's `sampler` type (see `sampling::sampler` for the mapping of
@@ -102,13 +110,18 @@ mod tests {
     fn error(opts: &RenderOptions, mlt_mutations: Option<u32>) -> String {
         let mut d = crate::cornell_box::cornell_box_with(1, 8, -1);
         if let Some(m) = mlt_mutations {
-            d.integrator = IntegratorDesc::MLT_DEFAULTS;
+            let mut mlt = IntegratorDesc::MLT_DEFAULTS;
             if let IntegratorDesc::Mlt {
                 mutations_per_pixel,
                 ..
-            } = &mut d.integrator
+            } = &mut mlt
             {
                 *mutations_per_pixel = m;
+            }
+            // A count the integrator's constructor refuses never reaches `resolve`.
+            match crate::description::Checked::new(mlt) {
+                Ok(mlt) => d.integrator = mlt,
+                Err(e) => return e.to_string(),
             }
         }
         match resolve(&d, opts, 8192 * 4096) {

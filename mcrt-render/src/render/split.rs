@@ -142,23 +142,25 @@ pub(crate) fn render_identity(
     h.field(concat!("mcrt ", env!("CARGO_PKG_VERSION")).as_bytes());
     let mut d = desc.clone();
     d.source = None;
+    // A file's name is no part of a shape's or an emitter's check.
     for s in &mut d.shapes {
-        match &mut s.kind {
+        s.change_unchecked(|s| match &mut s.kind {
             ShapeKind::Obj { filename, .. }
             | ShapeKind::Ply { filename, .. }
-            | ShapeKind::Serialized { filename, .. } => h.file(base, filename)?,
-            _ => {}
-        }
+            | ShapeKind::Serialized { filename, .. } => h.file(base, filename),
+            _ => Ok(()),
+        })?;
     }
     for e in &mut d.emitters {
-        if let EmitterDesc::EnvMap { filename, .. } = e {
-            h.file(base, filename)?;
-        }
+        e.change_unchecked(|e| match e {
+            EmitterDesc::EnvMap { filename, .. } => h.file(base, filename),
+            _ => Ok(()),
+        })?;
     }
     // Each shape group once, in full (an instance's `Debug` names its group only), in the
     // order of `shape_groups`, which is the numbering of the shapes.
     for g in desc.shape_groups() {
-        let mut shapes = g.shapes.clone();
+        let mut shapes: Vec<_> = g.shapes.iter().map(|s| (**s).clone()).collect();
         for s in &mut shapes {
             match &mut s.kind {
                 ShapeKind::Obj { filename, .. }
@@ -199,7 +201,8 @@ mod tests {
         a.source = Some("/somewhere/else.xml".into());
         assert_eq!(id(&a), base);
         assert_ne!(render_identity(&a, None, "other opts").expect("id"), base);
-        a.sensor.film.width += 1;
+        let film = a.sensor.film.changed(|f| f.width += 1).unwrap();
+        a.sensor = a.sensor.changed(|s| s.film = film).unwrap();
         assert_ne!(id(&a), base);
     }
 }

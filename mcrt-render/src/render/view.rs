@@ -188,10 +188,12 @@ mod tests {
     fn path_vertex_draws_only_what_is_read() {
         let mut desc = crate::cornell_box::cornell_box();
         assert_eq!(draws(&desc), 4);
-        desc.emitters.push(EmitterDesc::Point {
+        let point = EmitterDesc::Point {
             position: Vec3::new(0.0, 1.0, 0.0),
             intensity: crate::description::Colour::WHITE,
-        });
+        };
+        desc.emitters
+            .push(crate::description::Checked::new(point).unwrap());
         assert_eq!(draws(&desc), 4);
     }
 }

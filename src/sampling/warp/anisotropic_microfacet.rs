@@ -305,7 +305,7 @@ impl GgxAnisotropicVisible {
     /// wi.z > 0).
     pub fn new(ggx: GgxAnisotropic, wi: Vec3) -> Result<Self, SamplingError> {
         let wi = check_wi(wi)?;
-        let unit = GgxVisible::new(1.0, ggx.a.stretch(wi).normalize())?;
+        let unit = GgxVisible::from_distribution(Ggx::UNIT, ggx.a.stretch(wi).normalize())?;
         let scale = 1.0 / ((1.0 + ggx.lambda(wi)) * wi.z);
         Ok(Self {
             ggx,

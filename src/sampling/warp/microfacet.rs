@@ -209,6 +209,11 @@ pub struct Ggx {
 }
 
 impl Ggx {
+    /// GGX of roughness 1: the stretched configuration in which visible normals of any
+    /// roughness are drawn (Heitz 2018, "Sampling the GGX Distribution of Visible Normals",
+    /// JCGT 7(4), §2), made without a check.
+    pub const UNIT: Ggx = Ggx { alpha: 1.0 };
+
     /// A GGX distribution of roughness `alpha` ∈ [1e-4, 1e4] (tested 1e-4 to 1).
     #[inline]
     pub fn new(alpha: f32) -> Result<Self, SamplingError> {
