@@ -90,6 +90,10 @@ fn train_and_render<S: Scene + Sync>(
         ..GuidingSchedule::new(total_spp)
     };
     let mut guide = SdTree::new(bounds.0, bounds.1);
+    // The trees learn the selection probability, as the renderer's do (the estimator must
+    // stay unbiased, and the same at any thread count, with it), unless the tracer is never
+    // to be guided.
+    guide.learn_selection(gpt.guide_probability > 0.0);
     let mut training = guide.clone();
     let tile = 16u32;
     let tiles: Vec<u32> = (0..pixels.div_ceil(tile)).collect();

@@ -3,7 +3,9 @@
 
 use super::path::{depth_limit, hit_weight, nee, PrevVertex};
 use super::{is_positive, Bsdf, PathResult, PathTracer, SampleSource, Scene, Strategy};
-use crate::sampling::guiding::{DQuadTree, GuidingRecord, GuidingRecords, PathVertex, SdTree};
+use crate::sampling::guiding::{
+    DQuadTree, GuidingRecord, GuidingRecords, PathVertex, SdTree, SelectionRecord,
+};
 use crate::sampling::Frame;
 use glam::{Vec2, Vec3};
 
@@ -17,7 +19,9 @@ const MAX_GUIDE_PROBABILITY: f32 = 0.999;
 /// As [`PathTracer`] (next-event estimation combined with the sampled directions by
 /// [`Strategy`], Russian roulette from `rr_depth`), except that at a vertex whose BSDF has a
 /// non-delta part the direction comes from the guide, the tree's distribution at the vertex,
-/// with probability `α = guide_probability`, and from the BSDF otherwise. A non-delta
+/// with probability `α` (the leaf's learned [`DQuadTree::selection_probability`] if the tree
+/// learns one, [`SdTree::learn_selection`], else `guide_probability`), and from the BSDF
+/// otherwise. A non-delta
 /// direction then has the one-sample mixture density `α·p_guide + (1 − α)·p_bsdf`, which
 /// both the path weight and the MIS weights against light sampling use; a Dirac lobe (only
 /// the BSDF samples it) has probability `(1 − α)` times the BSDF's; a BSDF without a
@@ -46,8 +50,8 @@ pub struct GuidedPathTracer {
     pub rr_depth: u32,
     /// Sampling strategy of next-event estimation against the sampled directions.
     pub strategy: Strategy,
-    /// The probability α of sampling the guide rather than the BSDF (the paper's 0.5);
-    /// clamped into `[0, 0.999]`, NaN meaning 0.
+    /// The probability α of sampling the guide rather than the BSDF (the paper's 0.5) where
+    /// the guide has not learned one; clamped into `[0, 0.999]`, NaN meaning 0.
     pub guide_probability: f32,
 }
 
@@ -101,12 +105,15 @@ impl GuidedPathTracer {
         }
     }
 
-    /// The selection probability of the guide at a vertex whose BSDF has `flags`: 0 unless
-    /// the BSDF has a non-delta part.
+    /// The selection probability of the guide at a vertex whose BSDF has `flags`, guided by
+    /// `guide`: 0 unless the BSDF has a non-delta part; the guide's learned probability
+    /// ([`DQuadTree::selection_probability`]) if it has one, else [`Self::alpha`].
     #[inline]
-    fn alpha_for(&self, flags: super::BsdfFlags) -> f32 {
+    fn alpha_for(&self, flags: super::BsdfFlags, guide: &DQuadTree) -> f32 {
         if flags.smooth {
-            self.alpha()
+            guide
+                .selection_probability()
+                .map_or_else(|| self.alpha(), |a| a.min(MAX_GUIDE_PROBABILITY))
         } else {
             0.0
         }
@@ -125,35 +132,60 @@ impl GuidedPathTracer {
         guide: &DQuadTree,
         samples: &mut R,
     ) -> Option<GuidedSample> {
-        let alpha = self.alpha_for(bsdf.flags());
+        let alpha = self.alpha_for(bsdf.flags(), guide);
+        self.sample_with_densities(alpha, bsdf, frame, wo, guide, samples, false)
+            .map(|(s, _)| s)
+    }
+
+    /// [`GuidedPathTracer::sample_direction`] with the selection probability `alpha`, and
+    /// for a non-delta direction the guide's and the BSDF's densities of it (the guide's
+    /// also where `alpha` is 0 if `guide_density`, else 0 there), which the learning of the
+    /// selection probability records.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn sample_with_densities<B: Bsdf, R: SampleSource>(
+        &self,
+        alpha: f32,
+        bsdf: &B,
+        frame: &Frame,
+        wo: Vec3,
+        guide: &DQuadTree,
+        samples: &mut R,
+        guide_density: bool,
+    ) -> Option<(GuidedSample, [f32; 2])> {
         if samples.next_1d() < alpha {
             let (wi, p_guide) = guide.sample(samples.next_2d());
             let (f, p_bsdf) = bsdf.eval_pdf(wo, frame.to_local(wi));
             let pdf = mixture(alpha, p_guide, p_bsdf);
-            return (is_positive(pdf) && pdf.is_finite()).then(|| GuidedSample {
+            let s = GuidedSample {
                 wi,
                 weight: f / pdf,
                 pdf,
                 delta: false,
                 eta: 1.0,
-            });
+            };
+            return (is_positive(pdf) && pdf.is_finite()).then_some((s, [p_guide, p_bsdf]));
         }
         let bs = super::sample_bsdf(bsdf, wo, samples)?;
         let wi = frame.to_world(bs.wi);
+        let mut densities = [0.0, bs.pdf];
         let (weight, pdf) = if bs.delta {
             (bs.weight / (1.0 - alpha), bs.pdf * (1.0 - alpha))
         } else {
-            let p_guide = if alpha > 0.0 { guide.pdf(wi) } else { 0.0 };
-            let pdf = mixture(alpha, p_guide, bs.pdf);
+            if alpha > 0.0 || guide_density {
+                densities[0] = guide.pdf(wi);
+            }
+            let pdf = mixture(alpha, densities[0], bs.pdf);
             (bs.weight * (bs.pdf / pdf), pdf)
         };
-        (is_positive(pdf) && pdf.is_finite()).then_some(GuidedSample {
+        let s = GuidedSample {
             wi,
             weight,
             pdf,
             delta: bs.delta,
             eta: bs.eta,
-        })
+        };
+        (is_positive(pdf) && pdf.is_finite()).then_some((s, densities))
     }
 
     /// The density with which [`GuidedPathTracer::sample_direction`] returns the world
@@ -166,7 +198,7 @@ impl GuidedPathTracer {
         guide: &DQuadTree,
         wi: Vec3,
     ) -> f32 {
-        let alpha = self.alpha_for(bsdf.flags());
+        let alpha = self.alpha_for(bsdf.flags(), guide);
         let p_guide = if alpha > 0.0 { guide.pdf(wi) } else { 0.0 };
         mixture(alpha, p_guide, bsdf.pdf(wo, frame.to_local(wi)))
     }
@@ -227,8 +259,8 @@ impl GuidedPathTracer {
             let bsdf = &scene.bsdf(&sp);
             let wo = sp.frame.to_local(wo_world);
             let flags = bsdf.flags();
-            let alpha = self.alpha_for(flags);
             let dist = guide.distribution(sp.p);
+            let alpha = self.alpha_for(flags, dist);
             let u_light = samples.next_2d();
             let u_pick = if scene.samples_light_choice() {
                 samples.next_2d()
@@ -237,12 +269,16 @@ impl GuidedPathTracer {
             };
             if flags.smooth && (self.strategy.samples_lights() || scene.has_delta_lights()) {
                 if let Some(ls) = scene.sample_light(&sp, u_pick, u_light) {
-                    let mix = |pb: f32| mixture(alpha, dist.pdf(ls.wi), pb);
+                    let pg = if alpha > 0.0 { dist.pdf(ls.wi) } else { 0.0 };
+                    let mix = |pb: f32| mixture(alpha, pg, pb);
                     let c = nee(self.strategy, scene, bsdf, &sp, wo, &ls, &mut out.rays, mix);
                     add(&mut out.radiance, &mut records, throughput * c);
                 }
             }
-            let Some(step) = self.sample_direction(bsdf, &sp.frame, wo, dist, samples) else {
+            let recording = records.is_some();
+            let Some((step, [p_guide, p_bsdf])) =
+                self.sample_with_densities(alpha, bsdf, &sp.frame, wo, dist, samples, recording)
+            else {
                 break;
             };
             throughput *= step.weight;
@@ -264,7 +300,14 @@ impl GuidedPathTracer {
                     p: sp.p,
                     dir: step.wi,
                     pdf: step.pdf,
-                    throughput,
+                    f_cos: step.weight * step.pdf,
+                    p_guide,
+                    p_bsdf,
+                    inv_throughput: Vec3::select(
+                        throughput.cmpgt(Vec3::ZERO),
+                        throughput.recip(),
+                        Vec3::ZERO,
+                    ),
                     radiance: Vec3::ZERO,
                 });
             }
@@ -287,6 +330,13 @@ impl GuidedPathTracer {
                     radiance: v.radiance.element_sum() / 3.0,
                     pdf: v.pdf,
                 });
+                r.selection.push(SelectionRecord {
+                    record: r.len() - 1,
+                    integrand: (v.f_cos * v.radiance).element_sum() / 3.0,
+                    p_guide: v.p_guide,
+                    p_bsdf: v.p_bsdf,
+                    pdf: v.pdf,
+                });
             }
             r.scratch.clear();
         }
@@ -301,9 +351,7 @@ fn add(radiance: &mut Vec3, records: &mut Option<&mut GuidingRecords>, c: Vec3) 
     *radiance += c;
     if let Some(r) = records.as_deref_mut() {
         for v in &mut r.scratch {
-            let t = v.throughput;
-            let inv = Vec3::select(t.cmpgt(Vec3::ZERO), t.recip(), Vec3::ZERO);
-            v.radiance += c * inv;
+            v.radiance += c * v.inv_throughput;
         }
     }
 }

@@ -497,8 +497,8 @@ fn run(args: Args) -> Result<bool, String> {
     if let Some(g) = &result.guiding {
         println!(
             "guided: {} training passes ({} spp, {:.3} s of the time above), final pass {} spp, \
-             guide of {} spatial leaves",
-            g.passes, g.training_spp, g.training_seconds, g.final_spp, g.leaves
+             image of {} spp (the final and last training passes), guide of {} spatial leaves",
+            g.passes, g.training_spp, g.training_seconds, g.final_spp, g.image_spp, g.leaves
         );
     }
     if let Some(st) = &result.strategies {

@@ -130,6 +130,17 @@ impl Renderer {
             )
             .map_err(RenderError::Invalid)?;
         }
+        if guided.is_some() {
+            crate::memory::check(
+                &format!(
+                    "the guided path tracer at {width} × {height} pixels (the images of its \
+                     last passes, combined at the end)"
+                ),
+                super::guided_loop::extra_bytes(w64 * h64)
+                    .saturating_add(Film::bytes_for(w64, h64)),
+            )
+            .map_err(RenderError::Invalid)?;
+        }
         let mut effects = Effects::of(&bsdfs, &lights, &integrator);
         if textured.is_some() {
             effects.textures = true;

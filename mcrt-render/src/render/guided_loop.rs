@@ -10,6 +10,7 @@
 //! the training tree in tile order, chunk by chunk: the trees, and so the image, are the
 //! same at any thread count.
 
+use super::guided_combine::combine;
 use super::tiles::{pass_size, tiles, LoopParams, LoopStats};
 use crate::camera::Camera;
 use crate::film::{Film, PixelAccum};
@@ -23,6 +24,11 @@ use std::time::Instant;
 
 /// Tiles rendered between two merges of their records (bounds the records held at once).
 const CHUNK: usize = 64;
+
+/// Training passes whose images join the final pass's ([`combine`]): the last ones of at
+/// least two samples per pixel, whose variance can be estimated. Earlier passes hold few
+/// samples (at most an eighth of the budget together) and would cost a film each.
+pub(crate) const KEPT_TRAINING_IMAGES: usize = 3;
 
 /// The guided path tracer with its training settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,14 +46,38 @@ pub(crate) struct GuidedSetup {
 pub struct GuidingReport {
     /// Training passes rendered.
     pub passes: u32,
-    /// Samples per pixel spent on training (their images are discarded).
+    /// Samples per pixel spent on training.
     pub training_spp: u32,
-    /// Samples per pixel of the final pass, the image.
+    /// Samples per pixel of the final pass.
     pub final_spp: u32,
+    /// Samples per pixel in the image: the final pass's and those of the last training
+    /// passes, whose images are weighted by their inverse variance.
+    pub image_spp: u32,
     /// Wall-clock seconds of the training passes (part of the render's time).
     pub training_seconds: f64,
     /// Spatial leaves of the tree that guided the final pass.
     pub leaves: usize,
+}
+
+/// The pixels for which `spatial_threshold` is meant: Müller et al.'s `c = 12000` is tuned for
+/// images of about a megapixel.
+const THRESHOLD_PIXELS: f64 = (1u64 << 20) as f64;
+
+/// The factor on `spatial_threshold` for an image of `pixels`: `√(pixels / 2²⁰)`, at most 1.
+/// A small image gives few records per pass, and the paper's threshold would leave the
+/// tree a few coarse regions (16 leaves on the 128² indirect room against 260 here); the
+/// records per pass scale with the pixels, the threshold with their square root, as the
+/// paper's `√(2^k)` does with the samples per pixel. Measured on the indirect room (128²)
+/// and the Cornell box (256²) at 64 spp: docs/renderer.md.
+pub(crate) fn threshold_scale(pixels: u64) -> f64 {
+    (pixels as f64 / THRESHOLD_PIXELS).sqrt().min(1.0)
+}
+
+/// Memory the guided loop holds beyond the render's film, for a film of `pixels`: the kept
+/// training images, the final pass's, and [`combine`]'s means and variances.
+pub(crate) fn extra_bytes(pixels: u64) -> u64 {
+    let films = Film::bytes_for(pixels, 1).saturating_mul(KEPT_TRAINING_IMAGES as u64 + 1);
+    films.saturating_add(pixels.saturating_mul(24 * (KEPT_TRAINING_IMAGES as u64 + 1)))
 }
 
 /// One tile's accumulators (the final pass) or records (a training pass), and its rays.
@@ -58,8 +88,10 @@ struct TileOut {
     nonfinite: u64,
 }
 
-/// Renders the whole schedule: the film of the final pass, the counters (rays of every
-/// pass, samples of the final pass) and what training cost.
+/// Renders the whole schedule: the film combining the final pass with the last training
+/// passes ([`KEPT_TRAINING_IMAGES`], by [`combine`]), the counters (rays of every pass,
+/// samples in the image) and what training cost. While the guide has taken no records (the
+/// first pass) it is the uniform sphere and is not sampled (α = 0): BSDF sampling alone.
 pub(crate) fn render_guided<S: Scene + Sync>(
     scene: &S,
     p: &LoopParams<'_>,
@@ -68,16 +100,19 @@ pub(crate) fn render_guided<S: Scene + Sync>(
 ) -> (Film, LoopStats) {
     let start = Instant::now();
     let mut schedule = GuidingSchedule::new(p.samples.len());
-    schedule.spatial_c = f64::from(g.spatial_threshold);
+    schedule.spatial_c = f64::from(g.spatial_threshold) * threshold_scale(p.window.area());
     schedule.rho = f64::from(g.directional_threshold);
     let mut guide = SdTree::new(bounds.0, bounds.1);
+    // Each leaf learns its selection probability, unless the scene never guides (α = 0).
+    guide.learn_selection(g.tracer.guide_probability > 0.0);
     let mut training = guide.clone();
-    let mut film = Film::new(p.width, p.height);
+    let mut images: Vec<Film> = Vec::new();
     let mut stats = LoopStats::default();
     let mut report = GuidingReport {
         passes: 0,
         training_spp: 0,
         final_spp: 0,
+        image_spp: 0,
         training_seconds: 0.0,
         leaves: guide.leaf_count(),
     };
@@ -89,30 +124,46 @@ pub(crate) fn render_guided<S: Scene + Sync>(
         }
         let range = (first, first + pass.spp);
         first += pass.spp;
+        let mut setup = *g;
+        if guide.sample_count() == 0 {
+            setup.tracer.guide_probability = 0.0;
+        }
+        let keep = pass.is_final || pass.spp >= 2;
+        let mut film = keep.then(|| Film::new(p.width, p.height));
         if pass.is_final {
             report.training_seconds = start.elapsed().as_secs_f64();
             report.final_spp = pass.spp;
             report.leaves = guide.leaf_count();
-            run_pass(scene, p, g, &guide, range, &done, |out| {
-                stats.rays += out.rays;
+        }
+        run_pass(scene, p, &setup, &guide, range, &done, |out| {
+            stats.rays += out.rays;
+            training.merge(&out.records);
+            if let Some(film) = film.as_mut() {
                 stats.nonfinite += out.nonfinite;
                 for (i, a) in &out.pixels {
-                    stats.samples += a.count as u64;
                     let merged = film.merge(*i, a);
                     debug_assert!(merged.is_ok());
                 }
-            });
-        } else {
-            run_pass(scene, p, g, &guide, range, &done, |out| {
-                stats.rays += out.rays;
-                training.merge(&out.records);
-            });
+            }
+        });
+        if let Some(film) = film {
+            if !pass.is_final && images.len() == KEPT_TRAINING_IMAGES {
+                images.remove(0);
+            }
+            images.push(film);
+        }
+        if !pass.is_final {
             report.passes += 1;
             report.training_spp += pass.spp;
             let next = schedule.next_tree(&training, &pass);
             guide = std::mem::replace(&mut training, next);
         }
     }
+    let film = combine(&images);
+    for i in 0..(film.width() as usize * film.height() as usize) {
+        stats.samples += u64::from(film.count(i));
+    }
+    report.image_spp = film.count_range().1;
     stats.guiding = Some(report);
     (film, stats)
 }

@@ -26,6 +26,7 @@ mod dispatch;
 mod effects;
 mod error;
 mod estimator;
+mod guided_combine;
 mod guided_loop;
 mod material;
 mod mlt_loop;

@@ -19,7 +19,7 @@ mod tests;
 
 pub use map::{sphere_to_square, square_to_sphere, EqualAreaSphere, SQUARE_TO_SPHERE_JACOBIAN};
 pub use quadtree::DQuadTree;
-pub(crate) use records::PathVertex;
 pub use records::{GuidingRecord, GuidingRecords};
+pub(crate) use records::{PathVertex, SelectionRecord};
 pub use schedule::{GuidingPass, GuidingSchedule};
 pub use spatial::SdTree;

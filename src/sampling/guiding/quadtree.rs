@@ -3,6 +3,7 @@
 
 use super::map::{sphere_to_square, square_to_sphere, SQUARE_TO_SPHERE_JACOBIAN};
 use glam::{Vec2, Vec3};
+use std::sync::OnceLock;
 
 /// The largest `f64` below 1: where the rescaled sample values are clamped.
 const ONE_MINUS_EPS_F64: f64 = 1.0 - f64::EPSILON / 2.0;
@@ -20,6 +21,48 @@ impl Node {
     #[inline]
     fn total(&self) -> f64 {
         self.sum[0] + self.sum[1] + self.sum[2] + self.sum[3]
+    }
+}
+
+/// A node's energy as the probabilities that sampling and densities use, derived from its
+/// sums once per trained tree (no division per lookup): the share of each quadrant, of the
+/// left column (quadrants 0 and 2), and of the lower quadrant within each column.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Shares {
+    /// The node's children, as in [`Node`] (so that a lookup reads this array alone).
+    child: [u32; 4],
+    quadrant: [f32; 4],
+    left: f32,
+    lower: [f32; 2],
+    /// Whether the node holds any energy (a node without is uniform).
+    any: bool,
+}
+
+impl Shares {
+    fn of(n: &Node) -> Self {
+        let total = n.total();
+        if total.is_nan() || total <= 0.0 {
+            return Self {
+                child: n.child,
+                ..Self::default()
+            };
+        }
+        let s = n.sum;
+        let col = |x: usize| s[x] + s[x + 2];
+        let lower = |x: usize| {
+            if col(x) > 0.0 {
+                (s[x] / col(x)) as f32
+            } else {
+                0.5
+            }
+        };
+        Self {
+            child: n.child,
+            quadrant: s.map(|e| (e / total) as f32),
+            left: (col(0) / total) as f32,
+            lower: [lower(0), lower(1)],
+            any: true,
+        }
     }
 }
 
@@ -61,9 +104,40 @@ fn quadrant(x: [f64; 2]) -> (usize, [f64; 2]) {
 /// let (d, pdf) = t.sample(Vec2::new(0.5, 0.5));
 /// assert_eq!(pdf, t.pdf(d));
 /// ```
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct DQuadTree {
     nodes: Vec<Node>,
+    /// Per candidate of [`SELECTION_CANDIDATES`], the estimated second moment of the
+    /// one-sample estimator that would select the guide with that probability (sums over
+    /// the selection records), and the number of records.
+    selection: [f64; SELECTION_CANDIDATES.len()],
+    selection_records: u64,
+    /// What lookups derive from the above, made at the first lookup after the last record.
+    derived: OnceLock<Derived>,
+}
+
+/// The candidates for the probability of sampling the guide that a tree judges
+/// ([`DQuadTree::selection_probability`]).
+pub(crate) const SELECTION_CANDIDATES: [f32; 10] =
+    [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9];
+
+/// The fewest selection records from which a tree gives a selection probability.
+const MIN_SELECTION_RECORDS: u64 = 64;
+
+/// See [`DQuadTree::derived`].
+#[derive(Debug, Clone)]
+struct Derived {
+    shares: Vec<Shares>,
+    selection: Option<f32>,
+}
+
+impl PartialEq for DQuadTree {
+    /// Trees are equal when their nodes (structure and energy) and selection sums are.
+    fn eq(&self, other: &Self) -> bool {
+        self.nodes == other.nodes
+            && self.selection == other.selection
+            && self.selection_records == other.selection_records
+    }
 }
 
 impl Default for DQuadTree {
@@ -85,7 +159,77 @@ impl DQuadTree {
     pub fn new() -> Self {
         Self {
             nodes: vec![Node::default()],
+            selection: [0.0; SELECTION_CANDIDATES.len()],
+            selection_records: 0,
+            derived: OnceLock::new(),
         }
+    }
+
+    /// The nodes' shares and the selection probability, derived at the first call after a
+    /// change.
+    #[inline]
+    fn derived(&self) -> &Derived {
+        self.derived.get_or_init(|| Derived {
+            shares: self.nodes.iter().map(Shares::of).collect(),
+            selection: self.best_selection(),
+        })
+    }
+
+    #[inline]
+    fn shares(&self) -> &[Shares] {
+        &self.derived().shares
+    }
+
+    /// The probability with which the guided path tracer should sample this tree rather
+    /// than the BSDF, learned from what it saw while the tree trained: the candidate of
+    /// 0, 0.1, …, 0.9 with the least estimated second moment of the one-sample estimator
+    /// `F/q_α`, `q_α = α·p_guide + (1 − α)·p_bsdf` (the smallest on ties). The estimate is
+    /// `Σ F²/(q·q_α)` over the records, each sampled with the mixture `q` in use then
+    /// (importance sampling of `∫F²/q_α`). `None` before 64 records, or where the tree
+    /// did not learn ([`SdTree::learn_selection`](super::SdTree::learn_selection)).
+    ///
+    /// The estimate judges the candidates with the density of the guide that sampled the
+    /// records, older than this tree; the guide improves as it trains, so the choice errs
+    /// towards the BSDF.
+    pub fn selection_probability(&self) -> Option<f32> {
+        self.derived().selection
+    }
+
+    fn best_selection(&self) -> Option<f32> {
+        if self.selection_records < MIN_SELECTION_RECORDS {
+            return None;
+        }
+        let mut best: Option<(f64, f32)> = None;
+        for (m, a) in self.selection.iter().zip(SELECTION_CANDIDATES) {
+            if m.is_finite() && best.is_none_or(|(b, _)| *m < b) {
+                best = Some((*m, a));
+            }
+        }
+        best.map(|(_, a)| a)
+    }
+
+    /// Adds one selection record: a direction sampled with the mixture density `pdf`, where
+    /// the guide's density is `p_guide`, the BSDF's `p_bsdf` and the integrand
+    /// `F = f·|cos θ|·L` is `integrand`. A candidate under which the direction has zero
+    /// density while `F > 0` gets an infinite second moment. Records with a density that
+    /// is not positive and finite, or an integrand that is negative or not finite, are
+    /// ignored.
+    pub(crate) fn record_selection(&mut self, integrand: f32, p_guide: f32, p_bsdf: f32, pdf: f32) {
+        let ok = |x: f32| x >= 0.0 && x.is_finite();
+        if !(pdf > 0.0 && pdf.is_finite() && ok(integrand) && ok(p_guide) && ok(p_bsdf)) {
+            return;
+        }
+        self.derived.take();
+        let f2 = f64::from(integrand) * f64::from(integrand);
+        for (m, a) in self.selection.iter_mut().zip(SELECTION_CANDIDATES) {
+            let q = f64::from(a) * f64::from(p_guide) + f64::from(1.0 - a) * f64::from(p_bsdf);
+            if q > 0.0 {
+                *m += f2 / (f64::from(pdf) * q);
+            } else if f2 > 0.0 {
+                *m = f64::INFINITY;
+            }
+        }
+        self.selection_records += 1;
     }
 
     /// The number of nodes (each has four quadrants).
@@ -120,6 +264,7 @@ impl DQuadTree {
         if !(value >= 0.0 && value.is_finite()) {
             return;
         }
+        self.derived.take();
         let u = sphere_to_square(dir);
         let mut x = [f64::from(u.x), f64::from(u.y)];
         let mut n = 0usize;
@@ -145,25 +290,25 @@ impl DQuadTree {
         if x.iter().any(|v| v.is_nan()) {
             x = [0.5, 0.5];
         }
-        let mut pdf = 1.0f64;
+        let shares = self.shares();
+        let mut pdf = 1.0f32;
         let mut n = 0usize;
         loop {
-            let node = &self.nodes[n];
             let (q, y) = quadrant(x);
             x = y;
-            let total = node.total();
-            if total > 0.0 {
-                pdf *= 4.0 * node.sum[q] / total;
-                if pdf <= 0.0 {
+            let sh = &shares[n];
+            if sh.any {
+                pdf *= 4.0 * sh.quadrant[q];
+                if pdf.is_nan() || pdf <= 0.0 {
                     return 0.0;
                 }
             }
-            match node.child[q] {
+            match sh.child[q] {
                 0 => break,
                 c => n = c as usize,
             }
         }
-        pdf as f32
+        pdf
     }
 
     /// The density of [`DQuadTree::sample`] at the direction `dir`, per steradian:
@@ -184,16 +329,13 @@ impl DQuadTree {
             x = [0.5, 0.5];
         }
         let (mut origin, mut size) = ([0.0f64; 2], 1.0f64);
+        let shares = self.shares();
         let mut n = 0usize;
         loop {
-            let node = &self.nodes[n];
-            let s = node.sum;
-            let q = if node.total() > 0.0 {
-                let p_left = (s[0] + s[2]) / node.total();
-                let bx = pick(&mut x[0], p_left);
-                let col = s[bx] + s[bx + 2];
-                let p_bottom = if col > 0.0 { s[bx] / col } else { 0.5 };
-                let by = pick(&mut x[1], p_bottom);
+            let sh = &shares[n];
+            let q = if sh.any {
+                let bx = pick(&mut x[0], f64::from(sh.left));
+                let by = pick(&mut x[1], f64::from(sh.lower[bx]));
                 bx + 2 * by
             } else {
                 let (q, y) = quadrant(x);
@@ -203,7 +345,7 @@ impl DQuadTree {
             size *= 0.5;
             origin[0] += (q & 1) as f64 * size;
             origin[1] += (q >> 1) as f64 * size;
-            match node.child[q] {
+            match sh.child[q] {
                 0 => break,
                 c => n = c as usize,
             }

@@ -36,7 +36,23 @@ pub struct GuidingRecord {
 #[derive(Debug, Clone, Default)]
 pub struct GuidingRecords {
     records: Vec<GuidingRecord>,
+    /// What the guided path tracer saw of its choice between guide and BSDF, for a tree that
+    /// learns its selection probability ([`SdTree::learn_selection`](super::SdTree::learn_selection)).
+    pub(crate) selection: Vec<SelectionRecord>,
     pub(crate) scratch: Vec<PathVertex>,
+}
+
+/// One direction sampled from the mixture of guide and BSDF, as the learning of the
+/// selection probability needs it: the integrand `F = f·|cos θ|·L` (channels averaged) and
+/// the three densities.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SelectionRecord {
+    /// The index of the radiance record of the same vertex (same point).
+    pub record: usize,
+    pub integrand: f32,
+    pub p_guide: f32,
+    pub p_bsdf: f32,
+    pub pdf: f32,
 }
 
 /// A vertex of a guided path, while its incident radiance is being summed.
@@ -45,8 +61,14 @@ pub(crate) struct PathVertex {
     pub p: Vec3,
     pub dir: Vec3,
     pub pdf: f32,
-    /// The path throughput after the vertex's sampling weight (and Russian roulette).
-    pub throughput: Vec3,
+    /// `f·|cos θ|` of the sampled direction per channel, and the guide's and the BSDF's
+    /// densities of it.
+    pub f_cos: Vec3,
+    pub p_guide: f32,
+    pub p_bsdf: f32,
+    /// The reciprocal of the path throughput after the vertex's sampling weight (and
+    /// Russian roulette), 0 in a channel where the throughput is 0.
+    pub inv_throughput: Vec3,
     /// The contributions of the path after the vertex, summed.
     pub radiance: Vec3,
 }
@@ -81,5 +103,6 @@ impl GuidingRecords {
     /// Removes every record (keeping the allocation).
     pub fn clear(&mut self) {
         self.records.clear();
+        self.selection.clear();
     }
 }

@@ -7,11 +7,19 @@ use crate::sampling::unit::clamp_unit;
 use glam::Vec3;
 
 /// A node of the spatial tree: an inner node (the children's indices, the split axis is the
-/// depth modulo 3) or a leaf with its directional tree and the number of records it took.
-#[derive(Debug, Clone, PartialEq)]
+/// depth modulo 3) or a leaf (the index of its [`Leaf`]). Small, so that the descent to a
+/// leaf touches little memory.
+#[derive(Debug, Clone, Copy, PartialEq)]
 enum SNode {
     Inner([u32; 2]),
-    Leaf { tree: DQuadTree, samples: u64 },
+    Leaf(u32),
+}
+
+/// A spatial leaf's directional tree and the number of records it took.
+#[derive(Debug, Clone, PartialEq)]
+struct Leaf {
+    tree: DQuadTree,
+    samples: u64,
 }
 
 /// The deepest spatial subdivision (a leaf's cube is then `2^-(DEPTH/3)` of the whole).
@@ -52,6 +60,9 @@ pub struct SdTree {
     min: Vec3,
     size: f32,
     nodes: Vec<SNode>,
+    leaves: Vec<Leaf>,
+    /// Whether the leaves learn the guided path tracer's selection probability.
+    learn_selection: bool,
 }
 
 impl SdTree {
@@ -69,11 +80,27 @@ impl SdTree {
         Self {
             min,
             size,
-            nodes: vec![SNode::Leaf {
+            nodes: vec![SNode::Leaf(0)],
+            leaves: vec![Leaf {
                 tree: DQuadTree::new(),
                 samples: 0,
             }],
+            learn_selection: false,
         }
+    }
+
+    /// Whether this tree, and those [`SdTree::refined`] makes from it, learn in each leaf
+    /// the probability with which the guided path tracer samples the guide rather than the
+    /// BSDF ([`DQuadTree::selection_probability`]), from what
+    /// [`GuidedPathTracer::li`](crate::integrator::GuidedPathTracer::li) records. Off by
+    /// default: the tracer then samples the guide with its fixed `guide_probability`.
+    pub fn learn_selection(&mut self, on: bool) {
+        self.learn_selection = on;
+    }
+
+    /// Whether the tree learns the selection probability ([`SdTree::learn_selection`]).
+    pub fn learns_selection(&self) -> bool {
+        self.learn_selection
     }
 
     /// The lower corner and the side of the tree's cube.
@@ -83,52 +110,40 @@ impl SdTree {
 
     /// The number of spatial leaves.
     pub fn leaf_count(&self) -> usize {
-        self.nodes
-            .iter()
-            .filter(|n| matches!(n, SNode::Leaf { .. }))
-            .count()
+        self.leaves.len()
     }
 
     /// The number of records the tree took.
     pub fn sample_count(&self) -> u64 {
-        self.nodes
-            .iter()
-            .map(|n| match n {
-                SNode::Leaf { samples, .. } => *samples,
-                SNode::Inner(_) => 0,
-            })
-            .sum()
+        self.leaves.iter().map(|l| l.samples).sum()
     }
 
     /// The index of the leaf containing `p` (a point outside the cube, or with NaN
-    /// coordinates, is clamped to it).
+    /// coordinates, is clamped to it). The point is placed on a grid of `2^16` cells per axis
+    /// (the deepest split halves an axis 16 times), and each level reads the next bit of the
+    /// axis it splits.
     fn leaf_index(&self, p: Vec3) -> usize {
-        let mut x = ((p - self.min) / self.size).to_array();
-        for v in &mut x {
-            *v = clamp_unit(*v);
+        const BITS: u32 = MAX_SPATIAL_DEPTH / 3;
+        let scale = (1u32 << BITS) as f32;
+        let cell = |v: f32| (clamp_unit(v) * scale).min(scale - 1.0) as u32;
+        let x = (p - self.min) / self.size;
+        let c = [cell(x.x), cell(x.y), cell(x.z)];
+        let (mut n, mut depth) = (0usize, 0u32);
+        loop {
+            match self.nodes[n] {
+                SNode::Inner(ch) => {
+                    let bit = (c[(depth % 3) as usize] >> (BITS - 1 - depth / 3)) & 1;
+                    n = ch[bit as usize] as usize;
+                    depth += 1;
+                }
+                SNode::Leaf(l) => return l as usize,
+            }
         }
-        let (mut n, mut axis) = (0usize, 0usize);
-        while let SNode::Inner(c) = &self.nodes[n] {
-            let v = &mut x[axis];
-            n = if *v < 0.5 {
-                *v *= 2.0;
-                c[0] as usize
-            } else {
-                *v = *v * 2.0 - 1.0;
-                c[1] as usize
-            };
-            *v = clamp_unit(*v);
-            axis = (axis + 1) % 3;
-        }
-        n
     }
 
     /// The directional distribution of the radiance arriving at `p`.
     pub fn distribution(&self, p: Vec3) -> &DQuadTree {
-        match &self.nodes[self.leaf_index(p)] {
-            SNode::Leaf { tree, .. } => tree,
-            SNode::Inner(_) => unreachable!("leaf_index returns a leaf"),
-        }
+        &self.leaves[self.leaf_index(p)].tree
     }
 
     /// Records radiance (a scalar, such as the mean of the RGB channels) arriving at `p`
@@ -137,21 +152,35 @@ impl SdTree {
     /// record whose `pdf` is not positive and finite is ignored; a radiance that is negative
     /// or not finite counts as a record of zero energy.
     pub fn record(&mut self, p: Vec3, dir: Vec3, radiance: f32, pdf: f32) {
-        if !(pdf > 0.0 && pdf.is_finite()) {
-            return;
-        }
-        let value = f64::from(radiance) / f64::from(pdf);
-        let i = self.leaf_index(p);
-        if let SNode::Leaf { tree, samples } = &mut self.nodes[i] {
-            *samples += 1;
-            tree.record(dir, value);
-        }
+        self.record_at(p, dir, radiance, pdf);
     }
 
-    /// Records every entry of `records`, in order.
+    /// [`SdTree::record`], returning the index of `p`'s leaf.
+    fn record_at(&mut self, p: Vec3, dir: Vec3, radiance: f32, pdf: f32) -> usize {
+        let i = self.leaf_index(p);
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            return i;
+        }
+        let value = f64::from(radiance) / f64::from(pdf);
+        let leaf = &mut self.leaves[i];
+        leaf.samples += 1;
+        leaf.tree.record(dir, value);
+        i
+    }
+
+    /// Records every entry of `records`, in order (and, if the tree learns the selection
+    /// probability, what the tracer recorded of its choices).
     pub fn merge(&mut self, records: &GuidingRecords) {
-        for r in records.iter() {
-            self.record(r.p, r.dir, r.radiance, r.pdf);
+        let learn = self.learn_selection;
+        let mut selection = records.selection.iter().peekable();
+        for (k, r) in records.iter().enumerate() {
+            let i = self.record_at(r.p, r.dir, r.radiance, r.pdf);
+            while let Some(s) = selection.next_if(|s| s.record == k) {
+                if learn {
+                    let t = &mut self.leaves[i].tree;
+                    t.record_selection(s.integrand, s.p_guide, s.p_bsdf, s.pdf);
+                }
+            }
         }
     }
 
@@ -166,12 +195,14 @@ impl SdTree {
             min: self.min,
             size: self.size,
             nodes: Vec::with_capacity(self.nodes.len()),
+            leaves: Vec::with_capacity(self.leaves.len()),
+            learn_selection: self.learn_selection,
         };
         // (old node, new node, depth)
         out.nodes.push(SNode::Inner([0, 0]));
         let mut stack = vec![(0usize, 0usize, 0u32)];
         while let Some((o, ni, depth)) = stack.pop() {
-            match &self.nodes[o] {
+            match self.nodes[o] {
                 SNode::Inner(c) => {
                     let a = out.push_placeholder();
                     let b = out.push_placeholder();
@@ -179,7 +210,8 @@ impl SdTree {
                     stack.push((c[0] as usize, a, depth + 1));
                     stack.push((c[1] as usize, b, depth + 1));
                 }
-                SNode::Leaf { tree, samples } => {
+                SNode::Leaf(l) => {
+                    let Leaf { tree, samples } = &self.leaves[l as usize];
                     let fresh = tree.refined(rho, max_depth);
                     out.split_leaf(ni, fresh, *samples as f64, spatial_threshold, depth);
                 }
@@ -205,10 +237,11 @@ impl SdTree {
                 stack.push((a, s / 2.0, d + 1));
                 stack.push((b, s / 2.0, d + 1));
             } else {
-                self.nodes[n] = SNode::Leaf {
+                self.nodes[n] = SNode::Leaf(self.leaves.len() as u32);
+                self.leaves.push(Leaf {
                     tree: tree.clone(),
                     samples: 0,
-                };
+                });
             }
         }
     }

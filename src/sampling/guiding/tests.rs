@@ -176,3 +176,83 @@ fn schedule_passes() {
         assert!(passes.iter().rev().skip(1).all(|p| !p.is_final));
     }
 }
+
+/// Two directions of equal measure ½ where the guide puts 1.8 and 0.2 and the BSDF 0.2 and
+/// 1.8 (both densities integrate to 1), sampled from the even mixture (density 1 on both):
+/// `n` records of each direction with the integrand `f` of each.
+fn two_directions(t: &mut DQuadTree, n: usize, f: [f32; 2]) {
+    for _ in 0..n {
+        t.record_selection(f[0], 1.8, 0.2, 1.0);
+        t.record_selection(f[1], 0.2, 1.8, 1.0);
+    }
+}
+
+#[test]
+fn the_selection_probability_follows_the_density_that_matches_the_integrand() {
+    // Light from the guide's direction alone: sample the guide as much as allowed.
+    let mut t = DQuadTree::new();
+    two_directions(&mut t, 40, [1.0, 0.0]);
+    assert_eq!(t.selection_probability(), Some(0.9));
+    // From the BSDF's: never the guide.
+    let mut t = DQuadTree::new();
+    two_directions(&mut t, 40, [0.0, 1.0]);
+    assert_eq!(t.selection_probability(), Some(0.0));
+    // Even: the even mixture, whose density is constant like the integrand.
+    let mut t = DQuadTree::new();
+    two_directions(&mut t, 40, [1.0, 1.0]);
+    assert_eq!(t.selection_probability(), Some(0.5));
+    // Too few records (63 < 64): none.
+    let mut t = DQuadTree::new();
+    two_directions(&mut t, 31, [1.0, 0.0]);
+    t.record_selection(1.0, 1.8, 0.2, 1.0);
+    assert_eq!(t.selection_probability(), None);
+    // A direction the BSDF cannot reach rules out α = 0; bad records are ignored.
+    let mut t = DQuadTree::new();
+    for _ in 0..64 {
+        t.record_selection(1.0, 1.0, 0.0, 0.5);
+        t.record_selection(f32::NAN, 1.0, 1.0, 1.0);
+        t.record_selection(1.0, 1.0, 1.0, 0.0);
+    }
+    assert_eq!(t.selection_probability(), Some(0.9));
+    // A new record forgets the derived choice.
+    two_directions(&mut t, 1000, [0.0, 1.0]);
+    assert_ne!(t.selection_probability(), Some(0.9));
+}
+
+#[test]
+fn an_sd_tree_learns_the_selection_probability_only_when_asked() {
+    let mut records = GuidingRecords::new();
+    for k in 0..100 {
+        records.push(GuidingRecord {
+            p: Vec3::ZERO,
+            dir: Vec3::Z,
+            radiance: 1.0,
+            pdf: 1.0,
+        });
+        let f = [1.0, 0.0][k % 2];
+        let (pg, pb) = [(1.8, 0.2), (0.2, 1.8)][k % 2];
+        records.selection.push(records::SelectionRecord {
+            record: k,
+            integrand: f,
+            p_guide: pg,
+            p_bsdf: pb,
+            pdf: 1.0,
+        });
+    }
+    let mut off = SdTree::new(Vec3::splat(-1.0), Vec3::ONE);
+    off.merge(&records);
+    assert!(!off.learns_selection());
+    assert_eq!(off.distribution(Vec3::ZERO).selection_probability(), None);
+    let mut on = SdTree::new(Vec3::splat(-1.0), Vec3::ONE);
+    on.learn_selection(true);
+    on.merge(&records);
+    assert_eq!(
+        on.distribution(Vec3::ZERO).selection_probability(),
+        Some(0.9)
+    );
+    assert_eq!(on.sample_count(), 100);
+    // The refined tree keeps learning, with nothing learned yet.
+    let next = on.refined(1e9, 0.01, 20);
+    assert!(next.learns_selection());
+    assert_eq!(next.distribution(Vec3::ZERO).selection_probability(), None);
+}
