@@ -181,7 +181,7 @@ mod tests {
     /// them. Each shape kind, rays from several origins.
     #[test]
     fn instanced_frame_equals_plain_frame() {
-        use crate::description::ShapeGroupDesc;
+        use crate::description::{Checked, ShapeGroupDesc};
         use std::sync::Arc;
         let own =
             Mat4::from_rotation_z(25f32.to_radians()) * Mat4::from_scale(Vec3::new(1.0, 0.6, 1.0));
@@ -212,10 +212,13 @@ mod tests {
                 to_world: own,
                 ..ShapeDesc::new(kind.clone())
             };
-            let group = Arc::new(ShapeGroupDesc {
-                id: Some("g".into()),
-                shapes: vec![inner],
-            });
+            let group = Arc::new(
+                Checked::new(ShapeGroupDesc {
+                    id: Some("g".into()),
+                    shapes: vec![Checked::new(inner).expect("a valid shape")],
+                })
+                .expect("a valid group"),
+            );
             let instanced = ShapeDesc {
                 to_world: instance,
                 ..ShapeDesc::new(ShapeKind::Instance(group))
