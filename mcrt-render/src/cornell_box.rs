@@ -2,8 +2,8 @@
 //! 3's `cornell_box()` with a box pixel filter), so the renderer needs no file to run.
 
 use crate::description::{
-    AreaEmitterDesc, BsdfDesc, Colour, FilmDesc, FilterDesc, FovAxis, IntegratorDesc, SampleCount,
-    SamplerDesc, SamplerKind, SceneDescription, SensorDesc, ShapeDesc, ShapeKind,
+    AreaEmitterDesc, BsdfDesc, Colour, FilmDesc, FilterDesc, FovAxis, IntegratorDesc, PathParams,
+    SampleCount, SamplerDesc, SamplerKind, SceneDescription, SensorDesc, ShapeDesc, ShapeKind,
 };
 use crate::transform::look_at;
 use glam::{Mat4, Vec3};
@@ -96,10 +96,10 @@ pub fn cornell_box_with(spp: u32, res: u32, max_depth: i32) -> SceneDescription 
         ),
     ];
     SceneDescription {
-        integrator: IntegratorDesc::Path {
+        integrator: IntegratorDesc::Path(PathParams {
             max_depth,
-            rr_depth: 5,
-        },
+            ..PathParams::DEFAULT
+        }),
         sensor: sensor(spp, res),
         shapes,
         emitters: Vec::new(),

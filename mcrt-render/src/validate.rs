@@ -148,20 +148,15 @@ pub fn integrator(i: &IntegratorDesc) -> Result<(), Invalid> {
 /// [`MAX_WORK`].
 pub fn work(pixels: u64, spp: u32, i: &IntegratorDesc) -> Result<(), Invalid> {
     let per_sample = match *i {
-        IntegratorDesc::Direct {
-            emitter_samples,
-            bsdf_samples,
-        } => (emitter_samples as u64 + bsdf_samples as u64).max(1),
-        IntegratorDesc::Path { .. }
-        | IntegratorDesc::Bdpt { .. }
-        | IntegratorDesc::Ptracer { .. }
-        | IntegratorDesc::Guided { .. } => 1,
+        IntegratorDesc::Direct(d) => (d.emitter_samples as u64 + d.bsdf_samples as u64).max(1),
+        IntegratorDesc::Path(_)
+        | IntegratorDesc::Bdpt(_)
+        | IntegratorDesc::Ptracer(_)
+        | IntegratorDesc::Guided(_) => 1,
         // The bootstrap's paths and normalisation samples, spread over the pixels.
-        IntegratorDesc::Mlt {
-            bootstrap_samples,
-            max_depth,
-            ..
-        } => 1 + (bootstrap_samples as u64 * (max_depth.max(1) as u64 + 1)) / pixels.max(1),
+        IntegratorDesc::Mlt(m) => {
+            1 + (m.bootstrap_samples as u64 * (m.max_depth.max(1) as u64 + 1)) / pixels.max(1)
+        }
     };
     let w = pixels.saturating_mul(spp as u64).saturating_mul(per_sample);
     if w > MAX_WORK {
@@ -558,10 +553,10 @@ mod tests {
             assert!(Ior::new(bad).is_err(), "{bad}");
         }
         let mut x = d.clone();
-        x.integrator = IntegratorDesc::Path {
-            max_depth: -1,
+        x.integrator = IntegratorDesc::Path(crate::description::PathParams {
             rr_depth: 0,
-        };
+            ..Default::default()
+        });
         assert!(scene(&x).unwrap_err().contains("rr_depth"));
         let mut x = d.clone();
         x.sensor.film.filter = FilterDesc::Gaussian { stddev: f32::NAN };

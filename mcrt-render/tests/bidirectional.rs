@@ -47,14 +47,15 @@ fn opts(kind: IntegratorKind, spp: u32) -> RenderOptions {
 /// MLT with a bound on the length (the references are unbounded: paths above 12 segments
 /// carry about 0.1% of the Cornell box) and a smaller bootstrap, for test time.
 fn mlt_desc(mut desc: SceneDescription) -> SceneDescription {
-    desc.integrator = IntegratorDesc::Mlt {
+    desc.integrator = IntegratorDesc::Mlt(mcrt_render::description::MltParams {
         max_depth: 12,
         bootstrap_samples: 20_000,
         chains: 64,
         mutations_per_pixel: 1,
         large_step_prob: 0.3,
         sigma: 0.01,
-    };
+        ..Default::default()
+    });
     desc
 }
 
@@ -290,22 +291,24 @@ fn furnaces_return_the_albedo() {
     let integrators = [
         (
             "bdpt",
-            IntegratorDesc::Bdpt {
+            IntegratorDesc::Bdpt(mcrt_render::description::BdptParams {
                 max_depth: -1,
                 rr_depth: 5,
-            },
+                ..Default::default()
+            }),
             16,
         ),
         (
             "mlt",
-            IntegratorDesc::Mlt {
+            IntegratorDesc::Mlt(mcrt_render::description::MltParams {
                 max_depth: 24,
                 bootstrap_samples: 4096,
                 chains: 16,
                 mutations_per_pixel: 64,
                 large_step_prob: 0.3,
                 sigma: 0.01,
-            },
+                ..Default::default()
+            }),
             64,
         ),
     ];
@@ -364,10 +367,11 @@ fn bdpt_with_a_gaussian_filter_keeps_its_border_pixels() {
         BsdfDesc::Diffuse {
             reflectance: mcrt_render::description::Colour::new(Vec3::splat(0.5)).unwrap(),
         },
-        IntegratorDesc::Bdpt {
+        IntegratorDesc::Bdpt(mcrt_render::description::BdptParams {
             max_depth: -1,
             rr_depth: 5,
-        },
+            ..Default::default()
+        }),
     );
     desc.sensor.fov = 40.0;
     desc.sensor.film.filter = FilterDesc::Gaussian { stddev: 0.5 };
@@ -453,8 +457,8 @@ fn bdpt_and_mlt_with_a_thin_lens_match_mitsuba() {
         0.01,
     );
     let mut d = mlt_desc(d);
-    if let IntegratorDesc::Mlt { max_depth, .. } = &mut d.integrator {
-        *max_depth = 8;
+    if let IntegratorDesc::Mlt(m) = &mut d.integrator {
+        m.max_depth = 8;
     }
     against_mitsuba(
         "mlt thin lens",

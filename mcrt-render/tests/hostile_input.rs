@@ -303,10 +303,11 @@ fn the_renderer_refuses_what_code_built_descriptions_get_wrong() {
     d.sensor.film.filter = FilterDesc::Gaussian { stddev: f32::NAN };
     cases.push((d, "stddev"));
     let mut d = base.clone();
-    d.integrator = IntegratorDesc::Path {
+    d.integrator = IntegratorDesc::Path(mcrt_render::description::PathParams {
         max_depth: -1,
         rr_depth: 0,
-    };
+        ..Default::default()
+    });
     cases.push((d, "rr_depth"));
     for (d, words) in cases {
         let e = match Renderer::new(&d, &RenderOptions::default()) {
@@ -350,10 +351,11 @@ fn an_envmap_with_scale_zero_is_a_black_environment() {
 fn cancelling_takes_effect_within_a_second_inside_long_pixel_work() {
     // The most shading samples the loader allows: one pixel sample casts 2^17 rays.
     let mut d = mcrt_render::cornell_box::cornell_box_with(16, 64, -1);
-    d.integrator = IntegratorDesc::Direct {
+    d.integrator = IntegratorDesc::Direct(mcrt_render::description::DirectParams {
         emitter_samples: 1 << 16,
         bsdf_samples: 1 << 16,
-    };
+        ..Default::default()
+    });
     let opts = RenderOptions {
         threads: 2,
         ..RenderOptions::default()

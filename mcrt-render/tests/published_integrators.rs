@@ -104,7 +104,7 @@ fn assert_blocks_match(what: &str, out: &RenderOutput, spp: u32, reference: &[Ve
 fn hide_emitters_sees_through_the_light_and_not_the_sky() {
     let path = published("hide-emitters.xml");
     let desc = load(&path);
-    assert!(desc.hide_emitters);
+    assert!(desc.integrator.hide_emitters());
     let spp = 64;
     let out = render(&desc, &opts(spp, 2024));
     let (_, _, reference) = read_exr(&path.with_extension("exr")).expect("reference reads");
@@ -144,16 +144,21 @@ fn ptracer_matches_the_cornell_box() {
 fn ptracer_hides_emitters_by_leaving_out_the_paths_of_one_segment() {
     // max_depth 1 is the light seen directly: black when hidden.
     let mut desc = load(&published("ptracer.xml"));
-    desc.integrator = mcrt_render::description::IntegratorDesc::Ptracer {
-        max_depth: 1,
-        rr_depth: 5,
-    };
+    desc.integrator = mcrt_render::description::IntegratorDesc::Ptracer(
+        mcrt_render::description::PtracerParams {
+            max_depth: 1,
+            rr_depth: 5,
+            ..Default::default()
+        },
+    );
     let shown = render(&desc, &opts(4, 1)).image();
     assert!(
         shown.iter().any(|v| v.max_element() > 1.0),
         "the light is seen"
     );
-    desc.hide_emitters = true;
+    if let mcrt_render::description::IntegratorDesc::Ptracer(p) = &mut desc.integrator {
+        p.hide_emitters = true;
+    }
     let hidden = render(&desc, &opts(4, 1)).image();
     assert!(hidden.iter().all(|v| *v == Vec3::ZERO));
 }

@@ -93,10 +93,11 @@ fn cornell_box_strategies_agree() {
 #[test]
 fn cornell_box_direct_strategies_agree() {
     let mut desc = test_box(-1);
-    desc.integrator = IntegratorDesc::Direct {
+    desc.integrator = IntegratorDesc::Direct(mcrt_render::description::DirectParams {
         emitter_samples: 2,
         bsdf_samples: 1,
-    };
+        ..Default::default()
+    });
     all_agree(&desc, 64);
 }
 
@@ -104,10 +105,11 @@ fn cornell_box_direct_strategies_agree() {
 fn direct_integrator_equals_path_tracer_with_max_depth_2() {
     let path = test_box(2);
     let mut direct = test_box(2);
-    direct.integrator = IntegratorDesc::Direct {
+    direct.integrator = IntegratorDesc::Direct(mcrt_render::description::DirectParams {
         emitter_samples: 1,
         bsdf_samples: 1,
-    };
+        ..Default::default()
+    });
     let (w, h) = (path.sensor.film.width, path.sensor.film.height);
     let (a, va) = render(&path, Strategy::MisPower, 64, 11);
     let (b, vb) = render(&direct, Strategy::MisPower, 64, 12);

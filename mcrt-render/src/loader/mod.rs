@@ -137,7 +137,6 @@ pub fn parse_scene_with_warnings(
                 once(&ctx, &mut integrator, c)?;
                 let read = integrator::read_integrator(&ctx, c)?;
                 desc.integrator = read.integrator;
-                desc.hide_emitters = read.hide_emitters;
                 desc.moment = read.moment;
             }
             "sensor" => {

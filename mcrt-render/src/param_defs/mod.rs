@@ -10,7 +10,9 @@
 //! the default and the range are written once.
 //!
 //! Adding a parameter: one definition constant, listed in its plugin's table, and the
-//! line that uses it.
+//! line that uses it. For the integrators, one list per plugin generates the parameter
+//! struct the description holds, the table and the reading ([`generate`]), so a parameter
+//! is an entry in that list and its use: two files.
 
 pub(crate) mod bsdf;
 pub(crate) mod bsdf_composite;
@@ -19,6 +21,7 @@ pub(crate) mod bsdf_maps;
 mod doc_tests;
 pub(crate) mod emitter;
 pub(crate) mod film;
+pub(crate) mod generate;
 pub(crate) mod integrator;
 pub(crate) mod sampler;
 pub(crate) mod sensor;

@@ -2,7 +2,7 @@
 //! `--spp`, `--sampler`) and the sampler's rounding, and only then held to the work limit.
 
 use super::{RenderError, RenderOptions};
-use crate::description::{IntegratorDesc, SampleCount, SamplerKind, SceneDescription};
+use crate::description::{IntegratorDesc, MltParams, SampleCount, SamplerKind, SceneDescription};
 use mcrt::sampling::sampler::{
     AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, Sobol4dSampler,
     SobolSampler, StratifiedSampler,
@@ -39,7 +39,7 @@ pub(super) fn resolve(
         Some(kind) => desc.integrator.with_kind(kind),
         None => desc.integrator,
     };
-    if let IntegratorDesc::Mlt { max_depth, .. } = integrator {
+    if let IntegratorDesc::Mlt(MltParams { max_depth, .. }) = integrator {
         let most = crate::validate::MAX_MLT_DEPTH;
         if !(1..=most).contains(&max_depth) {
             return Err(RenderError::Invalid(format!(
@@ -103,12 +103,8 @@ mod tests {
         let mut d = crate::cornell_box::cornell_box_with(1, 8, -1);
         if let Some(m) = mlt_mutations {
             d.integrator = IntegratorDesc::MLT_DEFAULTS;
-            if let IntegratorDesc::Mlt {
-                mutations_per_pixel,
-                ..
-            } = &mut d.integrator
-            {
-                *mutations_per_pixel = m;
+            if let IntegratorDesc::Mlt(p) = &mut d.integrator {
+                p.mutations_per_pixel = m;
             }
         }
         match resolve(&d, opts, 8192 * 4096) {
