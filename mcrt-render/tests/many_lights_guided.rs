@@ -276,10 +276,6 @@ fn the_guided_integrator_loads() {
             r#"<float name="directional_threshold" value="0"/>"#,
             "directional_threshold",
         ),
-        (
-            r#"<boolean name="hide_emitters" value="true"/>"#,
-            "hide_emitters",
-        ),
     ] {
         let e = mcrt_render::loader::parse_scene(&scene(bad), None, &[]).unwrap_err();
         let msg = e.to_string();

@@ -195,6 +195,8 @@ plugin_params! {
         max_depth: i32 = Int(MAX_DEPTH),
         /// Depth from which Russian roulette starts, as for `path`.
         rr_depth: u32 = Int(RR_DEPTH),
+        /// Hide emitters seen directly, as for `path`.
+        hide_emitters: bool = Bool(HIDE_EMITTERS),
         /// The probability of sampling the guide rather than the BSDF (default 0.5).
         guide_probability: f32 = Float(GUIDE_PROBABILITY),
         /// `c` of the spatial subdivision threshold `c·√(2^k)` records (default 12000).

@@ -83,7 +83,7 @@ impl Renderer {
         check_bidirectional(&integrator, &camera, strategy)?;
         let guided = guided_setup(&resolved.integrator, &integrator);
         if guided.is_some() {
-            check_guided(desc, opts)?;
+            check_guided(opts)?;
         }
         if desc.moment.is_some()
             && (guided.is_some()
@@ -195,7 +195,7 @@ fn integrator(d: &IntegratorDesc, strategy: Strategy, only: Option<(u32, u32)>) 
             max_depth: p.max_depth,
             rr_depth: p.rr_depth,
             strategy,
-            hide_emitters: false,
+            hide_emitters: p.hide_emitters,
         }),
         IntegratorDesc::Direct(p) => Integrator::Direct(DirectIntegrator {
             emitter_samples: p.emitter_samples,
@@ -246,16 +246,9 @@ fn guided_setup(d: &IntegratorDesc, base: &Integrator) -> Option<GuidedSetup> {
     }
 }
 
-/// What `guided` cannot do: hide emitters (the scene file's integrator asks for it), or
-/// render a part of the samples or pixels (its training passes need every pixel, and a
-/// part's tree would differ from the whole's).
-fn check_guided(desc: &SceneDescription, opts: &RenderOptions) -> Result<(), RenderError> {
-    if desc.integrator.hide_emitters() {
-        return Err(RenderError::Unsupported {
-            integrator: "guided",
-            reason: "hide_emitters is not supported by the guided path tracer yet",
-        });
-    }
+/// What `guided` cannot do: render a part of the samples or pixels (its training passes
+/// need every pixel, and a part's tree would differ from the whole's).
+fn check_guided(opts: &RenderOptions) -> Result<(), RenderError> {
     if opts.samples.is_some() || opts.crop.is_some() {
         return Err(RenderError::Split(
             "guided cannot be split by --samples or --crop: every part would train its own              guide, so parts would not add up to one render"
