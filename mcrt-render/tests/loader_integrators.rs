@@ -35,7 +35,7 @@ fn check(e: &SceneError, line: u32, element: &str, words: &str) {
 
 #[test]
 fn hide_emitters_is_read_on_every_integrator() {
-    for ty in ["path", "direct", "bdpt", "mlt", "ptracer"] {
+    for ty in ["path", "direct", "bdpt", "mlt", "ptracer", "guided"] {
         let shown = load(&format!("<integrator type=\"{ty}\"/>"));
         assert!(!shown.integrator.hide_emitters(), "{ty}");
         let hidden = load(&format!(
