@@ -284,6 +284,13 @@ plugin_params! {
     }
 }
 
+/// `moment` (Mitsuba 3's): no parameters of its own, one nested `path` or `direct`.
+pub(crate) const MOMENT: super::PluginParams = super::PluginParams {
+    category: "integrator",
+    plugin: "moment",
+    params: &[],
+};
+
 /// The check between parameters of `direct`: not both sample counts zero.
 pub(crate) fn direct_counts(d: &DirectParams) -> Result<(), Invalid> {
     if d.emitter_samples == 0 && d.bsdf_samples == 0 {

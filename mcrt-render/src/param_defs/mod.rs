@@ -28,6 +28,7 @@ pub(crate) mod sensor;
 pub(crate) mod shape;
 pub(crate) mod shape_plugins;
 pub(crate) mod texture;
+pub(crate) mod volume;
 
 /// An integer parameter in `min..=max`.
 #[derive(Debug)]
@@ -224,6 +225,7 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     integrator::MLT,
     integrator::PTRACER,
     integrator::GUIDED,
+    integrator::MOMENT,
     sampler::INDEPENDENT,
     sampler::STRATIFIED,
     sampler::LDSAMPLER,
@@ -268,6 +270,9 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     texture::CHECKERBOARD,
     bsdf_maps::NORMALMAP,
     bsdf_maps::BUMPMAP,
+    volume::GRIDVOLUME,
+    volume::CONSTVOLUME,
+    volume::TEXTURE_VOLUME,
 ];
 
 /// The table of plugin `plugin` of element `category`, if it has one.
