@@ -90,7 +90,6 @@ fn moment_wraps_path_or_direct_and_is_named_after_it() {
         d.integrator,
         IntegratorDesc::Path(mcrt_render::description::PathParams {
             max_depth: 4,
-            rr_depth: 5,
             hide_emitters: true,
             ..Default::default()
         })
