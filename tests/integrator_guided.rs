@@ -162,6 +162,35 @@ fn centre_camera(_px: u32, s: &mut IndependentSampler) -> (Vec3, Vec3) {
     (Vec3::ZERO, UniformSphere.sample(s.next_2d()))
 }
 
+/// With `hide_emitters`, a camera ray inside the glowing sphere passes through its emitting
+/// wall and leaves the scene: nothing is seen (without it, the wall's glow and more).
+#[test]
+fn hide_emitters_sees_through_the_glowing_wall() {
+    let scene = GlowingSphere {
+        wall: Lambert { albedo: 0.6 },
+        emitted: 1.0,
+    };
+    let guide = SdTree::new(Vec3::splat(-1.0), Vec3::ONE);
+    let mut s = IndependentSampler::new(1, 5).expect("one sample per pixel");
+    for hide_emitters in [false, true] {
+        let gpt = GuidedPathTracer {
+            hide_emitters,
+            ..GuidedPathTracer::default()
+        };
+        for i in 0..64 {
+            s.start_pixel_sample([i, 0], 0);
+            let (origin, dir) = centre_camera(i, &mut s);
+            let r = gpt.li(&scene, &guide, origin, dir, f32::INFINITY, &mut s, None);
+            assert!(r.radiance.is_finite(), "{:?}", r.radiance);
+            if hide_emitters {
+                assert_eq!(r.radiance, Vec3::ZERO);
+            } else {
+                assert!(r.radiance.min_element() >= 1.0, "{:?}", r.radiance);
+            }
+        }
+    }
+}
+
 #[test]
 fn glowing_sphere_is_unbiased() {
     let scene = GlowingSphere {
@@ -175,6 +204,7 @@ fn glowing_sphere_is_unbiased() {
             rr_depth: 5,
             strategy,
             guide_probability: 0.5,
+            hide_emitters: false,
         };
         let (m, se, tree) =
             train_and_render(&scene, &gpt, bounds, &centre_camera, 256, 64, 11, 1, 200.0);

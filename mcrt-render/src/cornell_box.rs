@@ -3,8 +3,8 @@
 
 use crate::description::{
     AreaEmitterDesc, BsdfDesc, Check, Checked, Colour, FilmDesc, FilterDesc, FovAxis,
-    IntegratorDesc, SampleCount, SamplerDesc, SamplerKind, SceneDescription, SensorDesc, ShapeDesc,
-    ShapeKind,
+    IntegratorDesc, PathParams, SampleCount, SamplerDesc, SamplerKind, SceneDescription,
+    SensorDesc, ShapeDesc, ShapeKind,
 };
 use crate::transform::look_at;
 use glam::{Mat4, Vec3};
@@ -98,10 +98,10 @@ pub fn cornell_box_with(spp: u32, res: u32, max_depth: i32) -> SceneDescription 
         ),
     ];
     SceneDescription {
-        integrator: checked(IntegratorDesc::Path {
+        integrator: checked(IntegratorDesc::Path(PathParams {
             max_depth,
-            rr_depth: 5,
-        }),
+            ..PathParams::DEFAULT
+        })),
         sensor: checked(sensor(spp, res)),
         shapes: shapes.into_iter().map(checked).collect(),
         emitters: Vec::new(),

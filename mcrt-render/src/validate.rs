@@ -174,20 +174,15 @@ fn integrator(i: &IntegratorDesc) -> Result<(), Invalid> {
 /// [`MAX_WORK`].
 pub fn work(pixels: u64, spp: u32, i: &IntegratorDesc) -> Result<(), Invalid> {
     let per_sample = match *i {
-        IntegratorDesc::Direct {
-            emitter_samples,
-            bsdf_samples,
-        } => (emitter_samples as u64 + bsdf_samples as u64).max(1),
-        IntegratorDesc::Path { .. }
-        | IntegratorDesc::Bdpt { .. }
-        | IntegratorDesc::Ptracer { .. }
-        | IntegratorDesc::Guided { .. } => 1,
+        IntegratorDesc::Direct(d) => (d.emitter_samples as u64 + d.bsdf_samples as u64).max(1),
+        IntegratorDesc::Path(_)
+        | IntegratorDesc::Bdpt(_)
+        | IntegratorDesc::Ptracer(_)
+        | IntegratorDesc::Guided(_) => 1,
         // The bootstrap's paths and normalisation samples, spread over the pixels.
-        IntegratorDesc::Mlt {
-            bootstrap_samples,
-            max_depth,
-            ..
-        } => 1 + (bootstrap_samples as u64 * (max_depth.max(1) as u64 + 1)) / pixels.max(1),
+        IntegratorDesc::Mlt(m) => {
+            1 + (m.bootstrap_samples as u64 * (m.max_depth.max(1) as u64 + 1)) / pixels.max(1)
+        }
     };
     let w = pixels.saturating_mul(spp as u64).saturating_mul(per_sample);
     if w > MAX_WORK {
@@ -597,10 +592,10 @@ mod tests {
         for bad in [0.0, f32::NAN, -1.5, f32::INFINITY] {
             assert!(Ior::new(bad).is_err(), "{bad}");
         }
-        let bad = IntegratorDesc::Path {
-            max_depth: -1,
+        let bad = IntegratorDesc::Path(crate::description::PathParams {
             rr_depth: 0,
-        };
+            ..Default::default()
+        });
         assert_eq!(Checked::new(bad).unwrap_err().param, "rr_depth");
         let mut f = *d.sensor.film;
         f.filter = FilterDesc::Gaussian { stddev: f32::NAN };

@@ -47,14 +47,17 @@ fn opts(kind: IntegratorKind, spp: u32) -> RenderOptions {
 /// MLT with a bound on the length (the references are unbounded: paths above 12 segments
 /// carry about 0.1% of the Cornell box) and a smaller bootstrap, for test time.
 fn mlt_desc(mut desc: SceneDescription) -> SceneDescription {
-    desc.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Mlt {
-        max_depth: 12,
-        bootstrap_samples: 20_000,
-        chains: 64,
-        mutations_per_pixel: 1,
-        large_step_prob: 0.3,
-        sigma: 0.01,
-    })
+    desc.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Mlt(
+        mcrt_render::description::MltParams {
+            max_depth: 12,
+            bootstrap_samples: 20_000,
+            chains: 64,
+            mutations_per_pixel: 1,
+            large_step_prob: 0.3,
+            sigma: 0.01,
+            ..Default::default()
+        },
+    ))
     .unwrap();
     desc
 }
@@ -299,22 +302,24 @@ fn furnaces_return_the_albedo() {
     let integrators = [
         (
             "bdpt",
-            IntegratorDesc::Bdpt {
+            IntegratorDesc::Bdpt(mcrt_render::description::BdptParams {
                 max_depth: -1,
                 rr_depth: 5,
-            },
+                ..Default::default()
+            }),
             16,
         ),
         (
             "mlt",
-            IntegratorDesc::Mlt {
+            IntegratorDesc::Mlt(mcrt_render::description::MltParams {
                 max_depth: 24,
                 bootstrap_samples: 4096,
                 chains: 16,
                 mutations_per_pixel: 64,
                 large_step_prob: 0.3,
                 sigma: 0.01,
-            },
+                ..Default::default()
+            }),
             64,
         ),
     ];
@@ -381,10 +386,11 @@ fn bdpt_with_a_gaussian_filter_keeps_its_border_pixels() {
         BsdfDesc::Diffuse {
             reflectance: mcrt_render::description::Colour::new(Vec3::splat(0.5)).unwrap(),
         },
-        IntegratorDesc::Bdpt {
+        IntegratorDesc::Bdpt(mcrt_render::description::BdptParams {
             max_depth: -1,
             rr_depth: 5,
-        },
+            ..Default::default()
+        }),
     );
     desc.sensor = desc.sensor.clone().changed(|s| s.fov = 40.0).unwrap();
     desc.sensor = desc
@@ -493,8 +499,8 @@ fn bdpt_and_mlt_with_a_thin_lens_match_mitsuba() {
     d.integrator = d
         .integrator
         .changed(|i| {
-            if let IntegratorDesc::Mlt { max_depth, .. } = i {
-                *max_depth = 8;
+            if let IntegratorDesc::Mlt(m) = i {
+                m.max_depth = 8;
             }
         })
         .unwrap();

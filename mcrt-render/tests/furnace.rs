@@ -73,10 +73,13 @@ fn furnace_with(bsdf: BsdfDesc, spp: u32, env: EmitterDesc) -> (Vec3, Vec3) {
     });
     sphere.bsdf = bsdf;
     let desc = SceneDescription {
-        integrator: mcrt_render::description::Checked::new(IntegratorDesc::Path {
-            max_depth: -1,
-            rr_depth: 5,
-        })
+        integrator: mcrt_render::description::Checked::new(IntegratorDesc::Path(
+            mcrt_render::description::PathParams {
+                max_depth: -1,
+                rr_depth: 5,
+                ..Default::default()
+            },
+        ))
         .unwrap(),
         sensor: mcrt_render::description::Checked::new(camera(Vec3::new(0.0, 0.0, 5.0), 8.0, 32))
             .unwrap(),
@@ -224,10 +227,11 @@ fn point_light_over_a_diffuse_plane() {
         position: Vec3::new(0.0, 0.0, 1.0),
         intensity: mcrt_render::description::Colour::WHITE,
     };
-    let path = IntegratorDesc::Path {
+    let path = IntegratorDesc::Path(mcrt_render::description::PathParams {
         max_depth: 2,
         rr_depth: 5,
-    };
+        ..Default::default()
+    });
     check_lit_plane(light, path, PLANE_RHO / std::f32::consts::PI);
 }
 
@@ -257,14 +261,16 @@ fn directional_and_spot_lights_over_a_diffuse_plane() {
         ),
     ];
     let integrators = [
-        IntegratorDesc::Path {
+        IntegratorDesc::Path(mcrt_render::description::PathParams {
             max_depth: 2,
             rr_depth: 5,
-        },
-        IntegratorDesc::Direct {
+            ..Default::default()
+        }),
+        IntegratorDesc::Direct(mcrt_render::description::DirectParams {
             emitter_samples: 1,
             bsdf_samples: 1,
-        },
+            ..Default::default()
+        }),
     ];
     for ((light, irradiance), integrator) in lights
         .iter()

@@ -306,10 +306,11 @@ fn code_built_descriptions_cannot_hold_what_the_renderer_refuses() {
         .film
         .changed(|f| f.filter = FilterDesc::Gaussian { stddev: f32::NAN });
     assert_eq!(film.unwrap_err().param, "stddev");
-    let e = Checked::new(IntegratorDesc::Path {
+    let e = Checked::new(IntegratorDesc::Path(mcrt_render::description::PathParams {
         max_depth: -1,
         rr_depth: 0,
-    })
+        ..Default::default()
+    }))
     .unwrap_err();
     assert_eq!(e.param, "rr_depth");
     let shape = base.shapes[0].clone().changed(|s| {
@@ -356,10 +357,13 @@ fn an_envmap_with_scale_zero_is_a_black_environment() {
 fn cancelling_takes_effect_within_a_second_inside_long_pixel_work() {
     // The most shading samples the loader allows: one pixel sample casts 2^17 rays.
     let mut d = mcrt_render::cornell_box::cornell_box_with(16, 64, -1);
-    d.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Direct {
-        emitter_samples: 1 << 16,
-        bsdf_samples: 1 << 16,
-    })
+    d.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Direct(
+        mcrt_render::description::DirectParams {
+            emitter_samples: 1 << 16,
+            bsdf_samples: 1 << 16,
+            ..Default::default()
+        },
+    ))
     .expect("the most the loader allows");
     let opts = RenderOptions {
         threads: 2,

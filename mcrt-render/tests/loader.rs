@@ -45,10 +45,11 @@ fn cornell_box_defines_override_defaults() {
     assert_eq!(parsed, cornell_box_with(16, 32, 2));
     assert_eq!(
         parsed.integrator,
-        IntegratorDesc::Path {
+        IntegratorDesc::Path(mcrt_render::description::PathParams {
             max_depth: 2,
-            rr_depth: 5
-        }
+            rr_depth: 5,
+            ..Default::default()
+        })
     );
 }
 
@@ -266,10 +267,12 @@ fn materials_emitters_and_integrators() {
     assert_eq!(parse(constant, &[]).unwrap().emitters.len(), 1);
     assert_eq!(
         d.integrator,
-        IntegratorDesc::Direct {
+        IntegratorDesc::Direct(mcrt_render::description::DirectParams {
+            shading_samples: 3,
             emitter_samples: 3,
-            bsdf_samples: 2
-        }
+            bsdf_samples: 2,
+            ..Default::default()
+        })
     );
     assert_eq!((d.sensor.film.width, d.sensor.film.height), (8, 4));
     assert_eq!(d.sensor.film.filter, FilterDesc::Gaussian { stddev: 0.5 });

@@ -259,10 +259,11 @@ fn old_files_are_upgraded() {
     assert_eq!(old, new);
     assert_eq!(
         old.integrator,
-        IntegratorDesc::Path {
+        IntegratorDesc::Path(mcrt_render::description::PathParams {
             max_depth: 3,
-            rr_depth: 5
-        }
+            rr_depth: 5,
+            ..Default::default()
+        })
     );
     let BsdfDesc::Textured { textures, .. } = &old.shapes[0].bsdf else {
         panic!("{:?}", old.shapes[0].bsdf)
@@ -337,10 +338,11 @@ fn upgrade_follows_each_files_version() {
     let d = f.load("top.xml").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(
         d.integrator,
-        IntegratorDesc::Path {
+        IntegratorDesc::Path(mcrt_render::description::PathParams {
             max_depth: 2,
-            rr_depth: 5
-        }
+            rr_depth: 5,
+            ..Default::default()
+        })
     );
 }
 

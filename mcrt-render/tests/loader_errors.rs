@@ -237,10 +237,11 @@ fn bidirectional_integrators_read_and_refuse_with_locations() {
     assert_eq!(
         ok("<integrator type=\"bdpt\"><integer name=\"max_depth\" value=\"8\"/></integrator>")
             .integrator,
-        IntegratorDesc::Bdpt {
+        IntegratorDesc::Bdpt(mcrt_render::description::BdptParams {
             max_depth: 8,
-            rr_depth: 5
-        }
+            rr_depth: 5,
+            ..Default::default()
+        })
     );
     let m = ok(
         "<integrator type=\"mlt\"><integer name=\"chains\" value=\"10\"/>\
@@ -249,7 +250,7 @@ fn bidirectional_integrators_read_and_refuse_with_locations() {
     .integrator
     .into_inner();
     assert!(
-        matches!(m, IntegratorDesc::Mlt { chains: 10, max_depth: 5, sigma, .. } if sigma == 0.02),
+        matches!(m, IntegratorDesc::Mlt(p) if p.chains == 10 && p.max_depth == 5 && p.sigma == 0.02),
         "{m:?}"
     );
     for (body, element, words) in [

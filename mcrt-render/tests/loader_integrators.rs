@@ -35,16 +35,16 @@ fn check(e: &SceneError, line: u32, element: &str, words: &str) {
 
 #[test]
 fn hide_emitters_is_read_on_every_integrator() {
-    for ty in ["path", "direct", "bdpt", "mlt", "ptracer"] {
+    for ty in ["path", "direct", "bdpt", "mlt", "ptracer", "guided"] {
         let shown = load(&format!("<integrator type=\"{ty}\"/>"));
-        assert!(!shown.hide_emitters, "{ty}");
+        assert!(!shown.integrator.hide_emitters(), "{ty}");
         let hidden = load(&format!(
             "<integrator type=\"{ty}\"><boolean name=\"hide_emitters\" value=\"true\"/></integrator>"
         ));
-        assert!(hidden.hide_emitters, "{ty}");
+        assert!(hidden.integrator.hide_emitters(), "{ty}");
         assert_eq!(hidden.integrator.kind().name(), ty);
     }
-    assert!(!load("").hide_emitters);
+    assert!(!load("").integrator.hide_emitters());
 }
 
 #[test]
@@ -56,17 +56,20 @@ fn ptracer_reads_mitsubas_parameters() {
     );
     assert_eq!(
         d.integrator,
-        IntegratorDesc::Ptracer {
+        IntegratorDesc::Ptracer(mcrt_render::description::PtracerParams {
             max_depth: 8,
-            rr_depth: 3
-        }
+            rr_depth: 3,
+            samples_per_pass: 4,
+            ..Default::default()
+        })
     );
     assert_eq!(
         load("<integrator type=\"ptracer\"/>").integrator,
-        IntegratorDesc::Ptracer {
+        IntegratorDesc::Ptracer(mcrt_render::description::PtracerParams {
             max_depth: -1,
-            rr_depth: 5
-        }
+            rr_depth: 5,
+            ..Default::default()
+        })
     );
     let e = err(
         "<integrator type=\"ptracer\">\n<integer name=\"max_depth\" value=\"-2\"/></integrator>",
@@ -85,12 +88,13 @@ fn moment_wraps_path_or_direct_and_is_named_after_it() {
     );
     assert_eq!(
         d.integrator,
-        IntegratorDesc::Path {
+        IntegratorDesc::Path(mcrt_render::description::PathParams {
             max_depth: 4,
-            rr_depth: 5
-        }
+            hide_emitters: true,
+            ..Default::default()
+        })
     );
-    assert!(d.hide_emitters);
+    assert!(d.integrator.hide_emitters());
     assert_eq!(
         d.moment,
         Some(MomentDesc {

@@ -266,13 +266,14 @@ fn the_guided_integrator_loads() {
     .unwrap();
     assert_eq!(
         d.integrator,
-        IntegratorDesc::Guided {
+        IntegratorDesc::Guided(mcrt_render::description::GuidedParams {
             max_depth: 7,
             rr_depth: 5,
             guide_probability: 0.25,
             spatial_threshold: 4000.0,
             directional_threshold: 0.01,
-        }
+            ..Default::default()
+        })
     );
     for (bad, says) in [
         (
@@ -283,25 +284,18 @@ fn the_guided_integrator_loads() {
             r#"<float name="directional_threshold" value="0"/>"#,
             "directional_threshold",
         ),
-        (
-            r#"<boolean name="hide_emitters" value="true"/>"#,
-            "hide_emitters",
-        ),
     ] {
         let e = mcrt_render::loader::parse_scene(&scene(bad), None, &[]).unwrap_err();
         let msg = e.to_string();
         assert!(msg.contains(says) && msg.contains("line 1"), "{msg}");
     }
-    let path = IntegratorDesc::Path {
+    let path = IntegratorDesc::Path(mcrt_render::description::PathParams {
         max_depth: 9,
         rr_depth: 3,
-    };
+        ..Default::default()
+    });
     assert!(matches!(
         path.with_kind(IntegratorKind::Guided),
-        IntegratorDesc::Guided {
-            max_depth: 9,
-            rr_depth: 3,
-            ..
-        }
+        IntegratorDesc::Guided(p) if p.max_depth == 9 && p.rr_depth == 3
     ));
 }

@@ -104,7 +104,7 @@ fn assert_blocks_match(what: &str, out: &RenderOutput, spp: u32, reference: &[Ve
 fn hide_emitters_sees_through_the_light_and_not_the_sky() {
     let path = published("hide-emitters.xml");
     let desc = load(&path);
-    assert!(desc.hide_emitters);
+    assert!(desc.integrator.hide_emitters());
     let spp = 64;
     let out = render(&desc, &opts(spp, 2024));
     let (_, _, reference) = read_exr(&path.with_extension("exr")).expect("reference reads");
@@ -145,17 +145,27 @@ fn ptracer_hides_emitters_by_leaving_out_the_paths_of_one_segment() {
     // max_depth 1 is the light seen directly: black when hidden.
     let mut desc = load(&published("ptracer.xml"));
     desc.integrator =
-        mcrt_render::description::Checked::new(mcrt_render::description::IntegratorDesc::Ptracer {
-            max_depth: 1,
-            rr_depth: 5,
-        })
+        mcrt_render::description::Checked::new(mcrt_render::description::IntegratorDesc::Ptracer(
+            mcrt_render::description::PtracerParams {
+                max_depth: 1,
+                rr_depth: 5,
+                ..Default::default()
+            },
+        ))
         .unwrap();
     let shown = render(&desc, &opts(4, 1)).image();
     assert!(
         shown.iter().any(|v| v.max_element() > 1.0),
         "the light is seen"
     );
-    desc.hide_emitters = true;
+    desc.integrator = desc
+        .integrator
+        .changed(|i| {
+            if let mcrt_render::description::IntegratorDesc::Ptracer(p) = i {
+                p.hide_emitters = true;
+            }
+        })
+        .unwrap();
     let hidden = render(&desc, &opts(4, 1)).image();
     assert!(hidden.iter().all(|v| *v == Vec3::ZERO));
 }

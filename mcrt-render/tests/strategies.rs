@@ -99,10 +99,13 @@ fn cornell_box_strategies_agree() {
 #[test]
 fn cornell_box_direct_strategies_agree() {
     let mut desc = test_box(-1);
-    desc.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Direct {
-        emitter_samples: 2,
-        bsdf_samples: 1,
-    })
+    desc.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Direct(
+        mcrt_render::description::DirectParams {
+            emitter_samples: 2,
+            bsdf_samples: 1,
+            ..Default::default()
+        },
+    ))
     .unwrap();
     all_agree(&desc, 64);
 }
@@ -111,10 +114,13 @@ fn cornell_box_direct_strategies_agree() {
 fn direct_integrator_equals_path_tracer_with_max_depth_2() {
     let path = test_box(2);
     let mut direct = test_box(2);
-    direct.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Direct {
-        emitter_samples: 1,
-        bsdf_samples: 1,
-    })
+    direct.integrator = mcrt_render::description::Checked::new(IntegratorDesc::Direct(
+        mcrt_render::description::DirectParams {
+            emitter_samples: 1,
+            bsdf_samples: 1,
+            ..Default::default()
+        },
+    ))
     .unwrap();
     let (w, h) = (path.sensor.film.width, path.sensor.film.height);
     let (a, va) = render(&path, Strategy::MisPower, 64, 11);

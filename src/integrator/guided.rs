@@ -53,6 +53,10 @@ pub struct GuidedPathTracer {
     /// The probability α of sampling the guide rather than the BSDF (the paper's 0.5) where
     /// the guide has not learned one; clamped into `[0, 0.999]`, NaN meaning 0.
     pub guide_probability: f32,
+    /// Hide emitters seen directly, as [`PathTracer::hide_emitters`] does (Mitsuba 3's
+    /// `hide_emitters`): the camera ray passes through emitter surfaces and sees black where
+    /// it then leaves the scene.
+    pub hide_emitters: bool,
 }
 
 impl Default for GuidedPathTracer {
@@ -92,6 +96,7 @@ impl GuidedPathTracer {
             rr_depth: pt.rr_depth,
             strategy: pt.strategy,
             guide_probability: 0.5,
+            hide_emitters: pt.hide_emitters,
         }
     }
 
@@ -231,8 +236,11 @@ impl GuidedPathTracer {
         let mut eta = 1.0f32;
         let mut ray_dir = dir;
         let mut prev: Option<PrevVertex> = None;
-        let mut hit = scene.intersect(origin, dir, t_max);
-        out.rays += 1;
+        let mut hit =
+            super::camera_hit(scene, origin, dir, t_max, self.hide_emitters, &mut out.rays);
+        if self.hide_emitters && hit.is_none() {
+            return out;
+        }
         let mut depth = 0u32;
         loop {
             let Some(sp) = hit else {

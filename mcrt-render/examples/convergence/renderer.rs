@@ -12,7 +12,7 @@ use crate::image::Rgb;
 use crate::render_study::{Backend, SceneSpec};
 use mcrt::integrator::Strategy;
 use mcrt_render::description::{
-    Checked, IntegratorDesc, IntegratorKind, SamplerKind, SceneDescription,
+    Checked, IntegratorDesc, IntegratorKind, MltParams, SamplerKind, SceneDescription,
 };
 use mcrt_render::render::{RenderOptions, Renderer};
 use std::cell::RefCell;
@@ -133,24 +133,13 @@ pub fn render_integrator(
     let integrator = IntegratorKind::parse(kind).ok_or(format!("unknown integrator {kind}"))?;
     if integrator == IntegratorKind::Mlt {
         let depth = desc.integrator.max_depth().unwrap_or(-1);
-        let mlt = match IntegratorDesc::MLT_DEFAULTS {
-            IntegratorDesc::Mlt {
-                bootstrap_samples,
-                chains,
-                large_step_prob,
-                sigma,
-                ..
-            } => IntegratorDesc::Mlt {
-                max_depth: if depth < 0 { MLT_MAX_DEPTH } else { depth },
-                bootstrap_samples,
-                chains,
-                mutations_per_pixel: spp,
-                large_step_prob,
-                sigma,
-            },
-            d => d,
-        };
-        desc.integrator = Checked::new(mlt).map_err(|e| e.to_string())?;
+        desc.integrator = Checked::new(IntegratorDesc::Mlt(MltParams {
+            max_depth: if depth < 0 { MLT_MAX_DEPTH } else { depth },
+            mutations_per_pixel: spp,
+            hide_emitters: desc.integrator.hide_emitters(),
+            ..MltParams::DEFAULT
+        }))
+        .map_err(|e| e.to_string())?;
     }
     let opts = RenderOptions {
         spp: Some(spp),

@@ -17,6 +17,10 @@ mod origin;
 mod perturbation;
 mod principled;
 
+use crate::param_defs::generate::ParamValue;
+pub use crate::param_defs::integrator::{
+    BdptParams, DirectParams, GuidedParams, MltParams, PathParams, PtracerParams,
+};
 pub use crate::texture::{Texture, TextureParam};
 pub use check::{Check, Checked};
 pub use checked::{Roughness, SampleCount};
@@ -36,10 +40,6 @@ use std::path::PathBuf;
 pub struct SceneDescription {
     /// How light transport is estimated.
     pub integrator: Checked<IntegratorDesc>,
-    /// The integrator's `hide_emitters` (Mitsuba 3's meaning; default `false`): `path` and
-    /// `direct` see through emitters and not the sky from the camera; `bdpt`, `mlt` and
-    /// `ptracer` leave out paths of one segment, so emitters in view look black.
-    pub hide_emitters: bool,
     /// The `moment` integrator around the integrator, if any: its outputs are added to the
     /// image.
     pub moment: Option<MomentDesc>,
@@ -57,78 +57,38 @@ pub struct SceneDescription {
     pub origins: Origins,
 }
 
-/// The integrator plugin and its parameters.
+/// The integrator plugin and its parameters. Each plugin's parameter struct is generated
+/// from its list of definitions (`param_defs::integrator`), with `DEFAULT` and `Default`
+/// (Mitsuba 3's defaults), so a description built in code names only what it changes:
+///
+/// ```
+/// use mcrt_render::description::{IntegratorDesc, PathParams};
+///
+/// let i = IntegratorDesc::Path(PathParams { max_depth: 4, ..PathParams::DEFAULT });
+/// assert_eq!(i.max_depth(), Some(4));
+/// assert!(!i.hide_emitters());
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum IntegratorDesc {
     /// Mitsuba's `path`: unidirectional path tracing with next-event estimation and MIS.
-    Path {
-        /// Longest path depth: −1 unlimited, 1 emitters seen directly, 2 direct lighting.
-        max_depth: i32,
-        /// Depth from which Russian roulette starts (Mitsuba's default 5).
-        rr_depth: u32,
-    },
+    Path(PathParams),
     /// Mitsuba's `direct`: direct lighting with a number of emitter and BSDF samples.
-    Direct {
-        /// Light samples per shading point (Mitsuba's default 1).
-        emitter_samples: u32,
-        /// BSDF samples per shading point (Mitsuba's default 1).
-        bsdf_samples: u32,
-    },
+    Direct(DirectParams),
     /// Bidirectional path tracing (Mitsuba 0.6's and pbrt-v4's `bdpt`).
-    Bdpt {
-        /// Longest path in segments: −1 unlimited, 1 emitters seen directly, 2 direct
-        /// lighting.
-        max_depth: i32,
-        /// Bounces after which Russian roulette applies on the camera subpath (default 5;
-        /// light subpaths play it from their first bounce).
-        rr_depth: u32,
-    },
+    Bdpt(BdptParams),
     /// Metropolis light transport in primary sample space over bidirectional paths
     /// (Mitsuba 0.6's `pssmlt` parameters under pbrt-v4's `mlt` names).
-    Mlt {
-        /// Longest path in segments (−1: unlimited is not allowed; default 5).
-        max_depth: i32,
-        /// Paths sampled to estimate the image's brightness and seed the chains
-        /// (default 100000).
-        bootstrap_samples: u32,
-        /// Independent Markov chains (default 1000).
-        chains: u32,
-        /// Mutations per pixel over all chains (default 100).
-        mutations_per_pixel: u32,
-        /// Probability of a large step, an independent new path (default 0.3).
-        large_step_prob: f32,
-        /// Standard deviation of a small step's perturbation of each primary sample
-        /// value (default 0.01).
-        sigma: f32,
-    },
+    Mlt(MltParams),
     /// Mitsuba 3's `ptracer`: particle tracing, i.e. light tracing alone (bidirectional path
     /// tracing's `t = 1` strategies at unit weight), emitters in view included by
     /// connecting points sampled on them to the camera.
-    Ptracer {
-        /// Longest path in segments: −1 unlimited, 1 emitters seen directly.
-        max_depth: i32,
-        /// Bounces after which Russian roulette applies (Mitsuba's default 5; our light
-        /// subpaths play it from their first bounce, which changes the noise only).
-        rr_depth: u32,
-    },
+    Ptracer(PtracerParams),
     /// Path tracing guided by a learned distribution of incident radiance (Müller, Gross &
     /// Novák 2017, "Practical Path Guiding for Efficient Light-Transport Simulation"; no
     /// Mitsuba 3 plugin, Mitsuba 0.6's `guided_path` of the paper's authors is the model):
     /// the render trains an SD-tree in passes of doubling sample counts and keeps the image
     /// of the final pass.
-    Guided {
-        /// Longest path in segments, as for `path`.
-        max_depth: i32,
-        /// Depth from which Russian roulette starts, as for `path`.
-        rr_depth: u32,
-        /// The probability of sampling the guide rather than the BSDF (default 0.5).
-        guide_probability: f32,
-        /// `c` of the spatial subdivision threshold `c·√(2^k)` records (default 12000).
-        spatial_threshold: f32,
-        /// The energy fraction above which a directional quadrant is subdivided (default
-        /// 0.01).
-        directional_threshold: f32,
-    },
+    Guided(GuidedParams),
 }
 
 /// Mitsuba 3's `moment` integrator around a sampling integrator (`path` or `direct`): the
@@ -187,32 +147,15 @@ impl IntegratorKind {
 }
 
 impl IntegratorDesc {
-    /// Default values of the `mlt` parameters: the library's
+    /// `mlt` with every parameter at its default: the library's
     /// [`Mlt::DEFAULT`](mcrt::integrator::Mlt::DEFAULT) (pbrt-v4's).
-    pub const MLT_DEFAULTS: IntegratorDesc = {
-        let m = mcrt::integrator::Mlt::DEFAULT;
-        IntegratorDesc::Mlt {
-            max_depth: m.max_depth as i32,
-            bootstrap_samples: m.bootstrap_samples,
-            chains: m.chains,
-            mutations_per_pixel: m.mutations_per_pixel,
-            large_step_prob: m.large_step_prob,
-            sigma: m.sigma,
-        }
-    };
-
-    /// Default `guide_probability`, `spatial_threshold` and `directional_threshold` of
-    /// `guided` (the paper's 0.5, 12000 and 0.01).
-    pub const GUIDED_DEFAULTS: (f32, f32, f32) = (0.5, 12_000.0, 0.01);
+    pub const MLT_DEFAULTS: IntegratorDesc = IntegratorDesc::Mlt(MltParams::DEFAULT);
 
     /// The samples per pixel a render of this integrator takes when nothing overrides the
     /// scene: `mutations_per_pixel` for `mlt`, else the sampler's `sample_count`.
     pub fn samples_per_pixel(&self, sample_count: SampleCount) -> u32 {
-        match *self {
-            Self::Mlt {
-                mutations_per_pixel,
-                ..
-            } => mutations_per_pixel,
+        match self {
+            Self::Mlt(m) => m.mutations_per_pixel,
             _ => sample_count.get(),
         }
     }
@@ -220,94 +163,95 @@ impl IntegratorDesc {
     /// Which integrator this is.
     pub fn kind(&self) -> IntegratorKind {
         match self {
-            Self::Path { .. } => IntegratorKind::Path,
-            Self::Direct { .. } => IntegratorKind::Direct,
-            Self::Bdpt { .. } => IntegratorKind::Bdpt,
-            Self::Mlt { .. } => IntegratorKind::Mlt,
-            Self::Ptracer { .. } => IntegratorKind::Ptracer,
-            Self::Guided { .. } => IntegratorKind::Guided,
+            Self::Path(_) => IntegratorKind::Path,
+            Self::Direct(_) => IntegratorKind::Direct,
+            Self::Bdpt(_) => IntegratorKind::Bdpt,
+            Self::Mlt(_) => IntegratorKind::Mlt,
+            Self::Ptracer(_) => IntegratorKind::Ptracer,
+            Self::Guided(_) => IntegratorKind::Guided,
         }
+    }
+
+    /// The integrator of type `kind` with every parameter at its default.
+    pub fn default_of(kind: IntegratorKind) -> IntegratorDesc {
+        match kind {
+            IntegratorKind::Path => Self::Path(PathParams::DEFAULT),
+            IntegratorKind::Direct => Self::Direct(DirectParams::DEFAULT),
+            IntegratorKind::Bdpt => Self::Bdpt(BdptParams::DEFAULT),
+            IntegratorKind::Mlt => Self::Mlt(MltParams::DEFAULT),
+            IntegratorKind::Ptracer => Self::Ptracer(PtracerParams::DEFAULT),
+            IntegratorKind::Guided => Self::Guided(GuidedParams::DEFAULT),
+        }
+    }
+
+    /// Every parameter's value, by its Mitsuba name.
+    fn values(&self) -> Vec<(&'static str, ParamValue)> {
+        match self {
+            Self::Path(p) => p.values(),
+            Self::Direct(p) => p.values(),
+            Self::Bdpt(p) => p.values(),
+            Self::Mlt(p) => p.values(),
+            Self::Ptracer(p) => p.values(),
+            Self::Guided(p) => p.values(),
+        }
+    }
+
+    /// Sets the parameter of Mitsuba name `name`, where this integrator has one.
+    fn set(&mut self, name: &str, v: ParamValue) {
+        match self {
+            Self::Path(p) => p.set(name, v),
+            Self::Direct(p) => p.set(name, v),
+            Self::Bdpt(p) => p.set(name, v),
+            Self::Mlt(p) => p.set(name, v),
+            Self::Ptracer(p) => p.set(name, v),
+            Self::Guided(p) => p.set(name, v),
+        }
+    }
+
+    /// The value of parameter `name`, where this integrator has one.
+    fn value(&self, name: &str) -> Option<ParamValue> {
+        self.values()
+            .into_iter()
+            .find_map(|(n, v)| (n == name).then_some(v))
     }
 
     /// `max_depth`, where the integrator has one.
     pub fn max_depth(&self) -> Option<i32> {
-        match *self {
-            Self::Path { max_depth, .. }
-            | Self::Bdpt { max_depth, .. }
-            | Self::Mlt { max_depth, .. }
-            | Self::Ptracer { max_depth, .. }
-            | Self::Guided { max_depth, .. } => Some(max_depth),
-            Self::Direct { .. } => None,
+        match self.value("max_depth") {
+            Some(ParamValue::Int(d)) => Some(d as i32),
+            _ => None,
         }
     }
 
-    /// This description as integrator `kind`, keeping `max_depth` and `rr_depth` where both
-    /// have them and taking the defaults for the rest (an unlimited depth becomes MLT's
-    /// default 5, since MLT needs a bound). Unchanged if it already is of that kind.
+    /// `hide_emitters` (Mitsuba 3's meaning), `false` where the integrator has none: `path`
+    /// and `direct` see through emitters and not the sky from the camera; `bdpt`, `mlt` and
+    /// `ptracer` leave out paths of one segment, so emitters in view look black.
+    pub fn hide_emitters(&self) -> bool {
+        matches!(self.value("hide_emitters"), Some(ParamValue::Bool(true)))
+    }
+
+    /// This description as integrator `kind`, keeping every parameter both types have
+    /// (such as `max_depth`, `rr_depth` and `hide_emitters`) and taking the defaults for
+    /// the rest (an unlimited depth becomes MLT's default 5, since MLT needs a bound).
+    /// Unchanged if it already is of that kind.
     pub fn with_kind(&self, kind: IntegratorKind) -> IntegratorDesc {
         if self.kind() == kind {
             return *self;
         }
-        let depth = self.max_depth().unwrap_or(-1);
-        let rr = match *self {
-            Self::Path { rr_depth, .. }
-            | Self::Bdpt { rr_depth, .. }
-            | Self::Ptracer { rr_depth, .. }
-            | Self::Guided { rr_depth, .. } => rr_depth,
-            _ => 5,
-        };
-        match kind {
-            IntegratorKind::Path => Self::Path {
-                max_depth: depth,
-                rr_depth: rr,
-            },
-            IntegratorKind::Direct => Self::Direct {
-                emitter_samples: 1,
-                bsdf_samples: 1,
-            },
-            IntegratorKind::Bdpt => Self::Bdpt {
-                max_depth: depth,
-                rr_depth: rr,
-            },
-            IntegratorKind::Ptracer => Self::Ptracer {
-                max_depth: depth,
-                rr_depth: rr,
-            },
-            IntegratorKind::Guided => Self::Guided {
-                max_depth: depth,
-                rr_depth: rr,
-                guide_probability: Self::GUIDED_DEFAULTS.0,
-                spatial_threshold: Self::GUIDED_DEFAULTS.1,
-                directional_threshold: Self::GUIDED_DEFAULTS.2,
-            },
-            IntegratorKind::Mlt => match Self::MLT_DEFAULTS {
-                Self::Mlt {
-                    bootstrap_samples,
-                    chains,
-                    mutations_per_pixel,
-                    large_step_prob,
-                    sigma,
-                    max_depth,
-                } => Self::Mlt {
-                    max_depth: if depth < 0 { max_depth } else { depth },
-                    bootstrap_samples,
-                    chains,
-                    mutations_per_pixel,
-                    large_step_prob,
-                    sigma,
-                },
-                d => d,
-            },
+        let mut out = Self::default_of(kind);
+        for (name, v) in self.values() {
+            let unlimited = name == "max_depth" && matches!(v, ParamValue::Int(d) if d < 0);
+            if !(kind == IntegratorKind::Mlt && unlimited) {
+                out.set(name, v);
+            }
         }
+        out
     }
 }
 
 impl Default for IntegratorDesc {
     fn default() -> Self {
-        Self::Path {
-            max_depth: -1,
-            rr_depth: 5,
-        }
+        Self::Path(PathParams::DEFAULT)
     }
 }
 

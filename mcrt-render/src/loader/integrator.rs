@@ -5,18 +5,15 @@ use super::context::{Ctx, Res};
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type};
-use crate::description::{IntegratorDesc, MomentDesc};
-use crate::param_defs::integrator::{
-    direct_counts, mlt_counts, BOOTSTRAP_SAMPLES, BSDF_SAMPLES, CHAINS, DIRECTIONAL_THRESHOLD,
-    EMITTER_SAMPLES, GUIDE_PROBABILITY, HIDE_EMITTERS, LARGE_STEP_PROB, MAX_DEPTH, MLT_MAX_DEPTH,
-    MUTATIONS_PER_PIXEL, RR_DEPTH, SAMPLES_PER_PASS, SHADING_SAMPLES, SIGMA, SPATIAL_THRESHOLD,
+use crate::description::{
+    BdptParams, DirectParams, GuidedParams, IntegratorDesc, MltParams, MomentDesc, PathParams,
+    PtracerParams,
 };
 use crate::scene_error::SceneErrorKind;
 
 /// What an `<integrator>` element says.
 pub(crate) struct ReadIntegrator {
     pub integrator: IntegratorDesc,
-    pub hide_emitters: bool,
     pub moment: Option<MomentDesc>,
 }
 
@@ -39,9 +36,8 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<ReadIntegrator> {
                  is supported)"
             )),
         )),
-        _ => read_plain(ctx, e, ty).map(|(integrator, hide_emitters)| ReadIntegrator {
+        _ => read_plain(ctx, e, ty).map(|integrator| ReadIntegrator {
             integrator,
-            hide_emitters,
             moment: None,
         }),
     }
@@ -91,18 +87,17 @@ fn read_moment(ctx: &Ctx, e: &Elem) -> Res<ReadIntegrator> {
             )),
         ));
     }
-    let (integrator, hide_emitters) = read_plain(ctx, inner, inner_ty)?;
+    let integrator = read_plain(ctx, inner, inner_ty)?;
     p.finish()?;
     let name = inner.attr("name").unwrap_or(FIRST_UNNAMED).to_string();
     Ok(ReadIntegrator {
         integrator,
-        hide_emitters,
         moment: Some(MomentDesc { name }),
     })
 }
 
-/// One of the [`PLAIN`] integrators, and its `hide_emitters`.
-fn read_plain(ctx: &Ctx, e: &Elem, ty: &str) -> Res<(IntegratorDesc, bool)> {
+/// One of the [`PLAIN`] integrators, each parameter read through its definition.
+fn read_plain(ctx: &Ctx, e: &Elem, ty: &str) -> Res<IntegratorDesc> {
     // Before the nested objects are looked at, so that the error names this element.
     if !PLAIN.contains(&ty) {
         return Err(unknown(ctx, e, ty));
@@ -110,80 +105,16 @@ fn read_plain(ctx: &Ctx, e: &Elem, ty: &str) -> Res<(IntegratorDesc, bool)> {
     let mut p = Props::new(ctx, e)?;
     no_objects(ctx, &p)?;
     let desc = match ty {
-        "path" => {
-            let max_depth = p.get_int(&MAX_DEPTH)? as i32;
-            let rr_depth = p.get_int(&RR_DEPTH)? as u32;
-            IntegratorDesc::Path {
-                max_depth,
-                rr_depth,
-            }
-        }
-        "direct" => {
-            let shading = p.get_int(&SHADING_SAMPLES)?;
-            let emitter_samples = p.get_int_or(&EMITTER_SAMPLES, shading)? as u32;
-            let bsdf_samples = p.get_int_or(&BSDF_SAMPLES, shading)? as u32;
-            direct_counts(emitter_samples, bsdf_samples)
-                .map_err(|i| p.invalid(i.param, e, &i.message))?;
-            IntegratorDesc::Direct {
-                emitter_samples,
-                bsdf_samples,
-            }
-        }
-        "bdpt" => {
-            let max_depth = p.get_int(&MAX_DEPTH)? as i32;
-            let rr_depth = p.get_int(&RR_DEPTH)? as u32;
-            IntegratorDesc::Bdpt {
-                max_depth,
-                rr_depth,
-            }
-        }
-        "mlt" => {
-            let max_depth = p.get_int(&MLT_MAX_DEPTH)? as i32;
-            let bootstrap_samples = p.get_int(&BOOTSTRAP_SAMPLES)? as u32;
-            let chains = p.get_int(&CHAINS)? as u32;
-            let mutations_per_pixel = p.get_int(&MUTATIONS_PER_PIXEL)? as u32;
-            let large_step_prob = p.get_float(&LARGE_STEP_PROB)?;
-            let sigma = p.get_float(&SIGMA)?;
-            mlt_counts(bootstrap_samples, chains).map_err(|i| p.invalid(i.param, e, &i.message))?;
-            IntegratorDesc::Mlt {
-                max_depth,
-                bootstrap_samples,
-                chains,
-                mutations_per_pixel,
-                large_step_prob,
-                sigma,
-            }
-        }
-        "ptracer" => {
-            let max_depth = p.get_int(&MAX_DEPTH)? as i32;
-            let rr_depth = p.get_int(&RR_DEPTH)? as u32;
-            p.get_int(&SAMPLES_PER_PASS)?;
-            IntegratorDesc::Ptracer {
-                max_depth,
-                rr_depth,
-            }
-        }
-        "guided" => {
-            let max_depth = p.get_int(&MAX_DEPTH)? as i32;
-            let rr_depth = p.get_int(&RR_DEPTH)? as u32;
-            IntegratorDesc::Guided {
-                max_depth,
-                rr_depth,
-                guide_probability: p.get_float(&GUIDE_PROBABILITY)?,
-                spatial_threshold: p.get_float(&SPATIAL_THRESHOLD)?,
-                directional_threshold: p.get_float(&DIRECTIONAL_THRESHOLD)?,
-            }
-        }
+        "path" => IntegratorDesc::Path(PathParams::read(&mut p)?),
+        "direct" => IntegratorDesc::Direct(DirectParams::read(&mut p)?),
+        "bdpt" => IntegratorDesc::Bdpt(BdptParams::read(&mut p)?),
+        "mlt" => IntegratorDesc::Mlt(MltParams::read(&mut p)?),
+        "ptracer" => IntegratorDesc::Ptracer(PtracerParams::read(&mut p)?),
+        "guided" => IntegratorDesc::Guided(GuidedParams::read(&mut p)?),
         other => return Err(unknown(ctx, e, other)),
     };
-    // `guided` has no `hide_emitters` (left unread, it is reported as unknown).
-    let hide_emitters = if ty == "guided" {
-        false
-    } else {
-        p.get_bool(&HIDE_EMITTERS)?
-    };
     p.finish()?;
-    Ok((desc, hide_emitters))
+    Ok(desc)
 }
 
 fn unknown(ctx: &Ctx, e: &Elem, ty: &str) -> super::SceneError {

@@ -140,7 +140,6 @@ pub fn parse_scene_with_warnings(
                 // the integrator's check repeats that, once.
                 desc.integrator = Checked::new(read.integrator)
                     .map_err(|i| ctx.err(c, SceneErrorKind::InvalidValue(i.to_string())))?;
-                desc.hide_emitters = read.hide_emitters;
                 desc.moment = read.moment;
             }
             "sensor" => {

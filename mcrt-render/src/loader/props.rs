@@ -8,6 +8,7 @@ use super::transform::{check_attrs, read_transform, xyz};
 use super::tree::Elem;
 use super::values::{parse_bool, parse_float, parse_int, parse_triple};
 use crate::description::Colour;
+use crate::param_defs::generate::ParamSource;
 use crate::param_defs::{
     self, BoolParam, ChoiceParam, ColourParam, FloatParam, IntParam, PluginParams,
 };
@@ -308,6 +309,32 @@ impl<'c, 'a> Props<'c, 'a> {
                 },
             )),
         }
+    }
+}
+
+/// The loader's reading of a plugin's generated parameter struct (`param_defs::generate`):
+/// each value through [`Props`], errors located as its own `get_*` locate them.
+impl ParamSource for Props<'_, '_> {
+    type Error = crate::scene_error::SceneError;
+
+    fn int(&mut self, d: &IntParam) -> Res<i64> {
+        self.get_int(d)
+    }
+
+    fn int_or(&mut self, d: &IntParam, default: i64) -> Res<i64> {
+        self.get_int_or(d, default)
+    }
+
+    fn float(&mut self, d: &FloatParam<f32>) -> Res<f32> {
+        self.get_float(d)
+    }
+
+    fn boolean(&mut self, d: &BoolParam) -> Res<bool> {
+        self.get_bool(d)
+    }
+
+    fn invalid(&self, i: crate::invalid::Invalid) -> Self::Error {
+        Props::invalid(self, i.param, self.elem, &i.message)
     }
 }
 

@@ -9,6 +9,9 @@ use super::context::{Ctx, Res};
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
+use crate::param_defs::volume::{
+    ACCEL, FILENAME, FILTER_TYPE, MAX_VALUE, RAW, TO_WORLD, USE_GRID_BBOX, VALUE, WRAP_MODE,
+};
 use crate::scene_error::SceneErrorKind;
 use crate::texture::{Checkerboard, Texture};
 
@@ -20,33 +23,31 @@ pub(crate) fn read_volume(ctx: &Ctx, e: &Elem) -> Res<()> {
     no_objects(ctx, &p)?;
     match ty {
         "gridvolume" => {
-            let Some(name) = p.string("filename")? else {
-                let what = "parameter \"filename\"".to_string();
+            let Some(name) = p.string(FILENAME.name)? else {
+                let what = format!("parameter \"{}\"", FILENAME.name);
                 return Err(ctx.err(e, SceneErrorKind::MissingAttribute(what)));
             };
             ctx.readable_file(e, &name, Some((b"VOL", "a Mitsuba volume (.vol)")))?;
-            for (param, choices) in [
-                ("filter_type", &["trilinear", "nearest"][..]),
-                ("wrap_mode", &["repeat", "mirror", "clamp"][..]),
-            ] {
-                if let Some(v) = p.string(param)? {
-                    if !choices.contains(&v.as_str()) {
-                        let m = format!("\"{v}\" is not {}", choices.join(" or "));
-                        return Err(p.invalid(param, e, &m));
+            // Compared with case, as Mitsuba 3 does (`Props::get_choice` ignores it).
+            for d in [&FILTER_TYPE, &WRAP_MODE] {
+                if let Some(v) = p.string(d.name)? {
+                    if !d.choices.contains(&v.as_str()) {
+                        let m = format!("\"{v}\" is not {}", d.choices.join(" or "));
+                        return Err(p.invalid(d.name, e, &m));
                     }
                 }
             }
-            for param in ["raw", "accel", "use_grid_bbox"] {
-                p.bool(param)?;
+            for d in [&RAW, &ACCEL, &USE_GRID_BBOX] {
+                p.get_bool(d)?;
             }
-            p.float("max_value")?;
+            p.float(MAX_VALUE.name)?;
         }
         "constvolume" => {
-            p.rgb("value")?;
+            p.rgb(VALUE.name)?;
         }
         other => return Err(unknown_plugin(ctx, e, other)),
     }
-    p.transform("to_world")?;
+    p.transform(TO_WORLD.name)?;
     p.finish()
 }
 

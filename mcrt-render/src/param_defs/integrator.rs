@@ -1,8 +1,11 @@
-//! The parameters of the integrators `path`, `direct`, `bdpt`, `mlt`, `ptracer` and `guided`, and the check of
-//! an [`IntegratorDesc`] against them (for a description built in code; the loader checks
+//! The parameters of the integrators `path`, `direct`, `bdpt`, `mlt`, `ptracer` and
+//! `guided`: each plugin's list of definitions generates its parameter struct (what
+//! [`IntegratorDesc`] holds), its definitions table and its reading ([`plugin_params!`]),
+//! and the check of an [`IntegratorDesc`] built in code against them (the loader checks
 //! each value as it reads it).
 
-use super::{in_half_open, BoolParam, FloatParam, IntParam, ParamDef, PluginParams};
+use super::generate::plugin_params;
+use super::{in_half_open, BoolParam, FloatParam, IntParam};
 use crate::description::{IntegratorDesc, SampleCount};
 use crate::invalid::Invalid;
 use mcrt::integrator::Mlt;
@@ -135,7 +138,7 @@ pub(crate) const SIGMA: FloatParam<f32> = FloatParam {
 /// `guide_probability` of `guided`.
 pub(crate) const GUIDE_PROBABILITY: FloatParam<f32> = FloatParam {
     name: "guide_probability",
-    default: IntegratorDesc::GUIDED_DEFAULTS.0,
+    default: 0.5,
     range: "[0, 0.999]",
     accept: |v| {
         if (0.0..=0.999).contains(&v) {
@@ -150,7 +153,7 @@ pub(crate) const GUIDE_PROBABILITY: FloatParam<f32> = FloatParam {
 /// `spatial_threshold` of `guided`.
 pub(crate) const SPATIAL_THRESHOLD: FloatParam<f32> = FloatParam {
     name: "spatial_threshold",
-    default: IntegratorDesc::GUIDED_DEFAULTS.1,
+    default: 12_000.0,
     range: "> 0",
     accept: |v| in_half_open(v, 0.0, f32::MAX, "must be positive and finite"),
     doc: "`c`: a spatial leaf that took more than `c·√(2^k)` records in training pass `k` is           split",
@@ -159,89 +162,138 @@ pub(crate) const SPATIAL_THRESHOLD: FloatParam<f32> = FloatParam {
 /// `directional_threshold` of `guided`.
 pub(crate) const DIRECTIONAL_THRESHOLD: FloatParam<f32> = FloatParam {
     name: "directional_threshold",
-    default: IntegratorDesc::GUIDED_DEFAULTS.2,
+    default: 0.01,
     range: "(0, 1]",
     accept: |v| in_half_open(v, 0.0, 1.0, "must lie in (0, 1]"),
     doc: "ρ: a directional quadrant holding more than this fraction of its leaf's energy is           subdivided",
 };
 
-/// `path`.
-pub(crate) const PATH: PluginParams = PluginParams {
+plugin_params! {
+    /// The parameters of Mitsuba 3's `path`: unidirectional path tracing with next-event
+    /// estimation and MIS.
+    pub struct PathParams;
+    table PATH = ("integrator", "path");
+    {
+        /// Longest path in segments: −1 unlimited, 1 emitters seen directly, 2 direct
+        /// lighting (default −1).
+        max_depth: i32 = Int(MAX_DEPTH),
+        /// Depth from which Russian roulette starts (default 5).
+        rr_depth: u32 = Int(RR_DEPTH),
+        /// Hide emitters seen directly: the camera sees through emitters, and not the sky
+        /// (default `false`).
+        hide_emitters: bool = Bool(HIDE_EMITTERS),
+    }
+}
+
+plugin_params! {
+    /// The parameters of `guided`: path tracing guided by a learned distribution of
+    /// incident radiance.
+    pub struct GuidedParams;
+    table GUIDED = ("integrator", "guided");
+    {
+        /// Longest path in segments, as for `path`.
+        max_depth: i32 = Int(MAX_DEPTH),
+        /// Depth from which Russian roulette starts, as for `path`.
+        rr_depth: u32 = Int(RR_DEPTH),
+        /// Hide emitters seen directly, as for `path`.
+        hide_emitters: bool = Bool(HIDE_EMITTERS),
+        /// The probability of sampling the guide rather than the BSDF (default 0.5).
+        guide_probability: f32 = Float(GUIDE_PROBABILITY),
+        /// `c` of the spatial subdivision threshold `c·√(2^k)` records (default 12000).
+        spatial_threshold: f32 = Float(SPATIAL_THRESHOLD),
+        /// The energy fraction above which a directional quadrant is subdivided (default
+        /// 0.01).
+        directional_threshold: f32 = Float(DIRECTIONAL_THRESHOLD),
+    }
+}
+
+plugin_params! {
+    /// The parameters of Mitsuba 3's `direct`: direct lighting with a number of emitter and
+    /// BSDF samples.
+    pub struct DirectParams;
+    table DIRECT = ("integrator", "direct");
+    check direct_counts;
+    {
+        /// The file's default of both sample counts (default 1; read only for them).
+        shading_samples: u32 = Int(SHADING_SAMPLES),
+        /// Light samples per shading point (default `shading_samples`).
+        emitter_samples: u32 = Int(EMITTER_SAMPLES, or shading_samples),
+        /// BSDF samples per shading point (default `shading_samples`).
+        bsdf_samples: u32 = Int(BSDF_SAMPLES, or shading_samples),
+        /// Hide emitters seen directly, as for `path`.
+        hide_emitters: bool = Bool(HIDE_EMITTERS),
+    }
+}
+
+plugin_params! {
+    /// The parameters of `bdpt`: bidirectional path tracing (Mitsuba 0.6's and pbrt-v4's).
+    pub struct BdptParams;
+    table BDPT = ("integrator", "bdpt");
+    {
+        /// Longest path in segments, as for `path`.
+        max_depth: i32 = Int(MAX_DEPTH),
+        /// Bounces after which Russian roulette applies on the camera subpath (default 5;
+        /// light subpaths play it from their first bounce).
+        rr_depth: u32 = Int(RR_DEPTH),
+        /// Leave out paths of one segment, so emitters in view look black.
+        hide_emitters: bool = Bool(HIDE_EMITTERS),
+    }
+}
+
+plugin_params! {
+    /// The parameters of Mitsuba 3's `ptracer`: particle tracing, i.e. light tracing alone.
+    pub struct PtracerParams;
+    table PTRACER = ("integrator", "ptracer");
+    {
+        /// Longest path in segments, as for `path`.
+        max_depth: i32 = Int(MAX_DEPTH),
+        /// Bounces after which Russian roulette applies (default 5; our light subpaths play
+        /// it from their first bounce, which changes the noise only).
+        rr_depth: u32 = Int(RR_DEPTH),
+        /// Leave out paths of one segment, so emitters in view look black.
+        hide_emitters: bool = Bool(HIDE_EMITTERS),
+        /// Accepted and ignored (Mitsuba's passes change the noise only; default −1).
+        samples_per_pass: i32 = Int(SAMPLES_PER_PASS),
+    }
+}
+
+plugin_params! {
+    /// The parameters of `mlt`: Metropolis light transport in primary sample space over
+    /// bidirectional paths (Mitsuba 0.6's `pssmlt` under pbrt-v4's `mlt` names; defaults
+    /// the library's [`Mlt::DEFAULT`]).
+    pub struct MltParams;
+    table MLT = ("integrator", "mlt");
+    check mlt_counts;
+    {
+        /// Longest path in segments, 1..=64 (default 5).
+        max_depth: i32 = Int(MLT_MAX_DEPTH),
+        /// Paths sampled to estimate the image's brightness and seed the chains (default
+        /// 100000).
+        bootstrap_samples: u32 = Int(BOOTSTRAP_SAMPLES),
+        /// Independent Markov chains (default 1000).
+        chains: u32 = Int(CHAINS),
+        /// Mutations per pixel over all chains (default 100).
+        mutations_per_pixel: u32 = Int(MUTATIONS_PER_PIXEL),
+        /// Probability of a large step, an independent new path (default 0.3).
+        large_step_prob: f32 = Float(LARGE_STEP_PROB),
+        /// Standard deviation of a small step's perturbation of each primary sample value
+        /// (default 0.01).
+        sigma: f32 = Float(SIGMA),
+        /// Leave out paths of one segment, so emitters in view look black.
+        hide_emitters: bool = Bool(HIDE_EMITTERS),
+    }
+}
+
+/// `moment` (Mitsuba 3's): no parameters of its own, one nested `path` or `direct`.
+pub(crate) const MOMENT: super::PluginParams = super::PluginParams {
     category: "integrator",
-    plugin: "path",
-    params: &[
-        ParamDef::Int(&MAX_DEPTH),
-        ParamDef::Int(&RR_DEPTH),
-        ParamDef::Bool(&HIDE_EMITTERS),
-    ],
+    plugin: "moment",
+    params: &[],
 };
 
-/// `guided`.
-pub(crate) const GUIDED: PluginParams = PluginParams {
-    category: "integrator",
-    plugin: "guided",
-    params: &[
-        ParamDef::Int(&MAX_DEPTH),
-        ParamDef::Int(&RR_DEPTH),
-        ParamDef::Float(&GUIDE_PROBABILITY),
-        ParamDef::Float(&SPATIAL_THRESHOLD),
-        ParamDef::Float(&DIRECTIONAL_THRESHOLD),
-    ],
-};
-
-/// `direct`.
-pub(crate) const DIRECT: PluginParams = PluginParams {
-    category: "integrator",
-    plugin: "direct",
-    params: &[
-        ParamDef::Int(&SHADING_SAMPLES),
-        ParamDef::Int(&EMITTER_SAMPLES),
-        ParamDef::Int(&BSDF_SAMPLES),
-        ParamDef::Bool(&HIDE_EMITTERS),
-    ],
-};
-
-/// `bdpt`.
-pub(crate) const BDPT: PluginParams = PluginParams {
-    category: "integrator",
-    plugin: "bdpt",
-    params: &[
-        ParamDef::Int(&MAX_DEPTH),
-        ParamDef::Int(&RR_DEPTH),
-        ParamDef::Bool(&HIDE_EMITTERS),
-    ],
-};
-
-/// `ptracer`.
-pub(crate) const PTRACER: PluginParams = PluginParams {
-    category: "integrator",
-    plugin: "ptracer",
-    params: &[
-        ParamDef::Int(&MAX_DEPTH),
-        ParamDef::Int(&RR_DEPTH),
-        ParamDef::Bool(&HIDE_EMITTERS),
-        ParamDef::Int(&SAMPLES_PER_PASS),
-    ],
-};
-
-/// `mlt`.
-pub(crate) const MLT: PluginParams = PluginParams {
-    category: "integrator",
-    plugin: "mlt",
-    params: &[
-        ParamDef::Int(&MLT_MAX_DEPTH),
-        ParamDef::Int(&BOOTSTRAP_SAMPLES),
-        ParamDef::Int(&CHAINS),
-        ParamDef::Int(&MUTATIONS_PER_PIXEL),
-        ParamDef::Float(&LARGE_STEP_PROB),
-        ParamDef::Float(&SIGMA),
-        ParamDef::Bool(&HIDE_EMITTERS),
-    ],
-};
-
-/// The checks between parameters of `direct`: not both sample counts zero.
-pub(crate) fn direct_counts(emitter_samples: u32, bsdf_samples: u32) -> Result<(), Invalid> {
-    if emitter_samples == 0 && bsdf_samples == 0 {
+/// The check between parameters of `direct`: not both sample counts zero.
+pub(crate) fn direct_counts(d: &DirectParams) -> Result<(), Invalid> {
+    if d.emitter_samples == 0 && d.bsdf_samples == 0 {
         return Err(Invalid::new(
             EMITTER_SAMPLES.name,
             "and bsdf_samples cannot both be zero",
@@ -251,8 +303,8 @@ pub(crate) fn direct_counts(emitter_samples: u32, bsdf_samples: u32) -> Result<(
 }
 
 /// The check between parameters of `mlt`: at least as many bootstrap paths as chains.
-pub(crate) fn mlt_counts(bootstrap_samples: u32, chains: u32) -> Result<(), Invalid> {
-    if bootstrap_samples < chains {
+pub(crate) fn mlt_counts(m: &MltParams) -> Result<(), Invalid> {
+    if m.bootstrap_samples < m.chains {
         return Err(Invalid::new(
             BOOTSTRAP_SAMPLES.name,
             "must be at least the number of chains",
@@ -263,59 +315,12 @@ pub(crate) fn mlt_counts(bootstrap_samples: u32, chains: u32) -> Result<(), Inva
 
 /// Every value of `i` against its definition, and the checks between them.
 pub(crate) fn check(i: &IntegratorDesc) -> Result<(), Invalid> {
-    match *i {
-        IntegratorDesc::Path {
-            max_depth,
-            rr_depth,
-        }
-        | IntegratorDesc::Bdpt {
-            max_depth,
-            rr_depth,
-        }
-        | IntegratorDesc::Ptracer {
-            max_depth,
-            rr_depth,
-        } => {
-            MAX_DEPTH.check(max_depth as i64)?;
-            RR_DEPTH.check(rr_depth as i64)?;
-        }
-        IntegratorDesc::Guided {
-            max_depth,
-            rr_depth,
-            guide_probability,
-            spatial_threshold,
-            directional_threshold,
-        } => {
-            MAX_DEPTH.check(max_depth as i64)?;
-            RR_DEPTH.check(rr_depth as i64)?;
-            GUIDE_PROBABILITY.check(guide_probability)?;
-            SPATIAL_THRESHOLD.check(spatial_threshold)?;
-            DIRECTIONAL_THRESHOLD.check(directional_threshold)?;
-        }
-        IntegratorDesc::Direct {
-            emitter_samples,
-            bsdf_samples,
-        } => {
-            EMITTER_SAMPLES.check(emitter_samples as i64)?;
-            BSDF_SAMPLES.check(bsdf_samples as i64)?;
-            direct_counts(emitter_samples, bsdf_samples)?;
-        }
-        IntegratorDesc::Mlt {
-            max_depth,
-            bootstrap_samples,
-            chains,
-            mutations_per_pixel,
-            large_step_prob,
-            sigma,
-        } => {
-            MLT_MAX_DEPTH.check(max_depth as i64)?;
-            BOOTSTRAP_SAMPLES.check(bootstrap_samples as i64)?;
-            CHAINS.check(chains as i64)?;
-            MUTATIONS_PER_PIXEL.check(mutations_per_pixel as i64)?;
-            LARGE_STEP_PROB.check(large_step_prob)?;
-            SIGMA.check(sigma)?;
-            mlt_counts(bootstrap_samples, chains)?;
-        }
+    match i {
+        IntegratorDesc::Path(p) => p.check(),
+        IntegratorDesc::Direct(p) => p.check(),
+        IntegratorDesc::Bdpt(p) => p.check(),
+        IntegratorDesc::Mlt(p) => p.check(),
+        IntegratorDesc::Ptracer(p) => p.check(),
+        IntegratorDesc::Guided(p) => p.check(),
     }
-    Ok(())
 }

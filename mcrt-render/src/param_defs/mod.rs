@@ -10,7 +10,9 @@
 //! the default and the range are written once.
 //!
 //! Adding a parameter: one definition constant, listed in its plugin's table, and the
-//! line that uses it.
+//! line that uses it. For the integrators, one list per plugin generates the parameter
+//! struct the description holds, the table and the reading ([`generate`]), so a parameter
+//! is an entry in that list and its use: two files.
 
 pub(crate) mod bsdf;
 pub(crate) mod bsdf_composite;
@@ -19,12 +21,14 @@ pub(crate) mod bsdf_maps;
 mod doc_tests;
 pub(crate) mod emitter;
 pub(crate) mod film;
+pub(crate) mod generate;
 pub(crate) mod integrator;
 pub(crate) mod sampler;
 pub(crate) mod sensor;
 pub(crate) mod shape;
 pub(crate) mod shape_plugins;
 pub(crate) mod texture;
+pub(crate) mod volume;
 
 /// An integer parameter in `min..=max`.
 #[derive(Debug)]
@@ -221,6 +225,7 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     integrator::MLT,
     integrator::PTRACER,
     integrator::GUIDED,
+    integrator::MOMENT,
     sampler::INDEPENDENT,
     sampler::STRATIFIED,
     sampler::LDSAMPLER,
@@ -265,6 +270,9 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     texture::CHECKERBOARD,
     bsdf_maps::NORMALMAP,
     bsdf_maps::BUMPMAP,
+    volume::GRIDVOLUME,
+    volume::CONSTVOLUME,
+    volume::TEXTURE_VOLUME,
 ];
 
 /// The table of plugin `plugin` of element `category`, if it has one.

@@ -80,16 +80,11 @@ impl Renderer {
                 .collect::<Vec<_>>()
         });
         let strategy = opts.strategy.unwrap_or_default();
-        let integrator = integrator(
-            &resolved.integrator,
-            strategy,
-            opts.bdpt_only,
-            desc.hide_emitters,
-        );
+        let integrator = integrator(&resolved.integrator, strategy, opts.bdpt_only);
         check_bidirectional(&integrator, &camera, strategy)?;
         let guided = guided_setup(&resolved.integrator, &integrator);
         if guided.is_some() {
-            check_guided(desc, opts)?;
+            check_guided(opts)?;
         }
         if desc.moment.is_some()
             && (guided.is_some()
@@ -200,80 +195,52 @@ impl Renderer {
 }
 
 /// The library's integrator for description `d`, sampling with `strategy` (and, for `bdpt`,
-/// only strategy `only` if given), hiding emitters seen directly if `hide_emitters`.
-/// `ptracer` is bidirectional path tracing with the light-tracing strategies alone.
-fn integrator(
-    d: &IntegratorDesc,
-    strategy: Strategy,
-    only: Option<(u32, u32)>,
-    hide_emitters: bool,
-) -> Integrator {
+/// only strategy `only` if given). `ptracer` is bidirectional path tracing with the
+/// light-tracing strategies alone.
+fn integrator(d: &IntegratorDesc, strategy: Strategy, only: Option<(u32, u32)>) -> Integrator {
     match *d {
-        IntegratorDesc::Path {
-            max_depth,
-            rr_depth,
-        } => Integrator::Path(PathTracer {
-            max_depth,
-            rr_depth,
+        IntegratorDesc::Path(p) => Integrator::Path(PathTracer {
+            max_depth: p.max_depth,
+            rr_depth: p.rr_depth,
             strategy,
-            hide_emitters,
+            hide_emitters: p.hide_emitters,
         }),
         // The path tracer the guided one guides (`guided_setup` adds the rest).
-        IntegratorDesc::Guided {
-            max_depth,
-            rr_depth,
-            ..
-        } => Integrator::Path(PathTracer {
-            max_depth,
-            rr_depth,
+        IntegratorDesc::Guided(p) => Integrator::Path(PathTracer {
+            max_depth: p.max_depth,
+            rr_depth: p.rr_depth,
             strategy,
-            hide_emitters: false,
+            hide_emitters: p.hide_emitters,
         }),
-        IntegratorDesc::Direct {
-            emitter_samples,
-            bsdf_samples,
-        } => Integrator::Direct(DirectIntegrator {
-            emitter_samples,
-            bsdf_samples,
+        IntegratorDesc::Direct(p) => Integrator::Direct(DirectIntegrator {
+            emitter_samples: p.emitter_samples,
+            bsdf_samples: p.bsdf_samples,
             strategy,
-            hide_emitters,
+            hide_emitters: p.hide_emitters,
         }),
-        IntegratorDesc::Bdpt {
-            max_depth,
-            rr_depth,
-        } => Integrator::Bdpt(Bdpt {
-            max_depth,
-            rr_depth,
+        IntegratorDesc::Bdpt(p) => Integrator::Bdpt(Bdpt {
+            max_depth: p.max_depth,
+            rr_depth: p.rr_depth,
             strategy,
             only,
-            hide_emitters,
+            hide_emitters: p.hide_emitters,
         }),
-        IntegratorDesc::Ptracer {
-            max_depth,
-            rr_depth,
-        } => Integrator::Bdpt(Bdpt {
-            max_depth,
-            rr_depth,
+        IntegratorDesc::Ptracer(p) => Integrator::Bdpt(Bdpt {
+            max_depth: p.max_depth,
+            rr_depth: p.rr_depth,
             strategy: Strategy::LightOnly,
             only: None,
-            hide_emitters,
+            hide_emitters: p.hide_emitters,
         }),
-        IntegratorDesc::Mlt {
-            max_depth,
-            bootstrap_samples,
-            chains,
-            mutations_per_pixel,
-            large_step_prob,
-            sigma,
-        } => Integrator::Mlt(Mlt {
-            max_depth: max_depth.max(1) as u32,
-            bootstrap_samples,
-            chains,
-            mutations_per_pixel,
-            large_step_prob,
-            sigma,
+        IntegratorDesc::Mlt(p) => Integrator::Mlt(Mlt {
+            max_depth: p.max_depth.max(1) as u32,
+            bootstrap_samples: p.bootstrap_samples,
+            chains: p.chains,
+            mutations_per_pixel: p.mutations_per_pixel,
+            large_step_prob: p.large_step_prob,
+            sigma: p.sigma,
             strategy,
-            hide_emitters,
+            hide_emitters: p.hide_emitters,
         }),
     }
 }
@@ -282,35 +249,21 @@ fn integrator(
 /// tracer `base` that [`integrator`] made of it.
 fn guided_setup(d: &IntegratorDesc, base: &Integrator) -> Option<GuidedSetup> {
     match (*d, base) {
-        (
-            IntegratorDesc::Guided {
-                guide_probability,
-                spatial_threshold,
-                directional_threshold,
-                ..
-            },
-            Integrator::Path(pt),
-        ) => Some(GuidedSetup {
+        (IntegratorDesc::Guided(p), Integrator::Path(pt)) => Some(GuidedSetup {
             tracer: GuidedPathTracer {
-                guide_probability,
+                guide_probability: p.guide_probability,
                 ..GuidedPathTracer::from_path_tracer(pt)
             },
-            spatial_threshold,
-            directional_threshold,
+            spatial_threshold: p.spatial_threshold,
+            directional_threshold: p.directional_threshold,
         }),
         _ => None,
     }
 }
 
-/// What `guided` cannot do: hide emitters, or render a part of the samples or pixels (its
-/// training passes need every pixel, and a part's tree would differ from the whole's).
-fn check_guided(desc: &SceneDescription, opts: &RenderOptions) -> Result<(), RenderError> {
-    if desc.hide_emitters {
-        return Err(RenderError::Unsupported {
-            integrator: "guided",
-            reason: "hide_emitters is not supported by the guided path tracer yet",
-        });
-    }
+/// What `guided` cannot do: render a part of the samples or pixels (its training passes
+/// need every pixel, and a part's tree would differ from the whole's).
+fn check_guided(opts: &RenderOptions) -> Result<(), RenderError> {
     if opts.samples.is_some() || opts.crop.is_some() {
         return Err(RenderError::Split(
             "guided cannot be split by --samples or --crop: every part would train its own              guide, so parts would not add up to one render"

@@ -2,7 +2,9 @@
 //! `--spp`, `--sampler`) and the sampler's rounding, and only then held to the work limit.
 
 use super::{RenderError, RenderOptions};
-use crate::description::{Checked, IntegratorDesc, SampleCount, SamplerKind, SceneDescription};
+use crate::description::{
+    Checked, IntegratorDesc, MltParams, SampleCount, SamplerKind, SceneDescription,
+};
 use mcrt::sampling::sampler::{
     AnySampler, CmjSampler, HaltonSampler, IndependentSampler, R2Sampler, Sampler, Sobol4dSampler,
     SobolSampler, StratifiedSampler,
@@ -70,7 +72,7 @@ pub(super) fn resolve(
 /// The integrator that `--integrator` makes of the scene's, checked: MLT's depth with its
 /// own message (a scene's unlimited depth becomes MLT's default), then every parameter.
 fn overridden(integrator: IntegratorDesc) -> Result<Checked<IntegratorDesc>, RenderError> {
-    if let IntegratorDesc::Mlt { max_depth, .. } = integrator {
+    if let IntegratorDesc::Mlt(MltParams { max_depth, .. }) = integrator {
         let most = crate::validate::MAX_MLT_DEPTH;
         if !(1..=most).contains(&max_depth) {
             return Err(RenderError::Invalid(format!(
@@ -111,12 +113,8 @@ mod tests {
         let mut d = crate::cornell_box::cornell_box_with(1, 8, -1);
         if let Some(m) = mlt_mutations {
             let mut mlt = IntegratorDesc::MLT_DEFAULTS;
-            if let IntegratorDesc::Mlt {
-                mutations_per_pixel,
-                ..
-            } = &mut mlt
-            {
-                *mutations_per_pixel = m;
+            if let IntegratorDesc::Mlt(p) = &mut mlt {
+                p.mutations_per_pixel = m;
             }
             // A count the integrator's constructor refuses never reaches `resolve`.
             match crate::description::Checked::new(mlt) {
