@@ -108,18 +108,17 @@ impl Ndf {
             Ndf::GgxAnisotropic(_, visible) => (true, visible),
             Ndf::BeckmannAnisotropic(_, visible) => (false, visible),
         };
-        let built = match (u == v, ggx, visible) {
-            (true, true, true) => Ggx::new(u).map(Ndf::Ggx),
-            (true, false, true) => Beckmann::new(u).map(Ndf::Beckmann),
-            (true, true, false) => Ggx::new(u).map(Ndf::GgxAll),
-            (true, false, false) => Beckmann::new(u).map(Ndf::BeckmannAll),
-            (false, true, _) => GgxAnisotropic::new(u, v).map(|g| Ndf::GgxAnisotropic(g, visible)),
+        // Clamped, not checked: this runs at every hit of a textured roughness.
+        match (u == v, ggx, visible) {
+            (true, true, true) => Ndf::Ggx(Ggx::clamped(u)),
+            (true, false, true) => Ndf::Beckmann(Beckmann::clamped(u)),
+            (true, true, false) => Ndf::GgxAll(Ggx::clamped(u)),
+            (true, false, false) => Ndf::BeckmannAll(Beckmann::clamped(u)),
+            (false, true, _) => Ndf::GgxAnisotropic(GgxAnisotropic::clamped(u, v), visible),
             (false, false, _) => {
-                BeckmannAnisotropic::new(u, v).map(|b| Ndf::BeckmannAnisotropic(b, visible))
+                Ndf::BeckmannAnisotropic(BeckmannAnisotropic::clamped(u, v), visible)
             }
-        };
-        // The limits keep both inside the warps' range, so this never falls back.
-        built.unwrap_or(*self)
+        }
     }
 
     /// Whether the distribution is anisotropic (it turns with the shading tangent).

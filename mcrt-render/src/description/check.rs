@@ -31,13 +31,16 @@ pub trait Check {
 /// new one.
 ///
 /// ```
-/// use mcrt_render::description::{Checked, IntegratorDesc};
+/// use mcrt_render::description::{Checked, IntegratorDesc, PathParams};
 ///
-/// let path = Checked::new(IntegratorDesc::Path { max_depth: 4, rr_depth: 5 }).unwrap();
+/// let p = |max_depth, rr_depth| {
+///     IntegratorDesc::Path(PathParams { max_depth, rr_depth, ..PathParams::DEFAULT })
+/// };
+/// let path = Checked::new(p(4, 5)).unwrap();
 /// assert_eq!(path.max_depth(), Some(4));
-/// let e = Checked::new(IntegratorDesc::Path { max_depth: 4, rr_depth: 0 }).unwrap_err();
+/// let e = Checked::new(p(4, 0)).unwrap_err();
 /// assert_eq!(e.param, "rr_depth");
-/// let deeper = path.changed(|i| *i = IntegratorDesc::Path { max_depth: 8, rr_depth: 5 });
+/// let deeper = path.changed(|i| *i = p(8, 5));
 /// assert_eq!(deeper.unwrap().max_depth(), Some(8));
 /// ```
 #[derive(Clone, Copy, PartialEq)]

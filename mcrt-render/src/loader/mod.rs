@@ -20,13 +20,14 @@
 //!
 //! ```
 //! use mcrt_render::loader::parse_scene;
-//! use mcrt_render::description::IntegratorDesc;
+//! use mcrt_render::description::{IntegratorDesc, PathParams};
 //! let xml = r#"<scene version="3.0.0">
 //!     <default name="depth" value="3"/>
 //!     <integrator type="path"><integer name="max_depth" value="$depth"/></integrator>
 //! </scene>"#;
 //! let d = parse_scene(xml, None, &[("depth".into(), "2".into())]).unwrap();
-//! assert_eq!(d.integrator, IntegratorDesc::Path { max_depth: 2, rr_depth: 5 });
+//! let path = PathParams { max_depth: 2, ..PathParams::DEFAULT };
+//! assert_eq!(d.integrator, IntegratorDesc::Path(path));
 //! ```
 
 mod bsdf;

@@ -16,8 +16,8 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::microfacet::check_alpha;
 use super::microfacet::special::beckmann_lambda_exact;
+use super::microfacet::{check_alpha, clamp_alpha};
 use super::visible_normals::check_wi;
 use super::{Beckmann, BeckmannVisible, Ggx, GgxVisible, Warp};
 use crate::sampling::SamplingError;
@@ -35,6 +35,15 @@ impl Alphas {
             u: check_alpha(alpha_u)?,
             v: check_alpha(alpha_v)?,
         })
+    }
+
+    /// Both clamped into [1e-4, 1e4] (NaN to 1e-4), without a check.
+    #[inline]
+    fn clamped(alpha_u: f32, alpha_v: f32) -> Self {
+        Self {
+            u: clamp_alpha(alpha_u),
+            v: clamp_alpha(alpha_v),
+        }
     }
 
     /// `w` in the α = 1 configuration (not normalised).
@@ -110,6 +119,15 @@ impl GgxAnisotropic {
         Ok(Self {
             a: Alphas::new(alpha_u, alpha_v)?,
         })
+    }
+
+    /// Roughness `alpha_u` along x and `alpha_v` along y, each clamped into [1e-4, 1e4] (NaN
+    /// to 1e-4), without a check: for a roughness that varies per shading point.
+    #[inline]
+    pub fn clamped(alpha_u: f32, alpha_v: f32) -> Self {
+        Self {
+            a: Alphas::clamped(alpha_u, alpha_v),
+        }
     }
 
     /// (αᵤ, αᵥ).
@@ -196,6 +214,15 @@ impl BeckmannAnisotropic {
         Ok(Self {
             a: Alphas::new(alpha_u, alpha_v)?,
         })
+    }
+
+    /// Roughness `alpha_u` along x and `alpha_v` along y, each clamped into [1e-4, 1e4] (NaN
+    /// to 1e-4), without a check: for a roughness that varies per shading point.
+    #[inline]
+    pub fn clamped(alpha_u: f32, alpha_v: f32) -> Self {
+        Self {
+            a: Alphas::clamped(alpha_u, alpha_v),
+        }
     }
 
     /// (αᵤ, αᵥ).

@@ -35,6 +35,17 @@ pub(crate) fn check_alpha(alpha: f32) -> Result<f32, SamplingError> {
     )
 }
 
+/// `alpha` clamped into [1e-4, 1e4] (NaN to 1e-4): a roughness [`check_alpha`] accepts,
+/// for a value that varies per shading point (a textured roughness), made without a check.
+#[inline]
+pub(crate) fn clamp_alpha(alpha: f32) -> f32 {
+    if alpha >= 1e-4 {
+        alpha.min(1e4)
+    } else {
+        1e-4
+    }
+}
+
 /// (sin² θ, cos² θ)·|m|² split: returns (x² + y², z²) of `m`.
 fn radial_axial(m: Vec3) -> (f32, f32) {
     (m.x * m.x + m.y * m.y, m.z * m.z)
@@ -104,6 +115,16 @@ impl Beckmann {
         Ok(Self {
             alpha: check_alpha(alpha)?,
         })
+    }
+
+    /// The distribution of roughness `alpha` clamped into [1e-4, 1e4] (NaN to 1e-4), without
+    /// a check: for a roughness that varies per shading point (a textured roughness), where
+    /// Mitsuba 3 clamps the same way.
+    #[inline]
+    pub fn clamped(alpha: f32) -> Self {
+        Self {
+            alpha: clamp_alpha(alpha),
+        }
     }
 
     /// The exact Smith Λ(w) = (e^{−a²}/(a√π) − erfc(a))/2 with a = 1/(α tan θ_w), computed
@@ -221,6 +242,16 @@ impl Ggx {
             alpha: check_alpha(alpha)?,
         })
     }
+
+    /// The distribution of roughness `alpha` clamped into [1e-4, 1e4] (NaN to 1e-4), without
+    /// a check: for a roughness that varies per shading point (a textured roughness), where
+    /// Mitsuba 3 clamps the same way.
+    #[inline]
+    pub fn clamped(alpha: f32) -> Self {
+        Self {
+            alpha: clamp_alpha(alpha),
+        }
+    }
 }
 
 impl MicrofacetDistribution for Ggx {
@@ -292,6 +323,27 @@ impl InvertibleWarp for Ggx {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn clamped_equals_new_in_range_and_clamps_outside() {
+        for a in [1e-4f32, 0.05, 0.3, 1.0, 7.5, 1e4] {
+            assert_eq!(Ggx::clamped(a), Ggx::new(a).unwrap());
+            assert_eq!(Beckmann::clamped(a), Beckmann::new(a).unwrap());
+        }
+        for (a, want) in [
+            (0.0f32, 1e-4f32),
+            (-3.0, 1e-4),
+            (f32::NAN, 1e-4),
+            (1e9, 1e4),
+        ] {
+            assert_eq!(Ggx::clamped(a).alpha(), want, "{a}");
+            assert_eq!(Beckmann::clamped(a).alpha(), want, "{a}");
+        }
+        let g = super::super::GgxAnisotropic::clamped(f32::NAN, 0.5);
+        assert_eq!(g.alphas(), (1e-4, 0.5));
+        let b = super::super::BeckmannAnisotropic::clamped(0.2, f32::INFINITY);
+        assert_eq!(b.alphas(), (0.2, 1e4));
+    }
 
     const EDGES: [f32; 3] = [0.0, 0.5, ONE_MINUS_EPSILON];
 
