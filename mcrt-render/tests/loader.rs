@@ -659,3 +659,37 @@ fn orthogonal_maps_to_the_cmj_sampler_with_a_prime_square_count() {
         "{e}"
     );
 }
+
+/// A shape's `<ref>` may name an area emitter declared by id, before or after the shape (as
+/// Mitsuba 3 reads `variants_cbox_spectral.xml`); the declaration alone adds no light, and a
+/// `<ref>` to a BSDF beside it still works.
+#[test]
+fn a_shape_may_refer_to_an_area_emitter_declared_by_id() {
+    let d = parse(
+        r#"<scene version="3.0.0">
+            <bsdf type="diffuse" id="white"/>
+            <shape type="rectangle"><ref id="light"/><ref id="white"/></shape>
+            <emitter type="area" id="light"><rgb name="radiance" value="2, 3, 4"/></emitter>
+            <emitter type="area" id="unused"><rgb name="radiance" value="1"/></emitter>
+            <shape type="disk"><ref id="light"/></shape>
+        </scene>"#,
+        &[],
+    )
+    .expect("loads");
+    assert_eq!(d.shapes.len(), 2);
+    assert!(d.emitters.is_empty(), "{:?}", d.emitters);
+    for s in &d.shapes {
+        let e = s.emitter.as_ref().expect("the shape emits");
+        assert_eq!(e.radiance.get(), Vec3::new(2.0, 3.0, 4.0));
+    }
+    assert!(matches!(d.shapes[0].bsdf, BsdfDesc::Diffuse { .. }));
+    // A bad declared emitter is an error even where no shape uses it.
+    let e = parse(
+        r#"<scene version="3.0.0">
+            <emitter type="area" id="bad"><rgb name="radiance" value="-1"/></emitter>
+        </scene>"#,
+        &[],
+    )
+    .unwrap_err();
+    assert_eq!(e.line, Some(2), "{e}");
+}

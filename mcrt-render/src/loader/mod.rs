@@ -153,6 +153,10 @@ pub fn parse_scene_with_warnings(
                     desc.origins.shapes.push(Some(ctx.origin(c)));
                 }
             }
+            // An area emitter with an id is declared for a shape's `ref` (as in Mitsuba 3).
+            "emitter" if c.attr("type") == Some("area") && c.attr("id").is_some() => {
+                declaration(&ctx, || emitter::read_area(&ctx, c).map(|_| ()))?;
+            }
             "emitter" => {
                 let em = emitter::read_emitter(&ctx, c)?;
                 if matches!(

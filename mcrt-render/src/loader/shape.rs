@@ -74,14 +74,18 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<Checked<ShapeDes
     shape.flip_normals = p.get_bool(&defs::FLIP_NORMALS)?;
     let (mut bsdf, mut emitter, mut emission_texture) = (None, None, None);
     for o in &p.objects {
-        let first = match o.tag.as_str() {
-            "bsdf" | "ref" => bsdf.replace(read_bsdf_or_ref(ctx, o)?).is_none(),
-            "emitter" => {
-                let (desc, tex) = read_area(ctx, o)?;
+        // A `<ref>` names a BSDF, or (as Mitsuba 3 allows) an area emitter declared by id.
+        let area = (o.tag == "emitter")
+            .then_some(*o)
+            .or_else(|| referenced_emitter(ctx, o));
+        let first = match (area, o.tag.as_str()) {
+            (Some(a), _) => {
+                let (desc, tex) = read_area(ctx, a)?;
                 emission_texture = tex;
                 emitter.replace(desc).is_none()
             }
-            _ => {
+            (None, "bsdf" | "ref") => bsdf.replace(read_bsdf_or_ref(ctx, o)?).is_none(),
+            (None, _) => {
                 return Err(ctx.err(
                     o,
                     SceneErrorKind::Misplaced(format!("<{}> inside a <shape>", o.tag)),
@@ -107,4 +111,13 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<Checked<ShapeDes
     let shape = Checked::new(shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(shape)
+}
+
+/// The `<emitter>` a `<ref>` names, if it names one.
+fn referenced_emitter<'a>(ctx: &Ctx<'a>, o: &Elem) -> Option<&'a Elem> {
+    if o.tag != "ref" {
+        return None;
+    }
+    let target = ctx.ids.get(o.attr("id")?)?;
+    (target.tag == "emitter").then_some(*target)
 }
