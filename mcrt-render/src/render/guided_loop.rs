@@ -1,8 +1,8 @@
 //! The render loop of the guided path tracer: training passes of doubling sample counts
 //! ([`GuidingSchedule`]), each guided by the SD-tree the previous pass trained and recording
-//! into a fresh tree with the refined structure, then the final pass, whose image is the
-//! render's (Müller, Gross & Novák 2017, "Practical Path Guiding for Efficient
-//! Light-Transport Simulation", CGF 36(4)).
+//! into a fresh tree with the refined structure, then the final pass; the image combines the
+//! final pass with the last training passes ([`combine`]) (Müller, Gross & Novák 2017,
+//! "Practical Path Guiding for Efficient Light-Transport Simulation", CGF 36(4)).
 //!
 //! Determinism: every pass draws the pixel samples of its own index range (pass `k` the
 //! `2^k` indices after the previous passes', the final pass the rest of the sampler's
