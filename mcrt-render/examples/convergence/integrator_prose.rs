@@ -21,8 +21,16 @@ needs a limit and gets 12 segments: the longer paths carry about 0.1% of the Cor
 box's light, below the errors measured here. The caustic box's reference is noisier than \
 the others (its own two halves differ by 0.72% on 32×32 blocks), so its relMSE has a \
 higher floor. Raw numbers: `convergence/integrators.csv`.\n\n\
+The learned sampling of issue 28 has its own three scenes (`tests/data/issue28/`, 128×128, \
+Mitsuba 3 references): *many-lights* (420 rectangle lights and an emitting sphere of 10 000 \
+triangles), where the path tracer chooses lights with the light BVH (its default there) \
+against the same tracer choosing by power (`--light-bvh off`); *indirect* (a lamp facing \
+the ceiling under an opaque shade) and the plain Cornell box, where the guided path tracer \
+runs against the path tracer, its time including its training passes (equal total time); \
+and *door* (light only through a door left ajar), where guiding meets BDPT and MLT.\n\n\
 This section alone is made by `cargo run --release --features plots -p mcrt-render --example convergence -- --integrators \
-[--max-spp N] [--kinds path,bdpt,mlt] [--scenes cornell-box,veach-mis,cornell-box-caustic] \
+[--max-spp N] [--kinds path,path-power,guided,bdpt,mlt] \
+[--scenes cornell-box,veach-mis,cornell-box-caustic,many-lights,indirect,door] \
 [--time-limit SECONDS] [--note TEXT]` (ladder 1, 4, …, 256 by default). It merges its \
 renders into the CSV, redraws the plots and replaces only this section of the page; \
 `--max-spp 0` renders nothing and rebuilds the section from the CSV. A full run of the \

@@ -1,7 +1,9 @@
 //! The integrator study (section 4): path tracing, bidirectional path tracing and Metropolis
-//! light transport on three scenes, each render timed and compared with the reference;
-//! a relMSE-against-time plot, a relMSE table and an efficiency table per scene. The
-//! renderer is reached only through the `render` closure given to [`run`].
+//! light transport on three scenes, and the learned sampling of issue 28 (the light BVH
+//! against the power choice, the guided path tracer against the path tracer) on the scenes
+//! made for it; each render timed and compared with the reference; a relMSE-against-time
+//! plot, a relMSE table and an efficiency table per scene. The renderer is reached only
+//! through the `render` closure given to [`run`].
 
 use crate::image::{read_exr, rel_mse, Rgb};
 use crate::plot::{slope_guide, Look, Marker, Plot, Series};
@@ -9,19 +11,64 @@ use crate::render_study::RenderPoint;
 use crate::table::{markdown, num};
 use std::path::{Path, PathBuf};
 
-/// Integrators, in table order (`path` is PT with MIS, `mlt` is PSSMLT over BDPT paths).
-pub const KINDS: [&str; 3] = ["path", "bdpt", "mlt"];
+/// Integrators, in table order (`path` is PT with MIS and the scene's light choice,
+/// `path-power` the same with the light BVH off, `guided` the guided path tracer with its
+/// training, `mlt` PSSMLT over BDPT paths).
+pub const KINDS: [&str; 5] = ["path", "path-power", "guided", "bdpt", "mlt"];
 
-/// The study's lines `(integrator, sampler)`; MLT draws its own primary samples (`pss`).
-pub const LINES: [(&str, &str); 4] = [
+/// The lines `(integrator, sampler)` of the first three scenes; MLT draws its own primary
+/// samples (`pss`).
+const CLASSIC: &[(&str, &str)] = &[
     ("path", "sobol"),
     ("bdpt", "independent"),
     ("bdpt", "sobol"),
     ("mlt", "pss"),
 ];
 
-/// Names of the study's scenes (for `--scenes`).
-pub const SCENES: [&str; 3] = ["cornell-box", "veach-mis", "cornell-box-caustic"];
+/// The Cornell box's lines: the classic ones and the guided tracer (the cost of guiding
+/// where it has nothing to learn).
+const CORNELL: &[(&str, &str)] = &[
+    ("path", "sobol"),
+    ("guided", "sobol"),
+    ("bdpt", "independent"),
+    ("bdpt", "sobol"),
+    ("mlt", "pss"),
+];
+
+/// The many-lights room: the light BVH (the default there) against the power choice.
+const MANY_LIGHTS: &[(&str, &str)] = &[("path", "sobol"), ("path-power", "sobol")];
+
+/// The indirect room: the guided tracer against the path tracer.
+const INDIRECT: &[(&str, &str)] = &[("path", "sobol"), ("guided", "sobol")];
+
+/// The door scene: guiding against BDPT and MLT.
+const DOOR: &[(&str, &str)] = &[
+    ("path", "sobol"),
+    ("guided", "sobol"),
+    ("bdpt", "sobol"),
+    ("mlt", "pss"),
+];
+
+/// Names of the study's scenes (for `--scenes`), in page order.
+pub const SCENES: [&str; 6] = [
+    "cornell-box",
+    "veach-mis",
+    "cornell-box-caustic",
+    "many-lights",
+    "indirect",
+    "door",
+];
+
+/// The lines of a scene of [`SCENES`], in table order.
+pub fn lines_of(scene: &str) -> &'static [(&'static str, &'static str)] {
+    match scene {
+        "cornell-box" => CORNELL,
+        "many-lights" => MANY_LIGHTS,
+        "indirect" => INDIRECT,
+        "door" => DOOR,
+        _ => CLASSIC,
+    }
+}
 
 /// A scene of the study: its name, the scene file and the reference image.
 #[derive(Debug, Clone, PartialEq)]
@@ -34,19 +81,25 @@ pub struct Scene {
     pub reference: PathBuf,
 }
 
-/// The three scenes, paths under the crate root.
+/// The scenes, paths under the crate root (issue 28's in `tests/data/issue28/`).
 pub fn scenes(root: &Path) -> Vec<Scene> {
     SCENES
         .iter()
-        .map(|&name| Scene {
-            name,
-            file: root.join(format!("tests/data/{name}.xml")),
-            reference: root.join(format!("tests/data/{name}.exr")),
+        .map(|&name| {
+            let dir = match name {
+                "many-lights" | "indirect" | "door" => root.join("tests/data/issue28"),
+                _ => root.join("tests/data"),
+            };
+            Scene {
+                name,
+                file: dir.join(format!("{name}.xml")),
+                reference: dir.join(format!("{name}.exr")),
+            }
         })
         .collect()
 }
 
-/// Renders a scene with an integrator and sampler (names from [`LINES`]) at `spp` (MLT:
+/// Renders a scene with an integrator and sampler (names from [`lines_of`]) at `spp` (MLT:
 /// mutations per pixel); returns the image and the render time in seconds.
 pub type Render<'a> = dyn Fn(&Scene, &str, &str, u32) -> Result<(Rgb, f64), String> + 'a;
 
@@ -73,7 +126,8 @@ pub fn run(render: &Render, scenes: &[Scene], plan: &Plan) -> (Vec<RenderPoint>,
                 continue;
             }
         };
-        for (kind, sampler) in LINES.into_iter().filter(|l| (plan.wanted)(l.0, l.1)) {
+        let wanted = lines_of(scene.name).iter().copied();
+        for (kind, sampler) in wanted.filter(|l| (plan.wanted)(l.0, l.1)) {
             let mut last: Option<f64> = None;
             for spp in crate::render_study::spp_ladder(plan.max_spp) {
                 let what = format!("{} {kind}/{sampler} {spp} spp", scene.name);
@@ -110,9 +164,9 @@ pub fn run(render: &Render, scenes: &[Scene], plan: &Plan) -> (Vec<RenderPoint>,
     (points, skipped)
 }
 
-/// The lines present for `scene`, in [`LINES`] order, each sorted by spp.
+/// The lines present for `scene`, in [`lines_of`] order, each sorted by spp.
 fn lines(points: &[RenderPoint], scene: &str) -> Vec<(String, Vec<RenderPoint>)> {
-    LINES
+    lines_of(scene)
         .iter()
         .filter_map(|&(k, sa)| {
             let mut pts: Vec<RenderPoint> = points
@@ -126,10 +180,25 @@ fn lines(points: &[RenderPoint], scene: &str) -> Vec<(String, Vec<RenderPoint>)>
         .collect()
 }
 
+/// A kind's palette colour: the classic three keep the colours of the earlier plots
+/// (0, 2, 4), the learned ones take colours between them.
+fn colour(kind: &str) -> Option<usize> {
+    Some(match kind {
+        "path" => 0,
+        "path-power" => 1,
+        "bdpt" => 2,
+        "guided" => 3,
+        "mlt" => 4,
+        _ => return None,
+    })
+}
+
 /// The name of a line in tables and legends.
 fn label(kind: &str, sampler: &str) -> String {
     match kind {
         "path" => format!("PT (MIS power) / {sampler}"),
+        "path-power" => format!("PT, light chosen by power / {sampler}"),
+        "guided" => format!("guided PT (training included) / {sampler}"),
         "bdpt" => format!("BDPT (MIS power) / {sampler}"),
         "mlt" => "MLT (PSSMLT, BDPT paths)".into(),
         other => format!("{other} / {sampler}"),
@@ -148,7 +217,7 @@ pub fn plot(points: &[RenderPoint], scene: &str) -> Option<Plot> {
                 points: pts.iter().map(|p| (p.seconds, p.rel_mse)).collect(),
                 guide: false,
                 look: Look {
-                    colour: KINDS.iter().position(|x| x == k).map(|i| 2 * i),
+                    colour: colour(k),
                     marker: if sa == "sobol" {
                         Marker::Square
                     } else {
@@ -270,7 +339,7 @@ mod tests {
 
     #[test]
     fn study_with_a_fake_renderer() {
-        let caustic: Vec<Scene> = scenes(&root()).into_iter().skip(2).collect();
+        let caustic: Vec<Scene> = scenes(&root()).into_iter().skip(2).take(1).collect();
         assert_eq!(caustic[0].name, "cornell-box-caustic");
         let plan = Plan {
             wanted: &|_, _| true,
@@ -289,6 +358,22 @@ mod tests {
         assert!(p.series[3].guide && plot(&points, "veach-mis").is_none());
         let mlt = &points[8];
         assert!(mlt.rel_mse.is_finite() && mlt.strategy == "mlt" && mlt.spp == 16);
+    }
+
+    #[test]
+    fn every_scene_has_its_file_its_reference_and_lines_of_known_kinds() {
+        let all = scenes(&root());
+        assert_eq!(all.len(), SCENES.len());
+        for s in &all {
+            assert!(s.file.is_file() && s.reference.is_file(), "{s:?}");
+            assert!(!lines_of(s.name).is_empty());
+            for (k, _) in lines_of(s.name) {
+                assert!(KINDS.contains(k) && colour(k).is_some(), "{k}");
+            }
+        }
+        assert_eq!(lines_of("many-lights"), MANY_LIGHTS);
+        assert!(lines_of("cornell-box").contains(&("guided", "sobol")));
+        assert!(!lines_of("veach-mis").iter().any(|l| l.0 == "guided"));
     }
 
     #[test]

@@ -5,7 +5,8 @@
 //!     [--max-spp N] [--no-render] [--strategies bsdf,light,balance,power]
 //!     [--samplers independent,stratified,sobol] [--scenes cornell-box,veach-mis] [--note TEXT]
 //! cargo run --release --features plots -p mcrt-render --example convergence -- --integrators [--max-spp N]
-//!     [--kinds path,bdpt,mlt] [--scenes cornell-box,veach-mis,cornell-box-caustic]
+//!     [--kinds path,path-power,guided,bdpt,mlt]
+//!     [--scenes cornell-box,veach-mis,cornell-box-caustic,many-lights,indirect,door]
 //!     [--time-limit SECONDS] [--note TEXT]
 //! ```
 //!
@@ -19,7 +20,8 @@
 //! or redo lines
 //! to an earlier study.
 //!
-//! `--integrators` runs only the integrator study (PT, BDPT, MLT; ladder to 256 spp unless
+//! `--integrators` runs only the integrator study (PT, BDPT, MLT, and issue 28's light BVH and
+//! guided tracer on its scenes; ladder to 256 spp unless
 //! `--max-spp` says otherwise), merges it into `convergence/integrators.csv`, redraws its
 //! plots and replaces section 4 of an existing `convergence.md` (the rest of the page is
 //! kept); other runs carry section 4 over unchanged. `--time-limit` skips a render, and the

@@ -14,6 +14,7 @@ use mcrt::integrator::Strategy;
 use mcrt_render::description::{
     Checked, IntegratorDesc, IntegratorKind, MltParams, SamplerKind, SceneDescription,
 };
+use mcrt_render::light::LightBvhUse;
 use mcrt_render::render::{RenderOptions, Renderer};
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -119,10 +120,11 @@ impl Backend for CrateRenderer {
 /// carry about 0.1% of the Cornell box's light, below the error the study measures.
 const MLT_MAX_DEPTH: i32 = 12;
 
-/// One render of the integrator study: `kind` is `path`, `bdpt` or `mlt` (MIS with the
-/// power heuristic throughout), `sampler` a sampler name (ignored by MLT), `spp` samples
-/// or, for MLT, mutations per pixel. Returns the image and the render time in seconds
-/// (for MLT including its bootstrap).
+/// One render of the integrator study: `kind` is `path`, `path-power` (the path tracer with
+/// the light BVH off), `guided`, `bdpt` or `mlt` (MIS with the power heuristic throughout),
+/// `sampler` a sampler name (ignored by MLT), `spp` samples or, for MLT, mutations per
+/// pixel. Returns the image and the render time in seconds (for MLT including its
+/// bootstrap, for the guided tracer its training passes).
 pub fn render_integrator(
     spec: &crate::integrator_study::Scene,
     kind: &str,
@@ -130,7 +132,13 @@ pub fn render_integrator(
     spp: u32,
 ) -> Result<(Rgb, f64), String> {
     let mut desc = mcrt_render::loader::load_scene(&spec.file, &[]).map_err(|e| e.to_string())?;
-    let integrator = IntegratorKind::parse(kind).ok_or(format!("unknown integrator {kind}"))?;
+    let (integrator, light_bvh) = match kind {
+        "path-power" => (IntegratorKind::Path, LightBvhUse::Never),
+        _ => (
+            IntegratorKind::parse(kind).ok_or(format!("unknown integrator {kind}"))?,
+            LightBvhUse::Auto,
+        ),
+    };
     if integrator == IntegratorKind::Mlt {
         let depth = desc.integrator.max_depth().unwrap_or(-1);
         desc.integrator = Checked::new(IntegratorDesc::Mlt(MltParams {
@@ -147,6 +155,7 @@ pub fn render_integrator(
         strategy: Some(Strategy::MisPower),
         integrator: Some(integrator),
         sampler: (kind != "mlt").then(|| sampler_kind(sampler)).transpose()?,
+        light_bvh,
         ..RenderOptions::default()
     };
     let renderer = Renderer::new(&desc, &opts).map_err(|e| e.to_string())?;
