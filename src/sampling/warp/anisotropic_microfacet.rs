@@ -91,6 +91,63 @@ fn g1_from(lambda: f32, w: Vec3, m: Vec3) -> f32 {
     1.0 / (1.0 + lambda)
 }
 
+/// What the anisotropic GGX and Beckmann distributions share around their own `d` and
+/// `lambda`: the checked and the clamped constructors, the roughness pair, Smith's G₁ and G,
+/// and the warp (the isotropic α = 1 sample `$unit::UNIT`, stretched; pdf D(m) cos θ_m).
+macro_rules! anisotropic_common {
+    ($ty:ident, $unit:ident) => {
+        impl $ty {
+            /// Roughness `alpha_u` along x and `alpha_v` along y, each in [1e-4, 1e4].
+            #[inline]
+            pub fn new(alpha_u: f32, alpha_v: f32) -> Result<Self, SamplingError> {
+                Ok(Self {
+                    a: Alphas::new(alpha_u, alpha_v)?,
+                })
+            }
+
+            /// Roughness `alpha_u` along x and `alpha_v` along y, each clamped into
+            /// [1e-4, 1e4] (NaN to 1e-4), without a check: for a roughness that varies per
+            /// shading point.
+            #[inline]
+            pub fn clamped(alpha_u: f32, alpha_v: f32) -> Self {
+                Self {
+                    a: Alphas::clamped(alpha_u, alpha_v),
+                }
+            }
+
+            /// (αᵤ, αᵥ).
+            pub fn alphas(&self) -> (f32, f32) {
+                (self.a.u, self.a.v)
+            }
+
+            /// Smith masking 1/(1 + Λ(w)), 0 when w sees the back of m.
+            pub fn g1(&self, w: Vec3, m: Vec3) -> f32 {
+                g1_from(self.lambda(w), w, m)
+            }
+
+            /// Separable Smith shadowing-masking G₁(wi, m) G₁(wo, m) (Mitsuba 3's `G`).
+            pub fn g(&self, wi: Vec3, wo: Vec3, m: Vec3) -> f32 {
+                self.g1(wi, m) * self.g1(wo, m)
+            }
+        }
+
+        impl Warp for $ty {
+            type Point = Vec3;
+
+            #[inline]
+            fn sample(&self, u: Vec2) -> Vec3 {
+                self.a.unstretch($unit::UNIT.sample(u))
+            }
+
+            /// D(m) cos θ_m per steradian; 0 for m.z ≤ 0.
+            #[inline]
+            fn pdf(&self, m: Vec3) -> f32 {
+                self.d(m) * cos_theta(m).max(0.0)
+            }
+        }
+    };
+}
+
 /// The anisotropic GGX distribution
 /// D(m) = 1/(π αᵤ αᵥ cos⁴θ (1 + tan²θ (cos²φ/αᵤ² + sin²φ/αᵥ²))²), sampled with pdf
 /// D(m) cos θ_m per steradian (the α = 1 GGX sample, stretched).
@@ -112,29 +169,9 @@ pub struct GgxAnisotropic {
     a: Alphas,
 }
 
+anisotropic_common!(GgxAnisotropic, Ggx);
+
 impl GgxAnisotropic {
-    /// Roughness `alpha_u` along x and `alpha_v` along y, each in [1e-4, 1e4].
-    #[inline]
-    pub fn new(alpha_u: f32, alpha_v: f32) -> Result<Self, SamplingError> {
-        Ok(Self {
-            a: Alphas::new(alpha_u, alpha_v)?,
-        })
-    }
-
-    /// Roughness `alpha_u` along x and `alpha_v` along y, each clamped into [1e-4, 1e4] (NaN
-    /// to 1e-4), without a check: for a roughness that varies per shading point.
-    #[inline]
-    pub fn clamped(alpha_u: f32, alpha_v: f32) -> Self {
-        Self {
-            a: Alphas::clamped(alpha_u, alpha_v),
-        }
-    }
-
-    /// (αᵤ, αᵥ).
-    pub fn alphas(&self) -> (f32, f32) {
-        (self.a.u, self.a.v)
-    }
-
     /// D(m) per steradian of m, normalised in projected area; 0 for m.z ≤ 0. `m` need not
     /// be unit length.
     pub fn d(&self, m: Vec3) -> f32 {
@@ -156,32 +193,6 @@ impl GgxAnisotropic {
             return f32::INFINITY;
         }
         t / (2.0 * (1.0 + (1.0 + t).sqrt()))
-    }
-
-    /// Smith masking 1/(1 + Λ(w)), 0 when w sees the back of m.
-    pub fn g1(&self, w: Vec3, m: Vec3) -> f32 {
-        g1_from(self.lambda(w), w, m)
-    }
-
-    /// Separable Smith shadowing-masking G₁(wi, m) G₁(wo, m) (Mitsuba 3's `G`).
-    pub fn g(&self, wi: Vec3, wo: Vec3, m: Vec3) -> f32 {
-        self.g1(wi, m) * self.g1(wo, m)
-    }
-}
-
-impl Warp for GgxAnisotropic {
-    type Point = Vec3;
-
-    #[inline]
-    fn sample(&self, u: Vec2) -> Vec3 {
-        let unit = Ggx::new(1.0).unwrap_or_else(|e| unreachable!("α = 1: {e}"));
-        self.a.unstretch(unit.sample(u))
-    }
-
-    /// D(m) cos θ_m per steradian; 0 for m.z ≤ 0.
-    #[inline]
-    fn pdf(&self, m: Vec3) -> f32 {
-        self.d(m) * cos_theta(m).max(0.0)
     }
 }
 
@@ -207,29 +218,9 @@ pub struct BeckmannAnisotropic {
     a: Alphas,
 }
 
+anisotropic_common!(BeckmannAnisotropic, Beckmann);
+
 impl BeckmannAnisotropic {
-    /// Roughness `alpha_u` along x and `alpha_v` along y, each in [1e-4, 1e4].
-    #[inline]
-    pub fn new(alpha_u: f32, alpha_v: f32) -> Result<Self, SamplingError> {
-        Ok(Self {
-            a: Alphas::new(alpha_u, alpha_v)?,
-        })
-    }
-
-    /// Roughness `alpha_u` along x and `alpha_v` along y, each clamped into [1e-4, 1e4] (NaN
-    /// to 1e-4), without a check: for a roughness that varies per shading point.
-    #[inline]
-    pub fn clamped(alpha_u: f32, alpha_v: f32) -> Self {
-        Self {
-            a: Alphas::clamped(alpha_u, alpha_v),
-        }
-    }
-
-    /// (αᵤ, αᵥ).
-    pub fn alphas(&self) -> (f32, f32) {
-        (self.a.u, self.a.v)
-    }
-
     /// D(m) per steradian of m, normalised in projected area; 0 for m.z ≤ 0. `m` need not
     /// be unit length.
     pub fn d(&self, m: Vec3) -> f32 {
@@ -264,32 +255,6 @@ impl BeckmannAnisotropic {
         }
         let a = 1.0 / f64::from(self.a.projected_tan2(w)).sqrt();
         beckmann_lambda_exact(a) as f32
-    }
-
-    /// Smith masking 1/(1 + Λ(w)), 0 when w sees the back of m.
-    pub fn g1(&self, w: Vec3, m: Vec3) -> f32 {
-        g1_from(self.lambda(w), w, m)
-    }
-
-    /// Separable Smith shadowing-masking G₁(wi, m) G₁(wo, m) (Mitsuba 3's `G`).
-    pub fn g(&self, wi: Vec3, wo: Vec3, m: Vec3) -> f32 {
-        self.g1(wi, m) * self.g1(wo, m)
-    }
-}
-
-impl Warp for BeckmannAnisotropic {
-    type Point = Vec3;
-
-    #[inline]
-    fn sample(&self, u: Vec2) -> Vec3 {
-        let unit = Beckmann::new(1.0).unwrap_or_else(|e| unreachable!("α = 1: {e}"));
-        self.a.unstretch(unit.sample(u))
-    }
-
-    /// D(m) cos θ_m per steradian; 0 for m.z ≤ 0.
-    #[inline]
-    fn pdf(&self, m: Vec3) -> f32 {
-        self.d(m) * cos_theta(m).max(0.0)
     }
 }
 

@@ -109,6 +109,10 @@ pub struct Beckmann {
 }
 
 impl Beckmann {
+    /// Beckmann of roughness 1: the configuration that the anisotropic Beckmann
+    /// distribution stretches (Heitz 2014, JCGT 3(2)), made without a check.
+    pub const UNIT: Beckmann = Beckmann { alpha: 1.0 };
+
     /// A Beckmann distribution of roughness `alpha` ∈ [1e-4, 1e4] (tested 1e-4 to 1).
     #[inline]
     pub fn new(alpha: f32) -> Result<Self, SamplingError> {
