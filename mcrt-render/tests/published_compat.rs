@@ -16,11 +16,8 @@
 
 mod common;
 
-use mcrt::glam::Vec3;
-use mcrt_render::film::{compare_blocks, read_exr};
-use mcrt_render::render::{RenderOptions, Renderer, ShapeSampling};
+use common::published::{render_and_compare, Comparison};
 use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
 
 const REFERENCE_SPP: u32 = 4096;
 const SPP: u32 = 128;
@@ -33,55 +30,16 @@ fn data(name: &str) -> PathBuf {
 
 fn check(scene: &str) {
     let desc = mcrt_render::loader::load_scene(&data(scene), &[]).unwrap_or_else(|e| panic!("{e}"));
-    let opts = RenderOptions {
-        spp: Some(SPP),
-        seed: Some(2025),
-        light_sampling: ShapeSampling::Area,
-        ..RenderOptions::default()
+    let reference = data(&scene.replace(".xml", ".exr"));
+    let c = Comparison {
+        block: 8,
+        min_blocks: 40,
+        // The per-test level of the shared Šidák budget.
+        alpha: 1.0 - (1.0 - common::ALPHA).powf(1.0 / f64::from(common::N_TESTS)),
+        allowance: 0.0,
+        ..Comparison::new(scene, reference, SPP, REFERENCE_SPP, 2025)
     };
-    let out = Renderer::new(&desc, &opts)
-        .expect("scene builds")
-        .render(&|_, _| {}, &AtomicBool::new(false));
-    assert_eq!(out.nonfinite_samples, 0, "{scene}: non-finite samples");
-    let (w, h) = (out.film.width(), out.film.height());
-    let reference = scene.replace(".xml", ".exr");
-    let (rw, rh, rf) = read_exr(&data(&reference)).expect("reference reads");
-    assert_eq!((w, h), (rw, rh), "{scene}: size differs from the reference");
-    let img = out.image();
-    let var = out.film.variance();
-    let scale = SPP as f32 / REFERENCE_SPP as f32;
-    let ref_var: Vec<Vec3> = var.iter().map(|v| *v * scale).collect();
-    // The per-test level of the shared Šidák budget.
-    let alpha = 1.0 - (1.0 - common::ALPHA).powf(1.0 / f64::from(common::N_TESTS));
-    let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, 8, 0.05, alpha);
-    println!(
-        "{scene}: {} blocks, worst |z| {:.2} (critical {:.2}), worst block {:.1}%, mean ratio {}",
-        r.blocks,
-        r.worst_z,
-        r.z_critical,
-        100.0 * r.worst_relative,
-        r.mean_ratio
-    );
-    assert_eq!(r.non_finite, 0, "{scene}: NaN or infinite pixels");
-    assert!(r.blocks >= 40, "{scene}: only {} blocks compared", r.blocks);
-    assert!(
-        r.worst_z.is_finite() && r.worst_z <= r.z_critical,
-        "{scene}: block z-test fails: worst |z| {:.2} > {:.2}",
-        r.worst_z,
-        r.z_critical
-    );
-    let n = img.len() as f32;
-    let ref_mean = rf.iter().copied().sum::<Vec3>() / n;
-    let var_mean = var.iter().copied().sum::<Vec3>() / (n * n);
-    for c in 0..3 {
-        let se = var_mean[c].sqrt() / ref_mean[c];
-        let dev = (r.mean_ratio[c] - 1.0).abs();
-        assert!(
-            dev.is_finite() && dev <= 0.01 + 3.0 * se,
-            "{scene}: image mean ratio {} (relative standard error {se})",
-            r.mean_ratio
-        );
-    }
+    render_and_compare(&desc, &c);
 }
 
 #[test]

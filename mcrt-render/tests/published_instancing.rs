@@ -14,16 +14,11 @@
 
 mod common;
 
-use mcrt::glam::Vec3;
-use mcrt_render::film::{compare_blocks, read_exr};
-use mcrt_render::render::{RenderOptions, Renderer, ShapeSampling};
+use common::published::{render_and_compare, Comparison};
 use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
 
 const SPP: u32 = 128;
 const REFERENCE_SPP: u32 = 4096;
-const BLOCK: u32 = 16;
-const ALLOWANCE: f64 = 0.01;
 
 fn data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -34,51 +29,17 @@ fn data(name: &str) -> PathBuf {
 #[test]
 fn instancing_matches_mitsuba() {
     let desc = mcrt_render::loader::load_scene(&data("instancing.xml"), &[]).expect("loads");
-    let opts = RenderOptions {
-        spp: Some(SPP),
-        seed: Some(2025),
-        light_sampling: ShapeSampling::Area,
-        ..RenderOptions::default()
+    let c = Comparison {
+        min_blocks: 24,
+        // The suite's per-test level (Šidák over its N_TESTS tests).
+        alpha: 1.0 - (1.0 - common::ALPHA).powf(1.0 / f64::from(common::N_TESTS)),
+        ..Comparison::new(
+            "instancing",
+            data("instancing.exr"),
+            SPP,
+            REFERENCE_SPP,
+            2025,
+        )
     };
-    let out = Renderer::new(&desc, &opts)
-        .expect("scene builds")
-        .render(&|_, _| {}, &AtomicBool::new(false));
-    assert_eq!(out.nonfinite_samples, 0, "non-finite samples");
-    let (w, h) = (out.film.width(), out.film.height());
-    let (rw, rh, rf) = read_exr(&data("instancing.exr")).expect("reference reads");
-    assert_eq!((w, h), (rw, rh), "size differs from the reference");
-    let img = out.image();
-    let var = out.film.variance();
-    let scale = SPP as f32 / REFERENCE_SPP as f32;
-    let ref_var: Vec<Vec3> = var.iter().map(|v| *v * scale).collect();
-    // The suite's per-test level (Šidák over its N_TESTS tests).
-    let alpha = 1.0 - (1.0 - common::ALPHA).powf(1.0 / f64::from(common::N_TESTS));
-    let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, BLOCK, 0.05, alpha);
-    assert_eq!(r.non_finite, 0, "NaN or infinite pixels");
-    assert!(r.blocks >= 24, "only {} blocks compared", r.blocks);
-    let worst = common::blocks::worst_z_beyond(&img, &var, &rf, &ref_var, w, h, BLOCK, ALLOWANCE);
-    println!(
-        "instancing: worst |z| beyond 1% {worst:.2} (critical {:.2}), worst block {:.1}%, \
-         mean ratio {}",
-        r.z_critical,
-        100.0 * r.worst_relative,
-        r.mean_ratio
-    );
-    assert!(
-        worst.is_finite() && worst <= r.z_critical,
-        "block z-test fails: worst |z| {worst:.2} > {:.2}",
-        r.z_critical
-    );
-    let n = img.len() as f32;
-    let ref_mean = rf.iter().copied().sum::<Vec3>() / n;
-    let var_mean = var.iter().copied().sum::<Vec3>() / (n * n);
-    let se = Vec3::new(var_mean.x.sqrt(), var_mean.y.sqrt(), var_mean.z.sqrt()) / ref_mean;
-    for c in 0..3 {
-        let dev = (r.mean_ratio[c] - 1.0).abs();
-        assert!(
-            dev.is_finite() && dev <= 0.01 + 3.0 * se[c],
-            "image mean ratio {} (relative standard error {se})",
-            r.mean_ratio
-        );
-    }
+    render_and_compare(&desc, &c);
 }

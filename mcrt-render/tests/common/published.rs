@@ -1,5 +1,6 @@
-//! The render-and-compare check of the published-style scenes (`published_lights.rs`,
-//! `published_maps.rs`): a scene under `tests/data/published/DIR/` rendered at [`SPP`]
+//! The render-and-compare check of the published-style scenes ([`render_and_compare`], which
+//! `published_compat.rs`, `published_instancing.rs`, `published_shading.rs` give their own
+//! settings; [`check`] for `published_lights.rs` and `published_maps.rs`): a scene under `tests/data/published/DIR/` rendered at [`SPP`]
 //! with lights sampled by area, against its Mitsuba reference at [`REFERENCE_SPP`]. No NaN
 //! or infinite pixel; a z-test on [`BLOCK`]² block means (blocks brighter than 5% of the
 //! image mean) with our per-pixel variance plus the reference's (ours × SPP/REFERENCE_SPP),
@@ -8,7 +9,8 @@
 //! standard errors. Fixed seed.
 
 use mcrt::glam::Vec3;
-use mcrt_render::film::{compare_blocks, read_exr};
+use mcrt_render::description::SceneDescription;
+use mcrt_render::film::{compare_blocks, read_exr, BlockReport};
 use mcrt_render::render::{RenderOptions, Renderer, ShapeSampling};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -34,52 +36,112 @@ pub fn data(dir: &str, name: &str) -> PathBuf {
 /// (module docs); `min_blocks` bright blocks at least must be compared.
 pub fn check(dir: &str, scene: &str, reference: &str, min_blocks: usize) {
     let desc = mcrt_render::loader::load_scene(&data(dir, scene), &[]).expect("scene loads");
-    let opts = RenderOptions {
-        spp: Some(SPP),
-        seed: Some(2024),
-        light_sampling: ShapeSampling::Area,
-        ..RenderOptions::default()
+    let c = Comparison {
+        min_blocks,
+        ..Comparison::new(scene, data(dir, reference), SPP, REFERENCE_SPP, 2024)
     };
-    let out = Renderer::new(&desc, &opts)
+    render_and_compare(&desc, &c);
+}
+
+/// One render compared with a Mitsuba reference: what to render and how to judge it.
+pub struct Comparison<'a> {
+    /// The name in messages.
+    pub name: &'a str,
+    /// The render's options (spp, seed, light sampling, ...).
+    pub opts: RenderOptions,
+    /// The reference EXR.
+    pub reference: PathBuf,
+    /// Its samples per pixel (its per-pixel variance is taken as ours × spp / this).
+    pub reference_spp: u32,
+    /// Side of the compared blocks, in pixels.
+    pub block: u32,
+    /// Bright blocks that must at least be compared.
+    pub min_blocks: usize,
+    /// Family-wise level of the block z-test over blocks and channels.
+    pub alpha: f64,
+    /// Relative difference a block may have beyond the noise (0: none).
+    pub allowance: f64,
+}
+
+impl<'a> Comparison<'a> {
+    /// `spp` samples with lights sampled by area (as Mitsuba samples them, so the
+    /// reference's variance is ours scaled), seed `seed`; [`BLOCK`]² blocks, at least 12,
+    /// α = 0.01, [`ALLOWANCE`].
+    pub fn new(name: &'a str, reference: PathBuf, spp: u32, reference_spp: u32, seed: u64) -> Self {
+        Self {
+            name,
+            opts: RenderOptions {
+                spp: Some(spp),
+                seed: Some(seed),
+                light_sampling: ShapeSampling::Area,
+                ..RenderOptions::default()
+            },
+            reference,
+            reference_spp,
+            block: BLOCK,
+            min_blocks: 12,
+            alpha: 0.01,
+            allowance: ALLOWANCE,
+        }
+    }
+}
+
+/// Renders `desc` as `c` says and asserts: no non-finite sample or pixel, the reference's
+/// size, at least `c.min_blocks` bright blocks (brighter than 5% of the image mean), every
+/// block within the z-test's critical value (beyond `c.allowance`), and the image mean
+/// within 1% plus 3 standard errors of the reference's. Returns the block report.
+pub fn render_and_compare(desc: &SceneDescription, c: &Comparison) -> BlockReport {
+    let name = c.name;
+    let out = Renderer::new(desc, &c.opts)
         .expect("scene builds")
         .render(&|_, _| {}, &AtomicBool::new(false));
-    assert_eq!(out.nonfinite_samples, 0, "{scene}: non-finite samples");
+    assert_eq!(out.nonfinite_samples, 0, "{name}: non-finite samples");
     let (w, h) = (out.film.width(), out.film.height());
-    let (rw, rh, rf) = read_exr(&data(dir, reference)).expect("reference reads");
-    assert_eq!((w, h), (rw, rh), "{scene}: size differs from the reference");
+    let (rw, rh, rf) = read_exr(&c.reference).expect("reference reads");
+    assert_eq!((w, h), (rw, rh), "{name}: size differs from the reference");
     let img = out.image();
     let var = out.film.variance();
-    let scale = SPP as f32 / REFERENCE_SPP as f32;
+    let spp = c.opts.spp.expect("a comparison names its spp");
+    let scale = spp as f32 / c.reference_spp as f32;
     let ref_var: Vec<Vec3> = var.iter().map(|v| *v * scale).collect();
-    let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, BLOCK, 0.05, 0.01);
-    assert_eq!(r.non_finite, 0, "{scene}: NaN or infinite pixels");
+    let (block, alpha) = (c.block, c.alpha);
+    let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, block, 0.05, alpha);
+    assert_eq!(r.non_finite, 0, "{name}: NaN or infinite pixels");
     assert!(
-        r.blocks >= min_blocks,
-        "{scene}: only {} blocks compared",
+        r.blocks >= c.min_blocks,
+        "{name}: only {} blocks compared",
         r.blocks
     );
-    let worst_z = super::blocks::worst_z_beyond(&img, &var, &rf, &ref_var, w, h, BLOCK, ALLOWANCE);
+    let worst_z = if c.allowance > 0.0 {
+        super::blocks::worst_z_beyond(&img, &var, &rf, &ref_var, w, h, block, c.allowance)
+    } else {
+        r.worst_z
+    };
     println!(
-        "{scene}: worst |z| beyond 1% {worst_z:.2} (critical {:.2}), worst block {:.1}%, mean ratio {}",
+        "{name}: {} blocks, worst |z| beyond {}% {worst_z:.2} (critical {:.2}), worst block \
+         {:.1}%, mean ratio {}",
+        r.blocks,
+        100.0 * c.allowance,
         r.z_critical,
         100.0 * r.worst_relative,
         r.mean_ratio
     );
     assert!(
         worst_z.is_finite() && worst_z <= r.z_critical,
-        "{scene}: block z-test fails: worst |z| {worst_z:.2} > {:.2}",
+        "{name}: block z-test fails: worst |z| {worst_z:.2} > {:.2}",
         r.z_critical
     );
     let n = img.len() as f32;
     let ref_mean = rf.iter().copied().sum::<Vec3>() / n;
     let var_mean = var.iter().copied().sum::<Vec3>() / (n * n);
-    for c in 0..3 {
-        let se = var_mean[c].sqrt() / ref_mean[c];
-        let dev = (r.mean_ratio[c] - 1.0).abs();
+    for ch in 0..3 {
+        let se = var_mean[ch].sqrt() / ref_mean[ch];
+        let dev = (r.mean_ratio[ch] - 1.0).abs();
         assert!(
             dev.is_finite() && se.is_finite() && dev <= 0.01 + 3.0 * se,
-            "{scene}: image mean ratio {} (channel {c}: relative standard error {se})",
+            "{name}: image mean ratio {} (channel {ch}: relative standard error {se})",
             r.mean_ratio
         );
     }
+    r
 }
