@@ -34,8 +34,7 @@ fn check(scene: &str) {
     let c = Comparison {
         block: 8,
         min_blocks: 40,
-        // The per-test level of the shared Šidák budget.
-        alpha: 1.0 - (1.0 - common::ALPHA).powf(1.0 / f64::from(common::N_TESTS)),
+        alpha: common::published::per_test_alpha(),
         allowance: 0.0,
         ..Comparison::new(scene, reference, SPP, REFERENCE_SPP, 2025)
     };

@@ -31,8 +31,7 @@ fn instancing_matches_mitsuba() {
     let desc = mcrt_render::loader::load_scene(&data("instancing.xml"), &[]).expect("loads");
     let c = Comparison {
         min_blocks: 24,
-        // The suite's per-test level (Šidák over its N_TESTS tests).
-        alpha: 1.0 - (1.0 - common::ALPHA).powf(1.0 / f64::from(common::N_TESTS)),
+        alpha: common::published::per_test_alpha(),
         ..Comparison::new(
             "instancing",
             data("instancing.exr"),

@@ -22,10 +22,11 @@
 
 mod common;
 
+use common::published::assert_blocks_match;
 use common::replicates::{compare, render_replicates};
 use mcrt::glam::Vec3;
 use mcrt_render::description::SceneDescription;
-use mcrt_render::film::{compare_blocks, read_exr};
+use mcrt_render::film::read_exr;
 use mcrt_render::render::{RenderOptions, RenderOutput, Renderer, ShapeSampling};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
@@ -65,41 +66,6 @@ fn render(desc: &SceneDescription, o: &RenderOptions) -> RenderOutput {
         .render(&|_, _| {}, &AtomicBool::new(false))
 }
 
-/// The suite's per-test significance level (Šidák over its budget of tests).
-fn per_test_alpha() -> f64 {
-    1.0 - (1.0 - common::ALPHA).powf(1.0 / f64::from(common::N_TESTS))
-}
-
-/// Block z-test of a path-traced `out` against `reference` (16384 spp) on 16×16 blocks.
-fn assert_blocks_match(what: &str, out: &RenderOutput, spp: u32, reference: &[Vec3]) {
-    assert_eq!(out.nonfinite_samples, 0, "{what}: non-finite samples");
-    let (w, h) = (out.film.width(), out.film.height());
-    let img = out.image();
-    let var = out.film.variance();
-    let scale = spp as f32 / 16384.0;
-    let ref_var: Vec<Vec3> = var.iter().map(|v| *v * scale).collect();
-    let r = compare_blocks(
-        &img,
-        &var,
-        reference,
-        Some(&ref_var),
-        w,
-        h,
-        16,
-        0.05,
-        per_test_alpha(),
-    );
-    println!("{what}: {r:?}");
-    assert_eq!(r.non_finite, 0, "{what}: NaN or infinite pixels");
-    assert!(r.blocks >= 4, "{what}: only {} blocks compared", r.blocks);
-    assert!(
-        r.z_test_passes(),
-        "{what}: worst |z| {:.2} > {:.2}",
-        r.worst_z,
-        r.z_critical
-    );
-}
-
 #[test]
 fn hide_emitters_sees_through_the_light_and_not_the_sky() {
     let path = published("hide-emitters.xml");
@@ -115,7 +81,7 @@ fn hide_emitters_sees_through_the_light_and_not_the_sky() {
         .collect();
     assert!(sky.len() > 100, "the view shows the sky");
     assert!(sky.iter().all(|&i| img[i] == Vec3::ZERO));
-    assert_blocks_match("hide-emitters.xml", &out, spp, &reference);
+    assert_blocks_match("hide-emitters.xml", &out, (spp, 16384), &reference, 4);
 }
 
 /// `reference` (`w`×`h`) averaged over `k`×`k` pixels.
@@ -249,7 +215,7 @@ fn moment_writes_the_mean_and_second_moment_as_mitsuba_does() {
             "{s} < {m}²"
         );
     }
-    assert_blocks_match("moment.xml", &out, spp, &ref_rgb);
+    assert_blocks_match("moment.xml", &out, (spp, 16384), &ref_rgb, 4);
 
     // The second moment against Mitsuba's, by replicates, where the light is not seen
     // directly: there it is the light's squared radiance, hundreds of times the rest,

@@ -11,7 +11,7 @@
 use mcrt::glam::Vec3;
 use mcrt_render::description::SceneDescription;
 use mcrt_render::film::{compare_blocks, read_exr, BlockReport};
-use mcrt_render::render::{RenderOptions, Renderer, ShapeSampling};
+use mcrt_render::render::{RenderOptions, RenderOutput, Renderer, ShapeSampling};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
@@ -41,6 +41,47 @@ pub fn check(dir: &str, scene: &str, reference: &str, min_blocks: usize) {
         ..Comparison::new(scene, data(dir, reference), SPP, REFERENCE_SPP, 2024)
     };
     render_and_compare(&desc, &c);
+}
+
+/// The suite's per-test significance level (Šidák over its budget of tests,
+/// `tests/common/suite.rs`).
+pub fn per_test_alpha() -> f64 {
+    1.0 - (1.0 - super::ALPHA).powf(1.0 / f64::from(super::N_TESTS))
+}
+
+/// The block z-test alone of a render `out` against `reference` (rendered at
+/// `reference_spp`; its variance taken as ours × `spp` / `reference_spp`), 16×16 blocks
+/// brighter than 5% of the mean, at least `min_blocks`, at the suite's per-test level: no
+/// non-finite sample or pixel, every block within the critical |z|.
+pub fn assert_blocks_match(
+    what: &str,
+    out: &RenderOutput,
+    (spp, reference_spp): (u32, u32),
+    reference: &[Vec3],
+    min_blocks: usize,
+) -> BlockReport {
+    assert_eq!(out.nonfinite_samples, 0, "{what}: non-finite samples");
+    let (w, h) = (out.film.width(), out.film.height());
+    let img = out.image();
+    let var = out.film.variance();
+    let scale = spp as f32 / reference_spp as f32;
+    let ref_var: Vec<Vec3> = var.iter().map(|v| *v * scale).collect();
+    let alpha = per_test_alpha();
+    let r = compare_blocks(&img, &var, reference, Some(&ref_var), w, h, 16, 0.05, alpha);
+    println!("{what}: {r:?}");
+    assert_eq!(r.non_finite, 0, "{what}: NaN or infinite pixels");
+    assert!(
+        r.blocks >= min_blocks,
+        "{what}: only {} blocks compared",
+        r.blocks
+    );
+    assert!(
+        r.z_test_passes(),
+        "{what}: worst |z| {:.2} > {:.2}",
+        r.worst_z,
+        r.z_critical
+    );
+    r
 }
 
 /// One render compared with a Mitsuba reference: what to render and how to judge it.
