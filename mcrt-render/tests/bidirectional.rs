@@ -75,120 +75,42 @@ fn against_mitsuba(
     compare(&images, &rf, w, h, 32, allowance).assert_passed(what);
 }
 
-#[test]
-fn bdpt_cornell_box_matches_mitsuba() {
-    let d = load("cornell-box.xml");
-    against_mitsuba(
-        "bdpt cornell",
-        &d,
-        &opts(IntegratorKind::Bdpt, 2),
-        "cornell-box.exr",
-        0.01,
-    );
+/// Tests that render a scene of `tests/data/` with an integrator (MLT with [`mlt_desc`]'s
+/// settings) at `spp` and compare it with Mitsuba's image of it, `NAME.exr` beside `NAME.xml`.
+macro_rules! matches_mitsuba {
+    ($($(#[$doc:meta])* $name:ident: $kind:ident, $scene:literal, $spp:expr, $allowance:expr,
+       $what:literal;)*) => {$(
+        $(#[$doc])*
+        #[test]
+        fn $name() {
+            let mut d = load($scene);
+            if IntegratorKind::$kind == IntegratorKind::Mlt {
+                d = mlt_desc(d);
+            }
+            let reference = $scene.replace(".xml", ".exr");
+            against_mitsuba($what, &d, &opts(IntegratorKind::$kind, $spp), &reference, $allowance);
+        }
+    )*};
 }
 
-#[test]
-fn bdpt_veach_mis_matches_mitsuba() {
-    let d = load("veach-mis.xml");
-    against_mitsuba(
-        "bdpt veach-mis",
-        &d,
-        &opts(IntegratorKind::Bdpt, 2),
-        "veach-mis.exr",
-        0.01,
-    );
-}
-
-#[test]
-fn bdpt_caustic_box_matches_mitsuba() {
-    let d = load("cornell-box-caustic.xml");
-    against_mitsuba(
-        "bdpt caustic",
-        &d,
-        &opts(IntegratorKind::Bdpt, 8),
-        "cornell-box-caustic.exr",
-        0.015,
-    );
-}
-
-/// Rough glass (refraction through a microfacet interface: the adjoint BSDF on light
-/// subpaths) and a thin pane.
-#[test]
-fn bdpt_rough_and_thin_glass_match_mitsuba() {
-    let d = load("cornell-box-glass.xml");
-    against_mitsuba(
-        "bdpt glass",
-        &d,
-        &opts(IntegratorKind::Bdpt, 8),
-        "cornell-box-glass.exr",
-        0.01,
-    );
-}
-
-/// Smooth plastic: a BSDF with a Dirac and a diffuse part, where a connection may end at a
-/// vertex whose walk went on by the Dirac part (up to 4% off on 16×16 blocks before such
-/// endpoints were treated as not delta).
-#[test]
-fn bdpt_plastic_matches_mitsuba() {
-    let d = load("cornell-box-plastic.xml");
-    against_mitsuba(
-        "bdpt plastic",
-        &d,
-        &opts(IntegratorKind::Bdpt, 8),
-        "cornell-box-plastic.exr",
-        0.01,
-    );
-}
-
-/// Textured materials (`textures.xml`): light subpaths and connections look the textures up
-/// at their own vertices (the scene forms each vertex's material), so the texture is where
-/// the path tracer and Mitsuba put it.
-#[test]
-fn bdpt_textures_match_mitsuba() {
-    let d = load("textures.xml");
-    against_mitsuba(
-        "bdpt textures",
-        &d,
-        &opts(IntegratorKind::Bdpt, 8),
-        "textures.exr",
-        0.01,
-    );
-}
-
-#[test]
-fn mlt_cornell_box_matches_mitsuba() {
-    let d = mlt_desc(load("cornell-box.xml"));
-    against_mitsuba(
-        "mlt cornell",
-        &d,
-        &opts(IntegratorKind::Mlt, 4),
-        "cornell-box.exr",
-        0.01,
-    );
-}
-
-#[test]
-fn mlt_veach_mis_matches_mitsuba() {
-    let d = mlt_desc(load("veach-mis.xml"));
-    against_mitsuba(
-        "mlt veach-mis",
-        &d,
-        &opts(IntegratorKind::Mlt, 4),
-        "veach-mis.exr",
-        0.01,
-    );
-}
-
-#[test]
-fn mlt_caustic_box_matches_mitsuba() {
-    let d = mlt_desc(load("cornell-box-caustic.xml"));
-    against_mitsuba(
-        "mlt caustic",
-        &d,
-        &opts(IntegratorKind::Mlt, 16),
-        "cornell-box-caustic.exr",
-        0.015,
-    );
+matches_mitsuba! {
+    bdpt_cornell_box_matches_mitsuba: Bdpt, "cornell-box.xml", 2, 0.01, "bdpt cornell";
+    bdpt_veach_mis_matches_mitsuba: Bdpt, "veach-mis.xml", 2, 0.01, "bdpt veach-mis";
+    bdpt_caustic_box_matches_mitsuba: Bdpt, "cornell-box-caustic.xml", 8, 0.015, "bdpt caustic";
+    /// Rough glass (refraction through a microfacet interface: the adjoint BSDF on light
+    /// subpaths) and a thin pane.
+    bdpt_rough_and_thin_glass_match_mitsuba: Bdpt, "cornell-box-glass.xml", 8, 0.01, "bdpt glass";
+    /// Smooth plastic: a BSDF with a Dirac and a diffuse part, where a connection may end at a
+    /// vertex whose walk went on by the Dirac part (up to 4% off on 16×16 blocks before such
+    /// endpoints were treated as not delta).
+    bdpt_plastic_matches_mitsuba: Bdpt, "cornell-box-plastic.xml", 8, 0.01, "bdpt plastic";
+    /// Textured materials (`textures.xml`): light subpaths and connections look the textures up
+    /// at their own vertices (the scene forms each vertex's material), so the texture is where
+    /// the path tracer and Mitsuba put it.
+    bdpt_textures_match_mitsuba: Bdpt, "textures.xml", 8, 0.01, "bdpt textures";
+    mlt_cornell_box_matches_mitsuba: Mlt, "cornell-box.xml", 4, 0.01, "mlt cornell";
+    mlt_veach_mis_matches_mitsuba: Mlt, "veach-mis.xml", 4, 0.01, "mlt veach-mis";
+    mlt_caustic_box_matches_mitsuba: Mlt, "cornell-box-caustic.xml", 16, 0.015, "mlt caustic";
 }
 
 /// The path tracer's image of paths of exactly `k` segments: the same seeds at `max_depth`
