@@ -165,7 +165,7 @@ pub(crate) const DIRECTIONAL_THRESHOLD: FloatParam<f32> = FloatParam {
     default: 0.01,
     range: "(0, 1]",
     accept: |v| in_half_open(v, 0.0, 1.0, "must lie in (0, 1]"),
-    doc: "ρ: a directional quadrant holding more than this fraction of its leaf's energy is           subdivided",
+    doc: "ρ: a directional quadrant holding more than this fraction of its leaf's energy is subdivided",
 };
 
 plugin_params! {
