@@ -29,21 +29,24 @@ const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
 /// "Importance Sampling of Many Lights with Adaptive Tree Splitting", Proc. ACM CGIT 1(2),
 /// as in pbrt-v4's `BVHLightSampler`).
 ///
-/// Each node bounds its lights' box, normals, emission spread and power; [`LightBvh::sample`]
-/// descends from the root choosing a child with probability `I₀/(I₀ + I₁)`, the children's
-/// importances at the point (power over squared distance, times bounds on the emitter's and
-/// the receiver's cosines). [`LightBvh::pmf`] repeats the same arithmetic along the light's
-/// path, so the two agree bit for bit. The importance is 0 only where no light of the node
-/// can reach the point (behind every emitter: outside the cones its bounding sphere allows,
-/// or behind the plane of its box for lights that face one way); where both children of a
-/// node are 0 the descent goes on by power, so the probabilities always sum to 1 unless the
-/// root's importance is 0 (then nothing is sampled). Lights of power 0 are never chosen. Below a
-/// node whose lights face one way and which the point sees from afar, the descent stops
-/// and picks among its lights by power (the *cut*, which saves the deep levels where the
-/// importances differ little). The derivations are in `docs/derivations.md`, Part V.
+/// Each node bounds its lights' box, normals, emission spread and power. The tree is built
+/// binary and walked with up to four children per node; [`LightBvh::sample`] descends from
+/// the root choosing a child with probability `I_s/Σ I`, the children's importances at the
+/// point (power over squared distance, times bounds on the emitter's and the receiver's
+/// cosines), the four evaluated at once in `f32` lanes. [`LightBvh::pmf`] repeats the same
+/// arithmetic along the light's path, so the two agree bit for bit. The importance is 0 only
+/// where no light of the node can reach the point (behind every emitter: outside the cones
+/// its bounding sphere allows, or behind the plane of its box for lights that face one way,
+/// with margins that cover the `f32` rounding); where every child of a node is 0 the descent
+/// goes on by power, so the probabilities always sum to 1 unless every child of the root is 0
+/// (then nothing is sampled). Lights of power 0 are never chosen. Below a node whose lights
+/// face one way and which the point sees from afar, the descent stops and picks among its
+/// lights by power (the *cut*, which saves the deep levels where the importances differ
+/// little). The derivations are in `docs/derivations.md`, Part V.
 ///
 /// Build `O(n log n)` (binned surface area orientation heuristic, one light per leaf,
-/// depth at most `min(64, 2⌈log₂ n⌉ + 8)`); `sample` and `pmf` `O(log n)`.
+/// depth at most `min(64, 2⌈log₂ n⌉ + 8)`, then collapsed to four children per node);
+/// `sample` and `pmf` `O(log n)`.
 ///
 /// ```
 /// use mcrt::glam::Vec3;
@@ -90,34 +93,48 @@ const CUT_MAX_COS_E: f64 = 0.5;
 /// See [`CUT_MIN_COS_O`].
 const CUT_TAU: f64 = 0.45;
 
-/// The probabilities of a node's children from their weights (`Σ w > 0` unless all are 0,
-/// then all 0); a child of positive weight never gets probability 0.
-#[inline]
-fn child_probabilities(w: [f32; WIDTH]) -> [f64; WIDTH] {
-    let w = w.map(f64::from);
-    let sum = (w[0] + w[1]) + (w[2] + w[3]);
-    w.map(|w| {
-        if w > 0.0 {
-            (w / sum).max(f64::MIN_POSITIVE)
-        } else {
-            0.0
-        }
-    })
+/// The nodes of the binary tree over `lights` (valid, some of power > 0), as built.
+#[cfg(test)]
+fn binary_nodes(lights: &[LightBounds]) -> Vec<node::Node> {
+    let mut items: Vec<(usize, Bound)> = lights
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.power > 0.0)
+        .map(|(i, l)| (i, Bound::from_light(l)))
+        .collect();
+    let mut builder = Builder::new(lights.len(), items.len());
+    builder.build(&mut items, 0, 0);
+    builder.nodes
 }
 
-/// The lane chosen by `u` among the probabilities `q` (some positive) and the sum of the
-/// probabilities before it.
+/// A node's children's weights as `f64` and their sum.
 #[inline]
-fn pick_lane(q: &[f64; WIDTH], u: f64) -> (usize, f64) {
+fn with_sum(w: [f32; WIDTH]) -> ([f64; WIDTH], f64) {
+    let w = w.map(f64::from);
+    (w, (w[0] + w[1]) + (w[2] + w[3]))
+}
+
+/// The probability of a child of weight `w > 0` among children of summed weight `sum`:
+/// never 0.
+#[inline]
+fn share(w: f64, sum: f64) -> f64 {
+    (w / sum).max(f64::MIN_POSITIVE)
+}
+
+/// The lane chosen by `t ∈ [0, Σw)` among the weights `w` (some positive): the first
+/// positive lane whose running sum exceeds `t`, else the last positive lane; and the sum of
+/// the weights before it.
+#[inline]
+fn pick_lane(w: &[f64; WIDTH], t: f64) -> (usize, f64) {
     let mut acc = 0.0;
     let mut pick = (0, 0.0);
-    for (s, &qs) in q.iter().enumerate() {
-        if qs > 0.0 {
+    for (s, &ws) in w.iter().enumerate() {
+        if ws > 0.0 {
             pick = (s, acc);
-            if u < acc + qs {
+            if t < acc + ws {
                 break;
             }
-            acc += qs;
+            acc += ws;
         }
     }
     pick
@@ -238,16 +255,16 @@ impl LightBvh {
         Some((p, p.abs().element_sum(), n))
     }
 
-    /// The children's probabilities at node `at`: importances, or powers when every
+    /// The children's weights at node `at` and their sum: importances, or powers when every
     /// importance is 0 (below the root; all 0 at the root when no light reaches `p`).
     #[inline]
-    fn step(&self, at: usize, p: Vec3, p_l1: f32, n: Option<Vec3>) -> [f64; WIDTH] {
+    fn step(&self, at: usize, p: Vec3, p_l1: f32, n: Option<Vec3>) -> ([f64; WIDTH], f64) {
         let node = &self.nodes[at];
-        let q = child_probabilities(node.importances(p, p_l1, n).to_array());
-        if at == 0 || q.iter().any(|&x| x > 0.0) {
-            q
+        let (w, sum) = with_sum(node.importances(p, p_l1, n).to_array());
+        if at == 0 || sum > 0.0 {
+            (w, sum)
         } else {
-            child_probabilities(node.phi.to_array())
+            with_sum(node.phi.to_array())
         }
     }
 
@@ -272,13 +289,14 @@ impl LightBvh {
                 prob *= self.power_share(node, k);
                 return Some((self.leaf_light[k], to_probability(prob)));
             }
-            let q = self.step(at, p, p_l1, n);
-            if at == 0 && q.iter().all(|&x| x == 0.0) {
+            let (w, sum) = self.step(at, p, p_l1, n);
+            if sum <= 0.0 {
                 return None;
             }
-            let (s, before) = pick_lane(&q, u);
-            prob *= q[s];
-            u = ((u - before) / q[s]).clamp(0.0, ONE_BELOW);
+            let t = u * sum;
+            let (s, before) = pick_lane(&w, t);
+            prob *= share(w[s], sum);
+            u = ((t - before) / w[s]).clamp(0.0, ONE_BELOW);
             if node.is_leaf(s) {
                 let k = node.child[s] as usize;
                 return Some((self.leaf_light[k], to_probability(prob)));
@@ -306,12 +324,12 @@ impl LightBvh {
                 prob *= self.power_share(node, leaf as usize);
                 return to_probability(prob);
             }
-            let q = self.step(at, p, p_l1, n);
+            let (w, sum) = self.step(at, p, p_l1, n);
             let s = (trail & 3) as usize;
-            if q[s] == 0.0 {
+            if w[s] <= 0.0 {
                 return 0.0;
             }
-            prob *= q[s];
+            prob *= share(w[s], sum);
             if node.is_leaf(s) {
                 return to_probability(prob);
             }

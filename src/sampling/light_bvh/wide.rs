@@ -121,6 +121,12 @@ impl Wide {
         }
     }
 
+    /// A node whose one lane is `node` (for the tests).
+    #[cfg(test)]
+    pub fn single(node: &Node) -> Self {
+        Self::new(node, &[node], [0; WIDTH])
+    }
+
     /// Whether lane `s` is a leaf.
     #[inline]
     pub fn is_leaf(&self, s: usize) -> bool {
