@@ -22,7 +22,8 @@ pub(super) fn ceil_log2(m: usize) -> u32 {
     usize::BITS - (m.max(1) - 1).leading_zeros()
 }
 
-/// The depth limit for `n` lights: `min(64, 2⌈log₂ n⌉ + 8)` (the bit trails are `u64`).
+/// The depth limit for `n` lights: `min(64, 2⌈log₂ n⌉ + 8)` (the wide tree's trails, two bits
+/// per level, are `u128`).
 pub(super) fn max_depth(n: usize) -> u32 {
     (2 * ceil_log2(n) + 8).min(64)
 }

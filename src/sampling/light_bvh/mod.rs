@@ -12,13 +12,14 @@ mod node;
 mod tests;
 #[cfg(test)]
 mod tests_bound;
+mod wide;
 
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 
 pub use bounds::{LightBounds, LightBvhError};
 use build::Builder;
 use cone::Bound;
-use node::Node;
+use wide::{Wide, WIDTH};
 
 /// The largest `f64` below 1: the remapped sample value stays in `[0, 1)`.
 const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
@@ -28,21 +29,24 @@ const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
 /// "Importance Sampling of Many Lights with Adaptive Tree Splitting", Proc. ACM CGIT 1(2),
 /// as in pbrt-v4's `BVHLightSampler`).
 ///
-/// Each node bounds its lights' box, normals, emission spread and power; [`LightBvh::sample`]
-/// descends from the root choosing a child with probability `I₀/(I₀ + I₁)`, the children's
-/// importances at the point (power over squared distance, times bounds on the emitter's and
-/// the receiver's cosines). [`LightBvh::pmf`] repeats the same arithmetic along the light's
-/// path, so the two agree bit for bit. The importance is 0 only where no light of the node
-/// can reach the point (behind every emitter: outside the cones its bounding sphere allows,
-/// or behind the plane of its box for lights that face one way); where both children of a
-/// node are 0 the descent goes on by power, so the probabilities always sum to 1 unless the
-/// root's importance is 0 (then nothing is sampled). Lights of power 0 are never chosen. Below a
-/// node whose lights face one way and which the point sees from afar, the descent stops
-/// and picks among its lights by power (the *cut*, which saves the deep levels where the
-/// importances differ little). The derivations are in `docs/derivations.md`, Part V.
+/// Each node bounds its lights' box, normals, emission spread and power. The tree is built
+/// binary and walked with up to four children per node; [`LightBvh::sample`] descends from
+/// the root choosing a child with probability `I_s/Σ I`, the children's importances at the
+/// point (power over squared distance, times bounds on the emitter's and the receiver's
+/// cosines), the four evaluated at once in `f32` lanes. [`LightBvh::pmf`] repeats the same
+/// arithmetic along the light's path, so the two agree bit for bit. The importance is 0 only
+/// where no light of the node can reach the point (behind every emitter: outside the cones
+/// its bounding sphere allows, or behind the plane of its box for lights that face one way,
+/// with margins that cover the `f32` rounding); where every child of a node is 0 the descent
+/// goes on by power, so the probabilities always sum to 1 unless every child of the root is 0
+/// (then nothing is sampled). Lights of power 0 are never chosen. Below a node whose lights
+/// face one way and which the point sees from afar, the descent stops and picks among its
+/// lights by power (the *cut*, which saves the deep levels where the importances differ
+/// little). The derivations are in `docs/derivations.md`, Part V.
 ///
 /// Build `O(n log n)` (binned surface area orientation heuristic, one light per leaf,
-/// depth at most `min(64, 2⌈log₂ n⌉ + 8)`); `sample` and `pmf` `O(log n)`.
+/// depth at most `min(64, 2⌈log₂ n⌉ + 8)`, then collapsed to four children per node);
+/// `sample` and `pmf` `O(log n)`.
 ///
 /// ```
 /// use mcrt::glam::Vec3;
@@ -67,9 +71,11 @@ const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
 /// ```
 #[derive(Clone, Debug)]
 pub struct LightBvh {
-    nodes: Vec<Node>,
-    /// Per input light: its leaf's bit trail and its place in depth-first order.
-    trails: Vec<Option<(u64, u32)>>,
+    /// The collapsed tree, root first (empty when no light has power > 0).
+    nodes: Vec<Wide>,
+    /// Per input light: its leaf's trail (two bits per level, the lane taken) and its place
+    /// in depth-first order.
+    trails: Vec<Option<(u128, u32)>>,
     /// The prefix sums of the leaves' powers in depth-first order (`cdf[k]`: leaves `..k`).
     cdf: Vec<f64>,
     /// The light of each leaf in depth-first order.
@@ -87,19 +93,51 @@ const CUT_MAX_COS_E: f64 = 0.5;
 /// See [`CUT_MIN_COS_O`].
 const CUT_TAU: f64 = 0.45;
 
-/// The probabilities of the two children from their weights (`w₀ + w₁ > 0`); a child of
-/// positive weight never gets probability 0.
+/// The nodes of the binary tree over `lights` (valid, some of power > 0), as built.
+#[cfg(test)]
+fn binary_nodes(lights: &[LightBounds]) -> Vec<node::Node> {
+    let mut items: Vec<(usize, Bound)> = lights
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.power > 0.0)
+        .map(|(i, l)| (i, Bound::from_light(l)))
+        .collect();
+    let mut builder = Builder::new(lights.len(), items.len());
+    builder.build(&mut items, 0, 0);
+    builder.nodes
+}
+
+/// A node's children's weights as `f64` and their sum.
 #[inline]
-fn child_probabilities(w0: f64, w1: f64) -> (f64, f64) {
-    let sum = w0 + w1;
-    let p = |w: f64| {
-        if w > 0.0 {
-            (w / sum).max(f64::MIN_POSITIVE)
-        } else {
-            0.0
+fn with_sum(w: [f32; WIDTH]) -> ([f64; WIDTH], f64) {
+    let w = w.map(f64::from);
+    (w, (w[0] + w[1]) + (w[2] + w[3]))
+}
+
+/// The probability of a child of weight `w > 0` among children of summed weight `sum`:
+/// never 0.
+#[inline]
+fn share(w: f64, sum: f64) -> f64 {
+    (w / sum).max(f64::MIN_POSITIVE)
+}
+
+/// The lane chosen by `t ∈ [0, Σw)` among the weights `w` (some positive): the first
+/// positive lane whose running sum exceeds `t`, else the last positive lane; and the sum of
+/// the weights before it.
+#[inline]
+fn pick_lane(w: &[f64; WIDTH], t: f64) -> (usize, f64) {
+    let mut acc = 0.0;
+    let mut pick = (0, 0.0);
+    for (s, &ws) in w.iter().enumerate() {
+        if ws > 0.0 {
+            pick = (s, acc);
+            if t < acc + ws {
+                break;
+            }
+            acc += ws;
         }
-    };
-    (p(w0), p(w1))
+    }
+    pick
 }
 
 /// The probability of a path whose every step was positive, as a positive `f32`.
@@ -138,39 +176,51 @@ impl LightBvh {
             acc += phi;
             cdf.push(acc);
         }
-        let mut nodes = builder.nodes;
-        for node in &mut nodes {
+        let mut bin = builder.nodes;
+        for node in &mut bin {
             // Every light of a cut node must keep a positive share of the sums.
             let (a, b) = (node.first_leaf as usize, node.end_leaf as usize);
             if cdf[a..=b].windows(2).all(|w| w[1] > w[0]) {
                 node.allow_cut(CUT_MIN_COS_O, CUT_MAX_COS_E, CUT_TAU);
             }
         }
+        let (nodes, trails, depth) = if bin.is_empty() {
+            (Vec::new(), builder.trails.iter().map(|_| None).collect(), 0)
+        } else {
+            let wide = wide::collapse(&bin, builder.leaf_light.len());
+            let trails = builder
+                .trails
+                .iter()
+                .map(|t| t.map(|(_, leaf)| (wide.trails[leaf as usize].0, leaf)))
+                .collect();
+            let depth = wide.trails.iter().map(|t| t.1).max().unwrap_or(0);
+            (wide.nodes, trails, depth)
+        };
         Ok(Self {
             nodes,
-            trails: builder.trails,
+            trails,
             cdf,
             leaf_light: builder.leaf_light,
-            depth: builder.depth,
+            depth,
         })
     }
 
-    /// Whether some interior node is cut at `p` (for the tests: the cut is exercised).
+    /// Whether some node is cut at `p` (for the tests: the cut is exercised).
     #[cfg(test)]
     fn cuts_at(&self, p: Vec3) -> bool {
-        self.nodes.iter().any(|n| n.cut_at(p.as_dvec3()))
+        self.nodes.iter().skip(1).any(|n| n.cut_at(p))
     }
 
     /// The probability of leaf `k` (depth-first) among the leaves of `node` by power.
     #[inline]
-    fn power_share(&self, node: &Node, k: usize) -> f64 {
+    fn power_share(&self, node: &Wide, k: usize) -> f64 {
         let total = self.cdf[node.end_leaf as usize] - self.cdf[node.first_leaf as usize];
         (self.cdf[k + 1] - self.cdf[k]) / total
     }
 
     /// A leaf (depth-first) of `node` chosen by power with `u ∈ [0, 1)`.
     #[inline]
-    fn pick_by_power(&self, node: &Node, u: f64) -> usize {
+    fn pick_by_power(&self, node: &Wide, u: f64) -> usize {
         let (a, b) = (node.first_leaf as usize, node.end_leaf as usize);
         let t = self.cdf[a] + u * (self.cdf[b] - self.cdf[a]);
         a + self.cdf[a + 1..b].partition_point(|&c| c <= t)
@@ -186,36 +236,36 @@ impl LightBvh {
         self.trails.is_empty()
     }
 
-    /// The depth of the deepest leaf (the root is depth 0): at most
-    /// `min(64, 2⌈log₂ n⌉ + 8)` for `n` lights of power > 0.
+    /// The number of levels of the (4-wide) tree above the deepest leaf: a lone light is at
+    /// depth 1; at most `min(64, 2⌈log₂ n⌉ + 8)` for `n` lights of power > 0 (the binary
+    /// tree's bound), about `⌈log₄ n⌉` for lights spread evenly.
     pub fn depth(&self) -> u32 {
         self.depth
     }
 
-    /// The point as `f64` and the unit normal (`None` when `n` is zero or not finite), or
+    /// The point, `|p|₁` and the unit normal (`None` when `n` is zero or not finite), or
     /// `None` when `p` is not finite.
-    fn query(p: Vec3, n: Vec3) -> Option<(DVec3, Option<DVec3>)> {
+    #[inline]
+    fn query(p: Vec3, n: Vec3) -> Option<(Vec3, f32, Option<Vec3>)> {
         if !p.is_finite() {
             return None;
         }
-        let n = n.as_dvec3();
         let len = n.length();
         let n = (n.is_finite() && len > 0.0).then(|| n / len);
-        Some((p.as_dvec3(), n))
+        Some((p, p.abs().element_sum(), n))
     }
 
-    /// The children's probabilities at node `at` (interior): importances, or powers when
-    /// both importances are 0.
+    /// The children's weights at node `at` and their sum: importances, or powers when every
+    /// importance is 0 (below the root; all 0 at the root when no light reaches `p`).
     #[inline]
-    fn step(&self, at: usize, p: DVec3, n: Option<DVec3>) -> (f64, f64, usize) {
-        let (c0, c1) = (&self.nodes[at + 1], &self.nodes[self.nodes[at].index]);
-        let (i0, i1) = (c0.importance(p, n), c1.importance(p, n));
-        let (p0, p1) = if i0 + i1 > 0.0 {
-            child_probabilities(i0, i1)
+    fn step(&self, at: usize, p: Vec3, p_l1: f32, n: Option<Vec3>) -> ([f64; WIDTH], f64) {
+        let node = &self.nodes[at];
+        let (w, sum) = with_sum(node.importances(p, p_l1, n).to_array());
+        if at == 0 || sum > 0.0 {
+            (w, sum)
         } else {
-            child_probabilities(c0.phi, c1.phi)
-        };
-        (p0, p1, self.nodes[at].index)
+            with_sum(node.phi.to_array())
+        }
     }
 
     /// Chooses a light at the point `p` with shading normal `n` (zero in a medium or when
@@ -224,33 +274,35 @@ impl LightBvh {
     /// [`LightBvh::pmf`]), or `None` when there is no light of power > 0, when no light can
     /// reach `p`, or when `p` is not finite. A NaN `u` counts as 0.
     pub fn sample(&self, p: Vec3, n: Vec3, u: f32) -> Option<(usize, f32)> {
-        let (p, n) = Self::query(p, n)?;
-        let root = self.nodes.first()?;
-        if root.importance(p, n) <= 0.0 {
+        let (p, p_l1, n) = Self::query(p, n)?;
+        if self.nodes.is_empty() {
             return None;
         }
         let mut u = f64::from(crate::sampling::unit::clamp_unit(u));
         let mut prob = 1.0f64;
         let mut at = 0;
-        while !self.nodes[at].leaf {
+        loop {
             let node = &self.nodes[at];
-            if node.cut_at(p) {
+            // The root is never cut: its importances say whether any light reaches p.
+            if at != 0 && node.cut_at(p) {
                 let k = self.pick_by_power(node, u);
                 prob *= self.power_share(node, k);
                 return Some((self.leaf_light[k], to_probability(prob)));
             }
-            let (p0, p1, second) = self.step(at, p, n);
-            if u < p0 {
-                prob *= p0;
-                u = (u / p0).min(ONE_BELOW);
-                at += 1;
-            } else {
-                prob *= p1;
-                u = ((u - p0) / p1).clamp(0.0, ONE_BELOW);
-                at = second;
+            let (w, sum) = self.step(at, p, p_l1, n);
+            if sum <= 0.0 {
+                return None;
             }
+            let t = u * sum;
+            let (s, before) = pick_lane(&w, t);
+            prob *= share(w[s], sum);
+            u = ((t - before) / w[s]).clamp(0.0, ONE_BELOW);
+            if node.is_leaf(s) {
+                let k = node.child[s] as usize;
+                return Some((self.leaf_light[k], to_probability(prob)));
+            }
+            at = node.child[s] as usize;
         }
-        Some((self.nodes[at].index, to_probability(prob)))
     }
 
     /// The probability that [`LightBvh::sample`] at `p` with normal `n` chooses `light`
@@ -259,35 +311,30 @@ impl LightBvh {
     /// is not finite; 0 for a light that cannot reach `p`, except below a cut, where the
     /// lights of a node are chosen by power (a light that can reach `p` is never 0).
     pub fn pmf(&self, p: Vec3, n: Vec3, light: usize) -> f32 {
-        let (Some((p, n)), Some(&Some((mut trail, leaf)))) =
+        let (Some((p, p_l1, n)), Some(&Some((mut trail, leaf)))) =
             (Self::query(p, n), self.trails.get(light))
         else {
             return 0.0;
         };
-        if self.nodes[0].importance(p, n) <= 0.0 {
-            return 0.0;
-        }
         let mut prob = 1.0f64;
         let mut at = 0;
-        while !self.nodes[at].leaf {
+        loop {
             let node = &self.nodes[at];
-            if node.cut_at(p) {
+            if at != 0 && node.cut_at(p) {
                 prob *= self.power_share(node, leaf as usize);
                 return to_probability(prob);
             }
-            let (p0, p1, second) = self.step(at, p, n);
-            let (pc, next) = if trail & 1 == 0 {
-                (p0, at + 1)
-            } else {
-                (p1, second)
-            };
-            if pc == 0.0 {
+            let (w, sum) = self.step(at, p, p_l1, n);
+            let s = (trail & 3) as usize;
+            if w[s] <= 0.0 {
                 return 0.0;
             }
-            prob *= pc;
-            at = next;
-            trail >>= 1;
+            prob *= share(w[s], sum);
+            if node.is_leaf(s) {
+                return to_probability(prob);
+            }
+            at = node.child[s] as usize;
+            trail >>= 2;
         }
-        to_probability(prob)
     }
 }

@@ -1,6 +1,7 @@
-//! A node of the tree and its importance as seen from a point (pbrt-v4's
-//! `LightBounds::Importance`, in `f64`, with a conservative zero test). The derivation is in
-//! `docs/derivations.md`, Part V.
+//! A node of the binary tree as built, with what its importance as seen from a point needs
+//! (pbrt-v4's `LightBounds::Importance`), and that importance in `f64` with a conservative
+//! zero test (the tests' reference for the `f32` lanes of `wide.rs`, which the descent
+//! uses). The derivation is in `docs/derivations.md`, Part V.
 
 use glam::DVec3;
 
@@ -8,10 +9,13 @@ use super::cone::Bound;
 
 /// The zero test `cos θ' < cos θ_e − COS_MARGIN`: a light is ruled out only when it is
 /// outside its emission cone by this much (rounding never rules out a light that emits).
+#[cfg(test)]
 const COS_MARGIN: f64 = 1e-6;
 /// The least value of the two cosine factors of a nonzero importance.
+#[cfg(test)]
 const COS_FLOOR: f64 = 1e-6;
 /// The least squared distance (a point exactly on a point light).
+#[cfg(test)]
 const D2_FLOOR: f64 = 1e-200;
 /// The margin on `cos(θ_o + θ_e)` of the half-space test, as [`COS_MARGIN`] for the cone test.
 const FRONT_MARGIN: f64 = 1e-6;
@@ -21,7 +25,45 @@ const FRONT_MARGIN: f64 = 1e-6;
 const MAX_SLACK: f64 = 1e-3;
 /// The half-space test rules a node out only when `p` lies behind the plane through its
 /// box's rearmost corner by this fraction of the coordinates' size (rounding is ~10⁻¹⁶).
+#[cfg(test)]
 const PLANE_MARGIN: f64 = 1e-9;
+
+/// One child's bounds as one lane of a wide node holds them, in `f32`, rounded so that the
+/// bound stays conservative: the sphere and the box's support grown by the rounding of the
+/// centre, the cones widened (cosines rounded down).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Lane {
+    pub center: [f32; 3],
+    pub radius2: f32,
+    pub radius: f32,
+    pub axis: [f32; 3],
+    pub cos_o: f32,
+    pub sin_o: f32,
+    pub cos_e: f32,
+    pub phi: f32,
+    pub two_sided: bool,
+    pub front_only: bool,
+    pub slack: f32,
+    pub support: f32,
+    pub scale: f32,
+}
+
+/// `x ≥ 0` rounded up to `f32` (`f32::MAX` at most).
+fn up(x: f64) -> f32 {
+    let y = x as f32;
+    let y = if f64::from(y) >= x { y } else { y.next_up() };
+    y.min(f32::MAX)
+}
+
+/// `x` rounded down to `f32`.
+fn down(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) <= x {
+        y
+    } else {
+        y.next_down()
+    }
+}
 
 /// One node: an interior node's first child follows it, `index` is its second child; a
 /// leaf's `index` is its light.
@@ -31,7 +73,6 @@ pub(super) struct Node {
     radius2: f64,
     axis: DVec3,
     cos_o: f64,
-    sin_o: f64,
     cos_e: f64,
     pub phi: f64,
     two_sided: bool,
@@ -59,6 +100,7 @@ pub(super) struct Node {
 }
 
 /// `cos(max(0, θa − θb))` from the sines and cosines.
+#[cfg(test)]
 #[inline]
 fn cos_sub_clamped(sin_a: f64, cos_a: f64, sin_b: f64, cos_b: f64) -> f64 {
     if cos_a > cos_b {
@@ -69,6 +111,7 @@ fn cos_sub_clamped(sin_a: f64, cos_a: f64, sin_b: f64, cos_b: f64) -> f64 {
 }
 
 /// `sin(max(0, θa − θb))` from the sines and cosines.
+#[cfg(test)]
 #[inline]
 fn sin_sub_clamped(sin_a: f64, cos_a: f64, sin_b: f64, cos_b: f64) -> f64 {
     if cos_a > cos_b {
@@ -98,7 +141,6 @@ impl Node {
             radius2: half.length_squared(),
             axis: b.axis,
             cos_o: b.cos_o,
-            sin_o,
             cos_e: b.cos_e,
             phi: b.phi,
             two_sided: b.two_sided,
@@ -115,6 +157,34 @@ impl Node {
         }
     }
 
+    /// The node's bounds as one lane of a wide node (see [`Lane`]).
+    pub fn lane(&self) -> Lane {
+        let c = self.center.as_vec3();
+        let err = (c.as_dvec3() - self.center).length();
+        let radius = (self.radius + err) * (1.0 + 1e-6);
+        let cos_o = down(self.cos_o);
+        Lane {
+            center: c.to_array(),
+            radius2: up(radius * radius),
+            radius: up(radius),
+            axis: self.axis.as_vec3().to_array(),
+            cos_o,
+            sin_o: sin_of(f64::from(cos_o)) as f32,
+            cos_e: down(self.cos_e),
+            phi: up(self.phi),
+            two_sided: self.two_sided,
+            front_only: self.front_only,
+            slack: up(self.slack),
+            support: up(self.support + err),
+            scale: up(self.scale + err),
+        }
+    }
+
+    /// The centre and the squared cut distance in `f32` (see [`Node::allow_cut`]).
+    pub fn cut_f32(&self) -> (glam::Vec3, f32) {
+        (self.center.as_vec3(), self.cut_r2 as f32)
+    }
+
     /// Whether the node's lights are alike enough to be chosen among by power from far
     /// away (normals within `acos(min_cos_o)` of each other, emission at least as wide as
     /// `acos(max_cos_e)`): then [`Node::cut_at`] holds from `1/tau` radii on.
@@ -124,14 +194,9 @@ impl Node {
         }
     }
 
-    /// Whether the descent stops at this node for the point `p`: `|p − centre|² ≥ cut_r2`.
-    #[inline]
-    pub fn cut_at(&self, p: DVec3) -> bool {
-        (p - self.center).length_squared() >= self.cut_r2
-    }
-
     /// The importance of the node's lights at `p` (normal `n`, unit, or `None`):
     /// `Φ · cos θ' · cos θ'_i / d²`, 0 only where no light of the node can reach `p`.
+    #[cfg(test)]
     pub fn importance(&self, p: DVec3, n: Option<DVec3>) -> f64 {
         let v = p - self.center;
         // Behind the plane of the box's rearmost corner, across the lights' normals: every
@@ -160,8 +225,9 @@ impl Node {
         let sin_b = sin2_b.sqrt();
         let cos_b = (1.0 - sin2_b).sqrt();
         // θ' = max(0, θ_w − θ_o − θ_b): the least angle between a normal and p.
-        let cos_x = cos_sub_clamped(sin_w, cos_w, self.sin_o, self.cos_o);
-        let sin_x = sin_sub_clamped(sin_w, cos_w, self.sin_o, self.cos_o);
+        let sin_o = sin_of(self.cos_o);
+        let cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, self.cos_o);
+        let sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, self.cos_o);
         let cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
         if cos_p < self.cos_e - COS_MARGIN {
             return 0.0;

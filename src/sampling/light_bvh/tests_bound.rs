@@ -214,3 +214,32 @@ fn a_point_behind_the_plane_of_a_panel_gets_zero() {
         assert!(bvh.pmf(Vec3::new(x, 0.995 - 1e-4, 0.0), Vec3::NEG_Y, 0) > 0.0);
     }
 }
+
+#[test]
+fn f32_lanes_never_rule_out_what_the_f64_bound_admits() {
+    // Every node of the binary tree as one lane: where its f64 importance is positive, the
+    // lane's f32 importance must be too (the margins of derivations Part V §7).
+    let mut rng = Pcg32::seed_from_u64(80);
+    let mut positive = 0;
+    for (set, n_lights) in [(0u64, 17), (1, 200)] {
+        let lights = random_lights(n_lights, 90 + set);
+        let nodes = super::binary_nodes(&lights);
+        for _ in 0..300 {
+            let (p, n) = random_query(&mut rng);
+            let n64 = n.as_dvec3();
+            let n64 = (n64.length() > 0.0).then(|| n64.normalize());
+            let n32 = (n.length() > 0.0).then(|| n.normalize());
+            for node in &nodes {
+                let lane = super::wide::Wide::single(node);
+                let i64 = node.importance(p.as_dvec3(), n64);
+                let i32 = lane.importances(p, p.abs().element_sum(), n32).to_array()[0];
+                assert!(i32.is_finite() && i32 >= 0.0);
+                if i64 > 0.0 {
+                    assert!(i32 > 0.0, "f64 {i64} > 0 but f32 0 at {p}, n = {n}");
+                    positive += 1;
+                }
+            }
+        }
+    }
+    assert!(positive > 10_000, "only {positive} positive importances");
+}

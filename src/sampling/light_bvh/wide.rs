@@ -1,0 +1,264 @@
+//! The tree the descent walks: the binary SAOH tree collapsed to nodes of up to four
+//! children, whose bounds are stored lane by lane in `f32` so that one pass of 4-wide
+//! vector arithmetic gives the four children's importances at a point (derivations, Part V
+//! §7: the `f32` bound and its margins).
+
+use glam::Vec3;
+use wide::{f32x4, CmpGt, CmpLe, CmpLt};
+
+use super::node::{Lane, Node};
+
+/// Children per node.
+pub(super) const WIDTH: usize = 4;
+
+/// The zero test `cos θ' < cos θ_e − COS_MARGIN` in `f32`: a cosine computed in `f32` from
+/// cosines and sines (a sine from `√(1 − c²)` is off by up to `√(2δ)` for a cosine off by
+/// `δ ≈ 3·10⁻⁷`) is within `10⁻³` of its value, so a light that emits is never ruled out.
+const COS_MARGIN: f32 = 2e-3;
+/// The least value of the two cosine factors of a nonzero importance.
+const COS_FLOOR: f32 = 1e-6;
+/// The least squared distance (a point exactly on a point light).
+const D2_FLOOR: f32 = 1e-30;
+/// The half-space test rules a child out only when `p` lies behind the plane of its box's
+/// rearmost corner by this fraction of the coordinates' size (`f32` rounding is ~10⁻⁷).
+const PLANE_MARGIN: f32 = 1e-5;
+
+/// One node of the collapsed tree: its children's bounds lane by lane (an unused lane has
+/// power 0 and gets importance 0), what each child is, and the node's own cut.
+#[derive(Clone, Debug)]
+pub(super) struct Wide {
+    cx: f32x4,
+    cy: f32x4,
+    cz: f32x4,
+    radius2: f32x4,
+    radius: f32x4,
+    ax: f32x4,
+    ay: f32x4,
+    az: f32x4,
+    cos_o: f32x4,
+    sin_o: f32x4,
+    cos_e: f32x4,
+    /// The children's powers (clamped to `f32::MAX`): the choice where every importance is 0.
+    pub phi: f32x4,
+    /// `−1` for a two-sided child (its `cos θ_w` is taken in absolute value), else `1`.
+    flip: f32x4,
+    /// `0` where the half-space test applies, `+∞` where it does not.
+    front_off: f32x4,
+    slack: f32x4,
+    support: f32x4,
+    scale: f32x4,
+    /// Per lane: the child's node in the wide tree, or its leaf (depth-first) when a leaf.
+    pub child: [u32; WIDTH],
+    /// Bit `s`: lane `s` is a leaf.
+    pub leaf_bits: u8,
+    /// The node's centre and the squared distance from it beyond which the descent stops here
+    /// and picks among its lights by power (infinite: never).
+    center: Vec3,
+    cut_r2: f32,
+    /// The node's lights: leaves `first_leaf..end_leaf` in depth-first order.
+    pub first_leaf: u32,
+    pub end_leaf: u32,
+}
+
+/// What one lane of a [`Wide`] holds for an unused slot: power 0 and harmless bounds.
+const EMPTY_LANE: Lane = Lane {
+    center: [0.0; 3],
+    radius2: 1.0,
+    radius: 1.0,
+    axis: [0.0, 0.0, 1.0],
+    cos_o: 1.0,
+    sin_o: 0.0,
+    cos_e: 1.0,
+    phi: 0.0,
+    two_sided: false,
+    front_only: false,
+    slack: 0.0,
+    support: 0.0,
+    scale: 0.0,
+};
+
+impl Wide {
+    /// The node for the binary node `own` with the children `kids` (binary nodes, at most
+    /// [`WIDTH`]) whose places in the wide tree are `child` (leaves: their depth-first index).
+    fn new(own: &Node, kids: &[&Node], child: [u32; WIDTH]) -> Self {
+        let lanes: Vec<Lane> = (0..WIDTH)
+            .map(|s| kids.get(s).map_or(EMPTY_LANE, |k| k.lane()))
+            .collect();
+        let f = |g: fn(&Lane) -> f32| {
+            f32x4::new([g(&lanes[0]), g(&lanes[1]), g(&lanes[2]), g(&lanes[3])])
+        };
+        let mut leaf_bits = 0u8;
+        for (s, k) in kids.iter().enumerate() {
+            if k.leaf {
+                leaf_bits |= 1 << s;
+            }
+        }
+        let (center, cut_r2) = own.cut_f32();
+        Self {
+            cx: f(|l| l.center[0]),
+            cy: f(|l| l.center[1]),
+            cz: f(|l| l.center[2]),
+            radius2: f(|l| l.radius2),
+            radius: f(|l| l.radius),
+            ax: f(|l| l.axis[0]),
+            ay: f(|l| l.axis[1]),
+            az: f(|l| l.axis[2]),
+            cos_o: f(|l| l.cos_o),
+            sin_o: f(|l| l.sin_o),
+            cos_e: f(|l| l.cos_e),
+            phi: f(|l| l.phi),
+            flip: f(|l| if l.two_sided { -1.0 } else { 1.0 }),
+            front_off: f(|l| if l.front_only { 0.0 } else { f32::INFINITY }),
+            slack: f(|l| l.slack),
+            support: f(|l| l.support),
+            scale: f(|l| l.scale),
+            child,
+            leaf_bits,
+            center,
+            cut_r2,
+            first_leaf: own.first_leaf,
+            end_leaf: own.end_leaf,
+        }
+    }
+
+    /// A node whose one lane is `node` (for the tests).
+    #[cfg(test)]
+    pub fn single(node: &Node) -> Self {
+        Self::new(node, &[node], [0; WIDTH])
+    }
+
+    /// Whether lane `s` is a leaf.
+    #[inline]
+    pub fn is_leaf(&self, s: usize) -> bool {
+        self.leaf_bits >> s & 1 == 1
+    }
+
+    /// Whether the descent stops at this node for the point `p`.
+    #[inline]
+    pub fn cut_at(&self, p: Vec3) -> bool {
+        (p - self.center).length_squared() >= self.cut_r2
+    }
+
+    /// The four children's importances at `p` (`p_l1 = |p|₁`; unit normal `n`, or `None`):
+    /// `Φ · cos θ' · cos θ'_i / d²` as in `Node::importance`, in `f32`, 0 only where no light
+    /// of the child can reach `p` (and for unused lanes), never NaN, at most `f32::MAX`.
+    #[inline]
+    pub fn importances(&self, p: Vec3, p_l1: f32, n: Option<Vec3>) -> f32x4 {
+        let zero = f32x4::ZERO;
+        let one = f32x4::ONE;
+        let vx = f32x4::splat(p.x) - self.cx;
+        let vy = f32x4::splat(p.y) - self.cy;
+        let vz = f32x4::splat(p.z) - self.cz;
+        // Behind the plane of the box's rearmost corner (derivations, Part V §2).
+        let l1 = vx.abs() + vy.abs() + vz.abs();
+        let plane = self.ax * vx
+            + self.ay * vy
+            + self.az * vz
+            + self.support
+            + self.slack * (l1 + self.radius)
+            + f32x4::splat(PLANE_MARGIN) * (self.scale + f32x4::splat(p_l1))
+            + self.front_off;
+        let behind = plane.cmp_lt(zero);
+        let dist2 = vx * vx + vy * vy + vz * vz;
+        let inside = dist2.cmp_le(self.radius2);
+        let inv = one / dist2.sqrt();
+        let (wx, wy, wz) = (vx * inv, vy * inv, vz * inv);
+        // θ_w: between the axis and the direction from the centre to p.
+        let cos_w = (self.ax * wx + self.ay * wy + self.az * wz)
+            .fast_max(-one)
+            .fast_min(one);
+        let cos_w = cos_w.fast_max(cos_w * self.flip);
+        let sin_w = (one - cos_w * cos_w).fast_max(zero).sqrt();
+        // θ_b: the half-angle of the bounding sphere seen from p.
+        let sin2_b = (self.radius2 / dist2).fast_min(one);
+        let sin_b = sin2_b.sqrt();
+        let cos_b = (one - sin2_b).sqrt();
+        // θ' = max(0, θ_w − θ_o − θ_b).
+        let within_o = cos_w.cmp_gt(self.cos_o);
+        let cos_x = within_o.blend(one, cos_w * self.cos_o + sin_w * self.sin_o);
+        let sin_x = within_o.blend(zero, sin_w * self.cos_o - cos_w * self.sin_o);
+        let cos_p = cos_x
+            .cmp_gt(cos_b)
+            .blend(one, cos_x * cos_b + sin_x * sin_b);
+        let outside_e = cos_p.cmp_lt(self.cos_e - f32x4::splat(COS_MARGIN));
+        let floor = f32x4::splat(COS_FLOOR);
+        let mut imp = self.phi * cos_p.fast_max(floor) / dist2.fast_max(f32x4::splat(D2_FLOOR));
+        if let Some(n) = n {
+            // θ_i: between ±n and the direction to the centre, less θ_b.
+            let cos_i = (wx * f32x4::splat(n.x) + wy * f32x4::splat(n.y) + wz * f32x4::splat(n.z))
+                .abs()
+                .fast_min(one);
+            let sin_i = (one - cos_i * cos_i).fast_max(zero).sqrt();
+            let cos_pi = cos_i
+                .cmp_gt(cos_b)
+                .blend(one, cos_i * cos_b + sin_i * sin_b);
+            imp *= cos_pi.fast_max(floor);
+        }
+        let near = self.phi / self.radius2.fast_max(f32x4::splat(D2_FLOOR));
+        let imp = inside.blend(near, outside_e.blend(zero, imp));
+        let imp = behind.blend(zero, imp);
+        // NaN (an overflowing query) → 0; ∞ → f32::MAX.
+        imp.cmp_gt(zero)
+            .blend(imp.fast_min(f32x4::splat(f32::MAX)), zero)
+    }
+}
+
+/// The wide tree of the binary tree `bin` (root at 0): nodes in depth-first order from the
+/// root, and per binary leaf its trail (two bits per level: the lane taken) and depth.
+pub(super) struct Collapsed {
+    pub nodes: Vec<Wide>,
+    /// Per depth-first leaf: the lanes taken from the root, two bits per level, and the
+    /// number of levels.
+    pub trails: Vec<(u128, u32)>,
+}
+
+/// Collapses `bin` (non-empty) into nodes of up to [`WIDTH`] children, opening at each step
+/// the interior child with the most lights (so the tree stays balanced). Each wide level
+/// takes at least one binary level, so the wide tree is no deeper than the binary one.
+pub(super) fn collapse(bin: &[Node], n_leaves: usize) -> Collapsed {
+    let mut out = Collapsed {
+        nodes: Vec::new(),
+        trails: vec![(0, 0); n_leaves],
+    };
+    collapse_at(bin, 0, 0, 0, &mut out);
+    out
+}
+
+/// The number of lights below binary node `k`.
+fn lights(bin: &[Node], k: usize) -> u32 {
+    bin[k].end_leaf - bin[k].first_leaf
+}
+
+/// Adds the wide node for binary node `at` (at wide depth `depth`, reached by `trail`) and
+/// its subtree; returns its index.
+fn collapse_at(bin: &[Node], at: usize, depth: u32, trail: u128, out: &mut Collapsed) -> u32 {
+    let mut kids: Vec<usize> = if bin[at].leaf {
+        vec![at]
+    } else {
+        vec![at + 1, bin[at].index]
+    };
+    while kids.len() < WIDTH {
+        let widest = (0..kids.len())
+            .filter(|&j| !bin[kids[j]].leaf)
+            .max_by_key(|&j| (lights(bin, kids[j]), usize::MAX - j));
+        let Some(j) = widest else { break };
+        let k = kids[j];
+        kids.splice(j..=j, [k + 1, bin[k].index]);
+    }
+    let me = out.nodes.len();
+    // A placeholder, replaced below once the children's places are known.
+    out.nodes.push(Wide::new(&bin[at], &[], [0; WIDTH]));
+    let mut child = [0u32; WIDTH];
+    for (s, &k) in kids.iter().enumerate() {
+        let t = trail | (s as u128) << (2 * depth);
+        child[s] = if bin[k].leaf {
+            out.trails[bin[k].first_leaf as usize] = (t, depth + 1);
+            bin[k].first_leaf
+        } else {
+            collapse_at(bin, k, depth + 1, t, out)
+        };
+    }
+    let refs: Vec<&Node> = kids.iter().map(|&k| &bin[k]).collect();
+    out.nodes[me] = Wide::new(&bin[at], &refs, child);
+    me as u32
+}
