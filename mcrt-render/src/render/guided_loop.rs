@@ -189,6 +189,12 @@ pub(crate) fn pass_indices(pass: &GuidingPass, start: u32, end: u32) -> Vec<(u32
 
 /// Renders the sample indices `ranges` of every pixel guided by `guide`, recording if
 /// `record` (`take` is given the tiles' results in tile order).
+///
+/// The work goes in batches of [`CHUNK`] tiles (per range, in sub-passes of
+/// [`pass_size`] samples, as the path tracer's loop); `take` runs on the results of batch
+/// `k` while the tiles of batch `k + 1` render (`rayon::join`), so that merging the
+/// records into the training tree, which is sequential to stay deterministic, overlaps the
+/// rendering. At most two batches' results are held at once.
 #[allow(clippy::too_many_arguments)]
 fn run_pass<S: Scene + Sync>(
     scene: &S,
@@ -198,33 +204,27 @@ fn run_pass<S: Scene + Sync>(
     ranges: &[(u32, u32)],
     record: bool,
     done: &AtomicU64,
-    mut take: impl FnMut(TileOut),
-) {
-    for &(s0, s1) in ranges {
-        run_range(scene, p, g, guide, (s0, s1), record, done, &mut take);
-    }
-}
-
-/// [`run_pass`] for one range of sample indices.
-#[allow(clippy::too_many_arguments)]
-fn run_range<S: Scene + Sync>(
-    scene: &S,
-    p: &LoopParams<'_>,
-    g: &GuidedSetup,
-    guide: &SdTree,
-    (s0, s1): (u32, u32),
-    record: bool,
-    done: &AtomicU64,
-    take: &mut impl FnMut(TileOut),
+    mut take: impl FnMut(TileOut) + Send,
 ) {
     let all = tiles(p.window);
     let total = p.samples.len() as u64 * p.window.area();
-    let step = pass_size(s1 - s0);
-    let mut a = s0;
-    while a < s1 && !p.cancel.load(Ordering::Relaxed) {
-        let b = (a + step).min(s1);
-        for chunk in all.chunks(CHUNK) {
-            let results: Vec<Option<TileOut>> = chunk
+    let mut batches = Vec::new();
+    for &(s0, s1) in ranges {
+        let step = pass_size(s1 - s0);
+        let mut a = s0;
+        while a < s1 {
+            let b = (a + step).min(s1);
+            batches.extend(all.chunks(CHUNK).map(|chunk| (chunk, (a, b))));
+            a = b;
+        }
+    }
+    let mut pending: Vec<TileOut> = Vec::new();
+    for (chunk, (a, b)) in batches {
+        if p.cancel.load(Ordering::Relaxed) {
+            break;
+        }
+        let render = || {
+            chunk
                 .par_iter()
                 .map(|&t| {
                     if p.cancel.load(Ordering::Relaxed) {
@@ -236,11 +236,13 @@ fn run_range<S: Scene + Sync>(
                     (p.progress)(d, total);
                     Some(r)
                 })
-                .collect();
-            results.into_iter().flatten().for_each(&mut *take);
-        }
-        a = b;
+                .collect::<Vec<Option<TileOut>>>()
+        };
+        let earlier = std::mem::take(&mut pending);
+        let (results, ()) = rayon::join(render, || earlier.into_iter().for_each(&mut take));
+        pending = results.into_iter().flatten().collect();
     }
+    pending.into_iter().for_each(take);
 }
 
 /// One tile with the sampler's concrete type.
