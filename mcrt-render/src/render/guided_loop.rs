@@ -4,11 +4,11 @@
 //! final pass with the last training passes ([`combine`]) (Müller, Gross & Novák 2017,
 //! "Practical Path Guiding for Efficient Light-Transport Simulation", CGF 36(4)).
 //!
-//! Determinism: every pass draws the pixel samples of its own index range (pass `k` the
-//! `2^k` indices after the previous passes', the final pass the rest of the sampler's
-//! layout), tiles record into their own [`GuidingRecords`], and the buffers are merged into
-//! the training tree in tile order, chunk by chunk: the trees, and so the image, are the
-//! same at any thread count.
+//! Determinism: every pass draws the pixel samples of its own indices ([`pass_indices`]:
+//! training pass `k` the aligned block `[2^k, 2^(k+1))`, the final pass index 0 and the rest
+//! of the sampler's layout), tiles record into their own [`GuidingRecords`], and the buffers
+//! are merged into the training tree in tile order, chunk by chunk: the trees, and so the
+//! image, are the same at any thread count.
 
 use super::guided_combine::combine;
 use super::tiles::{pass_size, tiles, LoopParams, LoopStats};
@@ -16,7 +16,7 @@ use crate::camera::Camera;
 use crate::film::{Film, PixelAccum};
 use glam::{Vec2, Vec3};
 use mcrt::integrator::{GuidedPathTracer, Scene};
-use mcrt::sampling::guiding::{GuidingRecords, GuidingSchedule, SdTree};
+use mcrt::sampling::guiding::{GuidingPass, GuidingRecords, GuidingSchedule, SdTree};
 use mcrt::sampling::sampler::{AnySampler, Sampler};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -117,13 +117,11 @@ pub(crate) fn render_guided<S: Scene + Sync>(
         leaves: guide.leaf_count(),
     };
     let done = AtomicU64::new(0);
-    let mut first = p.samples.start;
     for pass in schedule.passes() {
         if p.cancel.load(Ordering::Relaxed) {
             break;
         }
-        let range = (first, first + pass.spp);
-        first += pass.spp;
+        let ranges = pass_indices(&pass, p.samples.start, p.samples.end);
         let mut setup = *g;
         if guide.sample_count() == 0 {
             setup.tracer.guide_probability = 0.0;
@@ -135,7 +133,8 @@ pub(crate) fn render_guided<S: Scene + Sync>(
             report.final_spp = pass.spp;
             report.leaves = guide.leaf_count();
         }
-        run_pass(scene, p, &setup, &guide, range, &done, |out| {
+        let record = !pass.is_final;
+        run_pass(scene, p, &setup, &guide, &ranges, record, &done, |out| {
             stats.rays += out.rays;
             training.merge(&out.records);
             if let Some(film) = film.as_mut() {
@@ -168,26 +167,64 @@ pub(crate) fn render_guided<S: Scene + Sync>(
     (film, stats)
 }
 
-/// Renders the sample indices `range` of every pixel guided by `guide`, recording unless
-/// `range` is the final pass's (`take` is given the tiles' results in tile order).
+/// The sample indices of `pass` in a budget of indices `start..end`, as ranges: training
+/// pass `k` (of `2^k` samples) draws `start + [2^k, 2^(k+1))`, the final pass `start + 0`
+/// and `start + [2^K, end − start)` after `K` training passes. Every index of the budget is
+/// drawn once, and every training pass, and the final pass but its first sample, is an
+/// aligned power-of-two block of the sampler's sequence, which is a well stratified net for
+/// the Sobol samplers (the indices after the previous passes' were not aligned).
+pub(crate) fn pass_indices(pass: &GuidingPass, start: u32, end: u32) -> Vec<(u32, u32)> {
+    if !pass.is_final {
+        let a = start.saturating_add(pass.spp);
+        return vec![(a, a.saturating_add(pass.spp).min(end))];
+    }
+    // The training passes before the final one drew 2^K − 1 = end − start − spp indices.
+    let trained = (end - start).saturating_sub(pass.spp);
+    if trained == 0 {
+        vec![(start, end)]
+    } else {
+        vec![(start, start + 1), (start + trained + 1, end)]
+    }
+}
+
+/// Renders the sample indices `ranges` of every pixel guided by `guide`, recording if
+/// `record` (`take` is given the tiles' results in tile order).
+///
+/// The work goes in batches of [`CHUNK`] tiles (per range, in sub-passes of
+/// [`pass_size`] samples, as the path tracer's loop); `take` runs on the results of batch
+/// `k` while the tiles of batch `k + 1` render (`rayon::join`), so that merging the
+/// records into the training tree, which is sequential to stay deterministic, overlaps the
+/// rendering. At most two batches' results are held at once.
+#[allow(clippy::too_many_arguments)]
 fn run_pass<S: Scene + Sync>(
     scene: &S,
     p: &LoopParams<'_>,
     g: &GuidedSetup,
     guide: &SdTree,
-    (s0, s1): (u32, u32),
+    ranges: &[(u32, u32)],
+    record: bool,
     done: &AtomicU64,
-    mut take: impl FnMut(TileOut),
+    mut take: impl FnMut(TileOut) + Send,
 ) {
-    let record = s1 < p.samples.end;
     let all = tiles(p.window);
     let total = p.samples.len() as u64 * p.window.area();
-    let step = pass_size(s1 - s0);
-    let mut a = s0;
-    while a < s1 && !p.cancel.load(Ordering::Relaxed) {
-        let b = (a + step).min(s1);
-        for chunk in all.chunks(CHUNK) {
-            let results: Vec<Option<TileOut>> = chunk
+    let mut batches = Vec::new();
+    for &(s0, s1) in ranges {
+        let step = pass_size(s1 - s0);
+        let mut a = s0;
+        while a < s1 {
+            let b = (a + step).min(s1);
+            batches.extend(all.chunks(CHUNK).map(|chunk| (chunk, (a, b))));
+            a = b;
+        }
+    }
+    let mut pending: Vec<TileOut> = Vec::new();
+    for (chunk, (a, b)) in batches {
+        if p.cancel.load(Ordering::Relaxed) {
+            break;
+        }
+        let render = || {
+            chunk
                 .par_iter()
                 .map(|&t| {
                     if p.cancel.load(Ordering::Relaxed) {
@@ -199,11 +236,13 @@ fn run_pass<S: Scene + Sync>(
                     (p.progress)(d, total);
                     Some(r)
                 })
-                .collect();
-            results.into_iter().flatten().for_each(&mut take);
-        }
-        a = b;
+                .collect::<Vec<Option<TileOut>>>()
+        };
+        let earlier = std::mem::take(&mut pending);
+        let (results, ()) = rayon::join(render, || earlier.into_iter().for_each(&mut take));
+        pending = results.into_iter().flatten().collect();
     }
+    pending.into_iter().for_each(take);
 }
 
 /// One tile with the sampler's concrete type.
@@ -306,5 +345,38 @@ impl<S: Scene> Tile<'_, S> {
             }
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every index of a budget is drawn by exactly one pass, and each training pass (and the
+    /// final pass after its first index) is an aligned power-of-two block.
+    #[test]
+    fn pass_indices_cover_the_budget_once_in_aligned_blocks() {
+        for (start, total) in [(0u32, 1u32), (0, 2), (0, 16), (0, 64), (0, 100), (5, 256)] {
+            let end = start + total;
+            let mut drawn = vec![0u32; total as usize];
+            for pass in GuidingSchedule::new(total).passes() {
+                let ranges = pass_indices(&pass, start, end);
+                let n: u32 = ranges.iter().map(|(a, b)| b - a).sum();
+                assert_eq!(n, pass.spp, "budget {total}, pass {pass:?}");
+                for &(a, b) in &ranges {
+                    (a..b).for_each(|i| drawn[(i - start) as usize] += 1);
+                }
+                let (a, _) = *ranges.last().unwrap();
+                if !pass.is_final {
+                    assert!(
+                        pass.spp.is_power_of_two() && (a - start) == pass.spp,
+                        "{ranges:?}"
+                    );
+                } else if ranges.len() == 2 {
+                    assert!((a - start).is_power_of_two(), "{ranges:?}");
+                }
+            }
+            assert!(drawn.iter().all(|&c| c == 1), "budget {total}: {drawn:?}");
+        }
     }
 }

@@ -25,6 +25,14 @@ struct Leaf {
 /// The deepest spatial subdivision (a leaf's cube is then `2^-(DEPTH/3)` of the whole).
 const MAX_SPATIAL_DEPTH: u32 = 48;
 
+/// Bits of each axis's grid coordinate per level of [`SdTree::leaf_index`] (the deepest
+/// split halves an axis this often).
+const AXIS_BITS: u32 = MAX_SPATIAL_DEPTH / 3;
+
+/// The levels per axis that [`SdTree::top`] resolves at once: a grid of `2^(3·TOP_BITS)`
+/// cells, each with the node the descent reaches after `3·TOP_BITS` levels.
+const TOP_BITS: u32 = 4;
+
 /// An SD-tree (Müller, Gross & Novák 2017, "Practical Path Guiding for Efficient
 /// Light-Transport Simulation", CGF 36(4)): a binary tree over space whose leaves hold
 /// directional quadtrees ([`DQuadTree`]) of the radiance arriving in them.
@@ -63,6 +71,11 @@ pub struct SdTree {
     leaves: Vec<Leaf>,
     /// Whether the leaves learn the guided path tracer's selection probability.
     learn_selection: bool,
+    /// Per cell of a grid of `2^TOP_BITS` cells per axis, the node that the descent of
+    /// [`SdTree::leaf_index`] reaches after `3·TOP_BITS` levels (or the leaf it reaches
+    /// before), so that a lookup skips those levels. Derived from `nodes`
+    /// ([`SdTree::index_top`]) whenever their structure changes.
+    top: Vec<u32>,
 }
 
 impl SdTree {
@@ -77,7 +90,7 @@ impl SdTree {
         } else {
             (Vec3::ZERO, 1.0)
         };
-        Self {
+        let mut t = Self {
             min,
             size,
             nodes: vec![SNode::Leaf(0)],
@@ -86,7 +99,41 @@ impl SdTree {
                 samples: 0,
             }],
             learn_selection: false,
+            top: Vec::new(),
+        };
+        t.index_top();
+        t
+    }
+
+    /// Fills [`SdTree::top`] from the nodes: for each grid cell, descends `3·TOP_BITS`
+    /// levels (or to a leaf) with the cell's high coordinate bits, as [`SdTree::leaf_index`]
+    /// would.
+    fn index_top(&mut self) {
+        let n = 1u32 << TOP_BITS;
+        let shift = AXIS_BITS - TOP_BITS;
+        self.top = (0..n * n * n)
+            .map(|i| {
+                let c = [i / (n * n), (i / n) % n, i % n].map(|v| v << shift);
+                self.descend(c, 0, 0, 3 * TOP_BITS).0 as u32
+            })
+            .collect();
+    }
+
+    /// From node `n` at `depth`, the node reached by the grid coordinates `c` (each of
+    /// [`AXIS_BITS`] bits) at depth `stop`, or the leaf reached before; and its depth.
+    #[inline]
+    fn descend(&self, c: [u32; 3], mut n: usize, mut depth: u32, stop: u32) -> (usize, u32) {
+        while depth < stop {
+            match self.nodes[n] {
+                SNode::Inner(ch) => {
+                    let bit = (c[(depth % 3) as usize] >> (AXIS_BITS - 1 - depth / 3)) & 1;
+                    n = ch[bit as usize] as usize;
+                    depth += 1;
+                }
+                SNode::Leaf(_) => break,
+            }
         }
+        (n, depth)
     }
 
     /// Whether this tree, and those [`SdTree::refined`] makes from it, learn in each leaf
@@ -122,22 +169,21 @@ impl SdTree {
     /// coordinates, is clamped to it). The point is placed on a grid of `2^16` cells per axis
     /// (the deepest split halves an axis 16 times), and each level reads the next bit of the
     /// axis it splits.
+    /// The first `3·TOP_BITS` levels are read from [`SdTree::top`].
+    #[inline]
     fn leaf_index(&self, p: Vec3) -> usize {
-        const BITS: u32 = MAX_SPATIAL_DEPTH / 3;
-        let scale = (1u32 << BITS) as f32;
+        let scale = (1u32 << AXIS_BITS) as f32;
         let cell = |v: f32| (clamp_unit(v) * scale).min(scale - 1.0) as u32;
         let x = (p - self.min) / self.size;
         let c = [cell(x.x), cell(x.y), cell(x.z)];
-        let (mut n, mut depth) = (0usize, 0u32);
-        loop {
-            match self.nodes[n] {
-                SNode::Inner(ch) => {
-                    let bit = (c[(depth % 3) as usize] >> (BITS - 1 - depth / 3)) & 1;
-                    n = ch[bit as usize] as usize;
-                    depth += 1;
-                }
-                SNode::Leaf(l) => return l as usize,
-            }
+        let shift = AXIS_BITS - TOP_BITS;
+        let g = (((c[0] >> shift) << TOP_BITS | (c[1] >> shift)) << TOP_BITS) | (c[2] >> shift);
+        let n = self.top[g as usize] as usize;
+        let (n, _) = self.descend(c, n, 3 * TOP_BITS, MAX_SPATIAL_DEPTH);
+        match self.nodes[n] {
+            SNode::Leaf(l) => l as usize,
+            // Unreachable: `refined` splits no deeper than `MAX_SPATIAL_DEPTH`.
+            SNode::Inner(_) => 0,
         }
     }
 
@@ -197,6 +243,7 @@ impl SdTree {
             nodes: Vec::with_capacity(self.nodes.len()),
             leaves: Vec::with_capacity(self.leaves.len()),
             learn_selection: self.learn_selection,
+            top: Vec::new(),
         };
         // (old node, new node, depth)
         out.nodes.push(SNode::Inner([0, 0]));
@@ -217,6 +264,7 @@ impl SdTree {
                 }
             }
         }
+        out.index_top();
         out
     }
 
@@ -244,5 +292,51 @@ impl SdTree {
                 });
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The grid of the first levels gives the leaf of the full descent from the root, for
+    /// a tree split unevenly (deep around a cluster of records, shallow elsewhere).
+    #[test]
+    fn leaf_index_with_the_top_grid_equals_the_full_descent() {
+        let mut t = SdTree::new(Vec3::splat(-1.0), Vec3::ONE);
+        for round in 0..4 {
+            for i in 0..4000 {
+                let f = i as f32 / 4000.0;
+                let p = Vec3::new(
+                    0.3 + 0.01 * f,
+                    0.2 - 0.02 * f,
+                    -0.7 + 0.005 * (i % 7) as f32,
+                );
+                t.record(p, Vec3::Z, 1.0, 1.0);
+                t.record(Vec3::splat(f * 2.0 - 1.0), Vec3::X, 1.0, 1.0);
+            }
+            t = t.refined(50.0 / (round + 1) as f64, 0.01, 20);
+        }
+        assert!(t.leaf_count() > 100, "{}", t.leaf_count());
+        let scale = (1u32 << AXIS_BITS) as f32;
+        let mut seen = std::collections::HashSet::new();
+        for i in 0..20_000u32 {
+            let h = |k: u32| ((i.wrapping_mul(2_654_435_761).wrapping_add(k * 40_503)) >> 8) as f32;
+            let p = Vec3::new(h(1) % 1000.0, h(2) % 997.0, h(3) % 991.0) / 500.0 - 1.0;
+            let p = if i % 2 == 0 {
+                p * 0.02 + Vec3::new(0.3, 0.2, -0.7)
+            } else {
+                p
+            };
+            let x = (p - t.min) / t.size;
+            let cell = |v: f32| (clamp_unit(v) * scale).min(scale - 1.0) as u32;
+            let (n, _) = t.descend([cell(x.x), cell(x.y), cell(x.z)], 0, 0, MAX_SPATIAL_DEPTH);
+            let SNode::Leaf(l) = t.nodes[n] else {
+                panic!("descent ended at an inner node");
+            };
+            assert_eq!(t.leaf_index(p), l as usize, "{p}");
+            seen.insert(l);
+        }
+        assert!(seen.len() > 50, "{}", seen.len());
     }
 }
