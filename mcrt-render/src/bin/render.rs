@@ -173,14 +173,16 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "accel",
         short: None,
-        value: Some("bvh|grid|kdtree"),
-        help: "acceleration structure [default: bvh]",
+        value: Some("bvh|bvh8|grid|kdtree"),
+        help: "acceleration structure: bvh (4-wide), bvh8 (8-wide, AVX2 where the processor \
+               has it), grid or kdtree [default: bvh]",
         apply: |a, v| {
             a.opts.accel = match v {
                 "bvh" => AccelKind::Bvh,
+                "bvh8" => AccelKind::Bvh8,
                 "grid" => AccelKind::Grid,
                 "kdtree" => AccelKind::KdTree,
-                _ => return Err(format!("--accel {v}: expected bvh, grid or kdtree")),
+                _ => return Err(format!("--accel {v}: expected bvh, bvh8, grid or kdtree")),
             };
             Ok(())
         },
