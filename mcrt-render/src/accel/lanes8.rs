@@ -152,12 +152,6 @@ impl Simd8 {
         Simd8::Portable
     }
 
-    /// True for the AVX2 path.
-    #[cfg(test)]
-    pub(crate) fn is_avx2(self) -> bool {
-        !matches!(self, Simd8::Portable)
-    }
-
     /// Runs `op` on these lanes; on the AVX2 path with AVX2 enabled for everything `op`
     /// inlines.
     #[inline(always)]

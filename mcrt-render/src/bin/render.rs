@@ -5,7 +5,7 @@
 //!     [-o out.exr|out.png] [--threads N] [--seed S] [--variance]
 //!     [--strategy bsdf|light|balance|power]
 //!     [--sampler independent|stratified|sobol|sobol4d|halton|r2|cmj]
-//!     [--accel bvh|grid|kdtree] [--light-sampling auto|solid-angle|area]
+//!     [--accel bvh|bvh8|grid|kdtree] [--light-sampling auto|solid-angle|area]
 //!     [--light-bvh auto|on|off]
 //!     [--integrator path|direct|bdpt|mlt|ptracer|guided] [--bdpt-strategy s,t]
 //!     [--samples START..END] [--crop x0,y0,x1,y1]
