@@ -9,7 +9,8 @@
 //! second operand when either is NaN; no fused multiply-add), so they agree bit for bit.
 //!
 //! The choice is made once, when a tree is built ([`Simd8::detect`]), and taken once per
-//! query ([`Simd8::dispatch`]): the whole traversal, leaf visits included, runs inside it.
+//! query ([`Simd8::dispatch`]): the whole traversal runs inside it, with whatever of the
+//! caller's leaf visit is inlined into it.
 
 use glam::Vec4;
 
