@@ -3,11 +3,11 @@
 //!
 //! Run: `cargo bench --features bench --bench accel`.
 //!
-//! - `accel/cornell_box`: closest-hit and occlusion (`t_max = 1`) queries for the BVH, the
-//!   grid, the kd-tree and brute force on the shapes of `tests/data/cornell-box.xml`, random
-//!   rays from inside the box.
-//! - `accel/soup_100k`, `accel/sphere_130k`: build time and closest-hit queries for the BVH,
-//!   the grid and the kd-tree on a 100 000-triangle soup (every point of space lies in the boxes of
+//! - `accel/cornell_box`: closest-hit and occlusion (`t_max = 1`) queries for the BVH
+//!   (4-wide `Bvh` and 8-wide `Bvh8`), the grid, the kd-tree and brute force on the shapes
+//!   of `tests/data/cornell-box.xml`, random rays from inside the box.
+//! - `accel/soup_100k`, `accel/sphere_130k`: build time and closest-hit queries for the BVH
+//!   (4-wide and 8-wide), the grid and the kd-tree on a 100 000-triangle soup (every point of space lies in the boxes of
 //!   hundreds of triangles: a hard case) and a closed 130 560-triangle tessellated sphere (256 × 256),
 //!   random rays from inside. Build throughput is reported in triangles per second.
 //! - `accel/degenerate_20k`: build time of the BVH, the grid and the kd-tree on the
@@ -60,6 +60,7 @@ fn cornell(c: &mut Criterion) {
     group.throughput(Throughput::Elements(rays.len() as u64));
     for kind in [
         AccelKind::Bvh,
+        AccelKind::Bvh8,
         AccelKind::Grid,
         AccelKind::KdTree,
         AccelKind::BruteForce,
@@ -89,7 +90,12 @@ fn large_meshes(c: &mut Criterion) {
     ] {
         let mut group = c.benchmark_group(format!("accel/{name}"));
         group.sampling_mode(SamplingMode::Flat);
-        for kind in [AccelKind::Bvh, AccelKind::Grid, AccelKind::KdTree] {
+        for kind in [
+            AccelKind::Bvh,
+            AccelKind::Bvh8,
+            AccelKind::Grid,
+            AccelKind::KdTree,
+        ] {
             // Build throughput in triangles per second.
             group.throughput(Throughput::Elements(triangles));
             group.bench_function(format!("build/{kind:?}"), |b| {

@@ -11,7 +11,7 @@
 //! ```
 //!
 //! Scenes: `cornell` (16 384 rays), `soup` (100 000 triangles), `sphere` (130 560
-//! triangles; 4096 rays each). Structures: `bvh`, `grid`, `kdtree`, `brute`.
+//! triangles; 4096 rays each). Structures: `bvh`, `bvh8`, `grid`, `kdtree`, `brute`.
 
 use mcrt_render::description::ShapeDesc;
 use mcrt_render::geometry::{AccelKind, Geometry, Ray};
@@ -49,16 +49,17 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let kind = match args.get(1).map(String::as_str) {
         Some("bvh") => AccelKind::Bvh,
+        Some("bvh8") => AccelKind::Bvh8,
         Some("grid") => AccelKind::Grid,
         Some("kdtree") => AccelKind::KdTree,
         Some("brute") => AccelKind::BruteForce,
         _ => {
-            eprintln!("usage: accel_probe cornell|soup|sphere bvh|grid|kdtree|brute");
+            eprintln!("usage: accel_probe cornell|soup|sphere bvh|bvh8|grid|kdtree|brute");
             return ExitCode::FAILURE;
         }
     };
     let Some((shapes, rays)) = args.first().and_then(|s| scene(s)) else {
-        eprintln!("usage: accel_probe cornell|soup|sphere bvh|grid|kdtree|brute");
+        eprintln!("usage: accel_probe cornell|soup|sphere bvh|bvh8|grid|kdtree|brute");
         return ExitCode::FAILURE;
     };
     let g = match Geometry::new(&shapes, None, kind) {

@@ -110,10 +110,12 @@ fn same_hit(
     }
 }
 
-/// Checks BVH, grid and kd-tree against brute force on the given rays.
+/// Checks BVH, grid and kd-tree against brute force on the given rays, and the 8-wide BVH
+/// against the 4-wide one (the same hit but for ties, the same occlusion).
 fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
     let brute = Geometry::new(shapes, None, AccelKind::BruteForce).unwrap();
     let bvh = Geometry::new(shapes, None, AccelKind::Bvh).unwrap();
+    let bvh8 = Geometry::new(shapes, None, AccelKind::Bvh8).unwrap();
     let grid = Geometry::new(shapes, None, AccelKind::Grid).unwrap();
     let kd = Geometry::new(shapes, None, AccelKind::KdTree).unwrap();
     let mut r = rng(seed);
@@ -126,6 +128,15 @@ fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
     for ray in rays {
         let want = brute.intersect(ray, f32::INFINITY);
         let got = bvh.intersect(ray, f32::INFINITY);
+        match (&got, &bvh8.intersect(ray, f32::INFINITY)) {
+            (Some(a), Some(b)) if a != b => {
+                assert!(a.t.is_finite() && b.t.is_finite());
+                // Which of two primitives at (nearly) the same distance is met first.
+                assert!((a.t - b.t).abs() <= 1e-6 * a.t, "bvh8: {b:?} vs {a:?}");
+                stats.ties += 1;
+            }
+            (a, b) => assert_eq!(a, b, "bvh8 vs bvh for {ray:?}"),
+        }
         if slack_hit(shapes, &got, &want) {
             stats.slack += 1;
         } else {
@@ -148,6 +159,11 @@ fn compare(shapes: &[ShapeDesc], rays: &[Ray], seed: u64) -> Stats {
         let t_max = r.random_range(0.0f32..4.0);
         let occ = brute.occluded(ray, t_max);
         let bvh_occ = bvh.occluded(ray, t_max);
+        assert_eq!(
+            bvh8.occluded(ray, t_max),
+            bvh_occ,
+            "bvh8 occlusion {ray:?} t_max {t_max}"
+        );
         let slack = || {
             slack_hit(
                 shapes,
@@ -324,6 +340,7 @@ fn closed_tessellated_sphere_is_watertight() {
     rays.extend(random_rays(&mut r, 2000, 0.5));
     for kind in [
         AccelKind::Bvh,
+        AccelKind::Bvh8,
         AccelKind::Grid,
         AccelKind::KdTree,
         AccelKind::BruteForce,
@@ -353,6 +370,7 @@ fn planar_scene_and_empty_scene() {
     compare(&shapes, &rays, 10);
     for kind in [
         AccelKind::Bvh,
+        AccelKind::Bvh8,
         AccelKind::Grid,
         AccelKind::KdTree,
         AccelKind::BruteForce,

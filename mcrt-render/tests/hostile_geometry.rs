@@ -21,7 +21,12 @@ const BYTES_PER_PRIM: usize = 512;
 /// ... plus these.
 const BYTES_FIXED: usize = 1 << 20;
 
-const KINDS: [AccelKind; 3] = [AccelKind::Bvh, AccelKind::Grid, AccelKind::KdTree];
+const KINDS: [AccelKind; 4] = [
+    AccelKind::Bvh,
+    AccelKind::Bvh8,
+    AccelKind::Grid,
+    AccelKind::KdTree,
+];
 
 fn down(x: f32, y: f32) -> Ray {
     Ray {

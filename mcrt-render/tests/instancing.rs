@@ -324,7 +324,12 @@ fn an_instanced_mesh_is_hit_where_its_flattened_copy_is() {
             s
         })
         .collect();
-    for accel in [AccelKind::Bvh, AccelKind::Grid, AccelKind::KdTree] {
+    for accel in [
+        AccelKind::Bvh,
+        AccelKind::Bvh8,
+        AccelKind::Grid,
+        AccelKind::KdTree,
+    ] {
         let gi = Geometry::new(&inst, None, accel).expect("instanced");
         let gf = Geometry::new(&flat, None, accel).expect("flattened");
         assert_eq!(gi.primitive_count() * 3, gf.primitive_count());

@@ -5,7 +5,7 @@
 //!     [-o out.exr|out.png] [--threads N] [--seed S] [--variance]
 //!     [--strategy bsdf|light|balance|power]
 //!     [--sampler independent|stratified|sobol|sobol4d|halton|r2|cmj]
-//!     [--accel bvh|grid|kdtree] [--light-sampling auto|solid-angle|area]
+//!     [--accel bvh|bvh8|grid|kdtree] [--light-sampling auto|solid-angle|area]
 //!     [--light-bvh auto|on|off]
 //!     [--integrator path|direct|bdpt|mlt|ptracer|guided] [--bdpt-strategy s,t]
 //!     [--samples START..END] [--crop x0,y0,x1,y1]
@@ -173,14 +173,16 @@ const OPTIONS: &[Opt] = &[
     Opt {
         long: "accel",
         short: None,
-        value: Some("bvh|grid|kdtree"),
-        help: "acceleration structure [default: bvh]",
+        value: Some("bvh|bvh8|grid|kdtree"),
+        help: "acceleration structure: bvh (4-wide), bvh8 (8-wide, AVX2 where the processor \
+               has it), grid or kdtree [default: bvh]",
         apply: |a, v| {
             a.opts.accel = match v {
                 "bvh" => AccelKind::Bvh,
+                "bvh8" => AccelKind::Bvh8,
                 "grid" => AccelKind::Grid,
                 "kdtree" => AccelKind::KdTree,
-                _ => return Err(format!("--accel {v}: expected bvh, grid or kdtree")),
+                _ => return Err(format!("--accel {v}: expected bvh, bvh8, grid or kdtree")),
             };
             Ok(())
         },

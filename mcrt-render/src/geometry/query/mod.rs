@@ -1,7 +1,8 @@
 //! Ray queries: the one place where the geometry finds what a ray hits.
 //!
 //! [`RayQuery`] is the switch over backends. With [`AccelKind::Bvh`] the primitives live in
-//! the 4-wide BVH's leaves, packed for SIMD tests ([`packed_bvh`]: quads, that is triangle
+//! the 4-wide BVH's leaves (with [`AccelKind::Bvh8`] in the 8-wide BVH's, the same leaves),
+//! packed for SIMD tests ([`packed_bvh`]: quads, that is triangle
 //! pairs forming a parallelogram ([`pairing`], [`quad4`]), and other triangles four at a
 //! time ([`tri4`])). Every other kind goes through the primitive-agnostic [`Accel`], which
 //! calls back per primitive into the scalar tests ([`scalar`]).
@@ -19,7 +20,7 @@ pub(crate) use scalar::TriSoa;
 
 use super::data::{Prim, PrimsView, ShapeData};
 use super::Ray;
-use crate::accel::{Aabb, Accel, AccelKind, Bvh4};
+use crate::accel::{Aabb, Accel, AccelKind, Bvh4, Bvh8};
 use packed_bvh::PackedBvh;
 use pairing::Unit;
 use rayon::prelude::*;
@@ -72,6 +73,8 @@ impl Stored<'_> {
 pub(super) enum RayQuery {
     /// The 4-wide BVH with packed leaves.
     PackedBvh(PackedBvh),
+    /// The 8-wide BVH with packed leaves.
+    PackedBvh8(PackedBvh<Bvh8>),
     /// Any other structure, one primitive per callback.
     Accel(Accel),
 }
@@ -89,16 +92,21 @@ impl RayQuery {
     /// Builds the backend of the given kind over `built`'s primitives.
     pub(super) fn build(kind: AccelKind, built: &PrimsView) -> QueryBuild {
         let prims = &built.prims;
-        if kind == AccelKind::Bvh {
+        if matches!(kind, AccelKind::Bvh | AccelKind::Bvh8) {
             let units = pairing::units(built);
             let boxes: Vec<Aabb> = units
                 .par_iter()
                 .map(|u| unit_bounds(u, prims, built.shapes))
                 .collect();
-            let bvh = Bvh4::build(&boxes);
-            let (slots, packed) = PackedBvh::pack(bvh, &units, prims);
+            let (slots, query) = if kind == AccelKind::Bvh {
+                let (slots, packed) = PackedBvh::pack(Bvh4::build(&boxes), &units, prims);
+                (slots, RayQuery::PackedBvh(packed))
+            } else {
+                let (slots, packed) = PackedBvh::pack(Bvh8::build(&boxes), &units, prims);
+                (slots, RayQuery::PackedBvh8(packed))
+            };
             return QueryBuild {
-                query: RayQuery::PackedBvh(packed),
+                query,
                 slots,
                 bounds: union(&boxes),
             };
@@ -115,6 +123,7 @@ impl RayQuery {
     pub(super) fn heap_bytes(&self) -> usize {
         match self {
             RayQuery::PackedBvh(p) => p.heap_bytes(),
+            RayQuery::PackedBvh8(p) => p.heap_bytes(),
             RayQuery::Accel(a) => a.heap_bytes(),
         }
     }
@@ -123,6 +132,7 @@ impl RayQuery {
     pub(super) fn kind(&self) -> AccelKind {
         match self {
             RayQuery::PackedBvh(_) => AccelKind::Bvh,
+            RayQuery::PackedBvh8(_) => AccelKind::Bvh8,
             RayQuery::Accel(a) => a.kind(),
         }
     }
@@ -137,6 +147,7 @@ impl RayQuery {
     ) -> Option<(f32, HitRecord)> {
         match self {
             RayQuery::PackedBvh(p) => p.closest(stored, ray, t_max),
+            RayQuery::PackedBvh8(p) => p.closest(stored, ray, t_max),
             RayQuery::Accel(accel) => {
                 let tri = TriRay::new(ray.origin, ray.dir);
                 let mut rec = HitRecord {
@@ -159,6 +170,7 @@ impl RayQuery {
     pub(super) fn any(&self, stored: Stored, ray: &Ray, t_max: f32) -> bool {
         match self {
             RayQuery::PackedBvh(p) => p.any(stored, ray, t_max),
+            RayQuery::PackedBvh8(p) => p.any(stored, ray, t_max),
             RayQuery::Accel(accel) => {
                 let tri = TriRay::new(ray.origin, ray.dir);
                 accel.any(ray.origin, ray.dir, t_max, |i, bound| {

@@ -1,4 +1,5 @@
-//! Ray queries through the 4-wide BVH with each leaf's primitives packed: its quads
+//! Ray queries through the 4-wide or the 8-wide BVH ([`LeafTree`]: both have the same
+//! leaves) with each leaf's primitives packed: its quads
 //! (triangle pairs forming a parallelogram, [`QuadPacket`]) into one 4-wide quad test, its
 //! other triangles into one [`TriPacket`]. Spheres and disks in a leaf are stored after them
 //! and tested one by one.
@@ -12,7 +13,79 @@ use super::pairing::{Quad, Unit, WeightMaps};
 use super::quad4::{QuadPacket, QuadRay4};
 use super::tri4::{TriPacket, TriRay4};
 use super::{HitRecord, Ray, Stored};
-use crate::accel::Bvh4;
+use crate::accel::{Bvh4, Bvh8};
+use glam::Vec3;
+use std::ops::Range;
+
+/// A BVH whose leaves hold ranges of stored primitives, walked per leaf: [`Bvh4`] and
+/// [`Bvh8`] (their methods of the same names).
+pub(crate) trait LeafTree {
+    /// `order[i]`: the input index of the unit stored at position `i`.
+    fn order(&self) -> &[u32];
+    /// Number of leaves.
+    fn leaf_count(&self) -> usize;
+    /// The stored units of leaf `k`.
+    fn leaf(&self, k: usize) -> Range<u32>;
+    /// Heap bytes held.
+    fn heap_bytes(&self) -> usize;
+    /// The leaves that may hold a hit, nearest subtrees first; returns the final bound.
+    fn closest_leaf(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_max: f32,
+        visit: impl FnMut(u32, &mut f32),
+    ) -> f32;
+    /// True when `visit` holds for some leaf the ray may meet.
+    fn any_leaf(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_max: f32,
+        visit: impl FnMut(u32, f32) -> bool,
+    ) -> bool;
+}
+
+macro_rules! leaf_tree {
+    ($t:ty) => {
+        impl LeafTree for $t {
+            fn order(&self) -> &[u32] {
+                <$t>::order(self)
+            }
+            fn leaf_count(&self) -> usize {
+                <$t>::leaf_count(self)
+            }
+            fn leaf(&self, k: usize) -> Range<u32> {
+                <$t>::leaf(self, k)
+            }
+            fn heap_bytes(&self) -> usize {
+                <$t>::heap_bytes(self)
+            }
+            #[inline(always)]
+            fn closest_leaf(
+                &self,
+                origin: Vec3,
+                dir: Vec3,
+                t_max: f32,
+                visit: impl FnMut(u32, &mut f32),
+            ) -> f32 {
+                <$t>::closest_leaf(self, origin, dir, t_max, visit)
+            }
+            #[inline(always)]
+            fn any_leaf(
+                &self,
+                origin: Vec3,
+                dir: Vec3,
+                t_max: f32,
+                visit: impl FnMut(u32, f32) -> bool,
+            ) -> bool {
+                <$t>::any_leaf(self, origin, dir, t_max, visit)
+            }
+        }
+    };
+}
+leaf_tree!(Bvh4);
+leaf_tree!(Bvh8);
 
 /// A BVH leaf as the geometry stores it.
 #[derive(Debug, Clone)]
@@ -50,10 +123,10 @@ struct QuadSlots {
     maps: [WeightMaps; 4],
 }
 
-/// The 4-wide BVH and its packed leaves.
+/// A BVH (4-wide or 8-wide) and its packed leaves.
 #[derive(Debug, Clone)]
-pub(crate) struct PackedBvh {
-    bvh: Bvh4,
+pub(crate) struct PackedBvh<T: LeafTree = Bvh4> {
+    bvh: T,
     leaves: Vec<Leaf>,
     quads: Vec<QuadPacket>,
     quad_slots: Vec<QuadSlots>,
@@ -73,7 +146,7 @@ enum LeafHit {
     },
 }
 
-impl PackedBvh {
+impl<T: LeafTree> PackedBvh<T> {
     /// Heap bytes held (the BVH and the packed leaves).
     pub(super) fn heap_bytes(&self) -> usize {
         use crate::accel::vec_bytes;
@@ -86,7 +159,7 @@ impl PackedBvh {
 
     /// Packs the leaves of `bvh` (built over `units`); returns the slots' input primitive
     /// indices and the packed BVH. `prims` is in input order.
-    pub(super) fn pack(bvh: Bvh4, units: &[Unit], prims: &[Prim]) -> (Vec<u32>, Self) {
+    pub(super) fn pack(bvh: T, units: &[Unit], prims: &[Prim]) -> (Vec<u32>, Self) {
         let kind = |u: &Unit| match u {
             Unit::Pair { .. } => 0,
             Unit::One(i) if matches!(prims[*i as usize], Prim::Tri(_)) => 1,
@@ -293,7 +366,7 @@ mod tests {
     fn packed(g: &Geometry) -> &PackedBvh {
         match &g.top.query {
             RayQuery::PackedBvh(p) => p,
-            RayQuery::Accel(_) => panic!("not the packed BVH"),
+            _ => panic!("not the packed BVH"),
         }
     }
     use crate::description::{ShapeDesc, ShapeKind};
