@@ -5,7 +5,7 @@
 //! substitution (defines passed to [`load_scene`] beat defaults), `ref`/`id`, the value
 //! tags `integer`, `float`, `boolean`, `string`, `rgb`, `point`, `vector`, `transform`
 //! (`lookat`, `matrix`, `translate`, `rotate`, `scale`), and the plugins
-//! `path`/`direct`, `perspective`/`thinlens`, `independent`/`stratified`/`ldsampler`/`multijitter`/`orthogonal`, `hdrfilm` with
+//! `path`/`direct`, `perspective`/`thinlens`/`orthographic`, `independent`/`stratified`/`ldsampler`/`multijitter`/`orthogonal`, `hdrfilm` with
 //! `box`/`gaussian`/`tent` and `crop_*`, `rectangle`/`cube`/`disk`/`sphere`/`obj`/`ply`/`serialized`,
 //! `shapegroup`/`instance`,
 //! `diffuse`/`conductor`/`roughconductor`/`dielectric`/`twosided` and the other BSDFs of
