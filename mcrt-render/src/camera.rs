@@ -79,7 +79,8 @@ impl Camera {
             });
         }
         let orthographic = sensor.projection == Projection::Orthographic;
-        if !orthographic && !(sensor.fov > 0.0 && sensor.fov < 180.0) {
+        let fov_valid = sensor.fov > 0.0 && sensor.fov < 180.0;
+        if !orthographic && !fov_valid {
             return Err(CameraError::InvalidFov(sensor.fov));
         }
         let (near, far) = (sensor.near_clip, sensor.far_clip);
