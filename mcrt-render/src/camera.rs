@@ -7,6 +7,10 @@
 //! `fov` spans the axis `fov_axis` names; `smaller` means y when `a > 1`, else x; `larger`
 //! means x when `a > 1`, else y; a vertical fov converts as `tan(fov_x/2) = a·tan(fov_y/2)`.
 //!
+//! An orthographic camera (Mitsuba 3's `orthographic`, [`Projection::Orthographic`]) maps
+//! the film position to the camera-space point `(1 − 2x/w, (1 − 2y/h)/a, near)` and sends
+//! the ray along `to_world`'s +z; see `camera/orthographic.rs`.
+//!
 //! Clipping: Mitsuba starts a camera ray at `t = near_clip / d_z` and ends it at
 //! `far_clip / d_z` (unit camera-space direction `d`): the near and far planes are planes
 //! `z = near`, `z = far` in camera space, not spheres. [`Camera::generate_ray`] starts the
@@ -26,18 +30,22 @@
 //! ```
 
 mod error;
+mod orthographic;
 mod thin_lens;
 
 pub use error::CameraError;
 
-use crate::description::{FovAxis, SensorDesc};
+use crate::description::{FovAxis, Projection, SensorDesc};
 use crate::geometry::Ray;
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 
 /// A perspective camera: a pinhole, or a thin lens (Mitsuba 3's `thinlens`; see
-/// [`Camera::generate_ray_through_lens`]).
+/// [`Camera::generate_ray_through_lens`]); or an orthographic one (Mitsuba 3's
+/// `orthographic`; see [`Camera::is_orthographic`]).
 #[derive(Debug, Clone)]
 pub struct Camera {
+    /// Parallel rays along the camera's +z (Mitsuba 3's `orthographic`).
+    orthographic: bool,
     /// The thin lens: aperture radius and focus distance; `None` for a pinhole.
     lens: Option<(f32, f32)>,
     to_world: Affine3A,
@@ -70,7 +78,9 @@ impl Camera {
                 height: h,
             });
         }
-        if !(sensor.fov > 0.0 && sensor.fov < 180.0) {
+        let orthographic = sensor.projection == Projection::Orthographic;
+        let fov_valid = sensor.fov > 0.0 && sensor.fov < 180.0;
+        if !orthographic && !fov_valid {
             return Err(CameraError::InvalidFov(sensor.fov));
         }
         let (near, far) = (sensor.near_clip, sensor.far_clip);
@@ -91,7 +101,14 @@ impl Camera {
             a => a,
         };
         let t = (0.5 * sensor.fov.to_radians()).tan();
-        let tan_x = if axis == FovAxis::Y { t * aspect } else { t };
+        // The orthographic camera's half width in camera space is 1 (`camera/orthographic.rs`).
+        let tan_x = if orthographic {
+            1.0
+        } else if axis == FovAxis::Y {
+            t * aspect
+        } else {
+            t
+        };
         let win = sensor.film.window();
         let fits = |o: u32, n: u32, full: u32| n > 0 && o.checked_add(n).is_some_and(|e| e <= full);
         if !(fits(win.offset_x, win.width, w) && fits(win.offset_y, win.height, h)) {
@@ -113,7 +130,11 @@ impl Camera {
                 Some((r, f))
             }
         };
+        if orthographic && lens.is_some() {
+            return Err(CameraError::OrthographicLens);
+        }
         Ok(Self {
+            orthographic,
             lens,
             to_world: Affine3A::from_mat4(m),
             to_camera: Affine3A::from_mat4(m).inverse(),
@@ -138,8 +159,12 @@ impl Camera {
         self.height
     }
 
-    /// The horizontal field of view in degrees (whatever axis the description used).
+    /// The horizontal field of view in degrees (whatever axis the description used); 0 for
+    /// an orthographic camera.
     pub fn fov_x(&self) -> f32 {
+        if self.orthographic {
+            return 0.0;
+        }
         2.0 * self.tan_half.x.atan().to_degrees()
     }
 
@@ -159,6 +184,9 @@ impl Camera {
     /// far clip plane.
     #[inline]
     pub fn generate_ray_with_tmax(&self, film: Vec2) -> (Ray, f32) {
+        if self.orthographic {
+            return self.orthographic_ray(film);
+        }
         let s = (film + self.offset) * self.inv_res;
         let local = Vec3::new(
             self.tan_half.x * (1.0 - 2.0 * s.x),
@@ -236,8 +264,12 @@ impl Camera {
 
     /// The film position of the direction `dir` (anywhere on the image plane, inside the
     /// image or not) and `1/(A cos³θ)`, the density per steradian that a film position
-    /// uniform over the image would give there; `None` behind the camera.
+    /// uniform over the image would give there; `None` behind the camera, and always for an
+    /// orthographic camera (its directions are a delta: no density per steradian).
     pub(crate) fn direction_density(&self, dir: Vec3) -> Option<(Vec2, f32)> {
+        if self.orthographic {
+            return None;
+        }
         let q = self.to_camera.transform_vector3(dir);
         let len = q.length();
         let r = self.raster_of_local(q)?;
@@ -265,6 +297,9 @@ impl Camera {
         let q = self.to_camera.transform_point3(p);
         if !(q.z >= self.near && q.z <= self.far) {
             return None;
+        }
+        if self.orthographic {
+            return self.orthographic_raster(q);
         }
         self.raster_of_local(q)
     }

@@ -3,8 +3,8 @@
 
 use crate::description::{
     AreaEmitterDesc, BsdfDesc, Check, Checked, Colour, FilmDesc, FilterDesc, FovAxis,
-    IntegratorDesc, PathParams, SampleCount, SamplerDesc, SamplerKind, SceneDescription,
-    SensorDesc, ShapeDesc, ShapeKind,
+    IntegratorDesc, PathParams, Projection, SampleCount, SamplerDesc, SamplerKind,
+    SceneDescription, SensorDesc, ShapeDesc, ShapeKind,
 };
 use crate::transform::look_at;
 use glam::{Mat4, Vec3};
@@ -119,6 +119,7 @@ fn checked<T: Check>(value: T) -> Checked<T> {
 fn sensor(spp: u32, res: u32) -> SensorDesc {
     let to_world = look_at(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y).unwrap_or_default();
     SensorDesc {
+        projection: Projection::Perspective,
         fov: 39.3077,
         fov_axis: FovAxis::Smaller,
         near_clip: 0.001,

@@ -27,8 +27,8 @@
 //! | roughness α | [[`MIN_ROUGHNESS`], 10] ([`Roughness`]); the loader clamps smaller α to 10⁻⁴ as Mitsuba 3 does |
 
 use crate::description::{
-    BsdfDesc, Check, Colour, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc, Ior, Roughness,
-    SampleCount, SensorDesc, ShapeDesc, ShapeGroupDesc, ShapeKind,
+    BsdfDesc, Check, Colour, EmitterDesc, FilmDesc, FilterDesc, IntegratorDesc, Ior, Projection,
+    Roughness, SampleCount, SensorDesc, ShapeDesc, ShapeGroupDesc, ShapeKind,
 };
 use glam::{Mat4, Vec3, Vec4};
 
@@ -539,10 +539,18 @@ impl Check for FilmDesc {
     }
 }
 
-/// The sensor's transform (its film is a checked one already).
+/// The sensor's transform (its film is a checked one already); an orthographic sensor has
+/// no lens.
 impl Check for SensorDesc {
     fn check(&self) -> Result<(), Invalid> {
-        transform("to_world", &self.to_world)
+        transform("to_world", &self.to_world)?;
+        if self.projection == Projection::Orthographic && self.lens.is_some() {
+            return Err(invalid(
+                "aperture_radius",
+                "an orthographic sensor has no lens (Mitsuba 3's orthographic reads none)",
+            ));
+        }
+        Ok(())
     }
 }
 

@@ -98,13 +98,42 @@ fn moment_wraps_path_or_direct_and_is_named_after_it() {
     assert_eq!(
         d.moment,
         Some(MomentDesc {
-            name: "nested".into()
+            name: "nested".into(),
+            more: Vec::new(),
         })
     );
     // Unnamed, it is Mitsuba's first automatic name.
     let d = load("<integrator type=\"moment\"><integrator type=\"direct\"/></integrator>");
     assert_eq!(d.moment.map(|m| m.name).as_deref(), Some("_arg_0"));
     assert!(load("<integrator type=\"path\"/>").moment.is_none());
+}
+
+/// Mitsuba 3 accepts several nested integrators: the first gives the image; each is named
+/// by its `name` attribute or `_arg_N`, `N` counting the unnamed ones (as Mitsuba 3.9.1's
+/// `aov_names()` shows).
+#[test]
+fn several_nested_integrators_are_read_in_file_order() {
+    let d = load(
+        "<integrator type=\"moment\"><integrator type=\"path\"/><integrator type=\"direct\"/>\
+         <integrator type=\"path\" name=\"c\"><integer name=\"max_depth\" value=\"2\"/></integrator>\
+         <integrator type=\"direct\"/></integrator>",
+    );
+    assert_eq!(
+        d.integrator.kind(),
+        mcrt_render::description::IntegratorKind::Path
+    );
+    let m = d.moment.expect("moment is read");
+    assert_eq!(m.name, "_arg_0");
+    let more: Vec<(&str, Option<i32>)> = m
+        .more
+        .iter()
+        .map(|n| (n.name.as_str(), n.integrator.max_depth()))
+        .collect();
+    let kinds: Vec<&str> = m.more.iter().map(|n| n.integrator.kind().name()).collect();
+    assert_eq!(more[0].0, "_arg_1");
+    assert_eq!(more[1], ("c", Some(2)));
+    assert_eq!(more[2].0, "_arg_2");
+    assert_eq!(kinds, ["direct", "path", "direct"]);
 }
 
 #[test]
@@ -118,10 +147,17 @@ fn what_moment_cannot_hold_is_a_located_error() {
     );
     let e = err("<integrator type=\"moment\">\n<integrator type=\"moment\"/></integrator>");
     check(&e, 3, "<integrator type=\"moment\">", "inside \"moment\"");
-    let e = err("<integrator type=\"moment\"><integrator type=\"path\"/>\n<integrator type=\"path\"/></integrator>");
-    check(&e, 3, "<integrator type=\"path\">", "exactly one nested");
+    // Several nested integrators are read (`several_nested_integrators_are_read_in_file_order`);
+    // two of one name would give their channels one name.
+    let e = err("<integrator type=\"moment\"><integrator type=\"path\" name=\"a\"/>\n<integrator type=\"path\" name=\"a\"/></integrator>");
+    check(
+        &e,
+        3,
+        "<integrator type=\"path\"",
+        "a second integrator named \"a\" in \"moment\" (the first is on line 2)",
+    );
     let e = err("<integrator type=\"moment\">\n</integrator>");
-    check(&e, 2, "<integrator type=\"moment\">", "exactly one nested");
+    check(&e, 2, "<integrator type=\"moment\">", "at least one nested");
     let e = err("<integrator type=\"moment\">\n<bsdf type=\"diffuse\"/></integrator>");
     check(&e, 3, "<bsdf type=\"diffuse\">", "cannot be nested");
     let e = err("<integrator type=\"moment\"><integrator type=\"path\"/>\n<integer name=\"x\" value=\"1\"/></integrator>");

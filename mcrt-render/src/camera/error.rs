@@ -32,6 +32,8 @@ pub enum CameraError {
         /// `focus_distance`.
         focus_distance: f32,
     },
+    /// An orthographic sensor was given a thin lens.
+    OrthographicLens,
 }
 
 impl fmt::Display for CameraError {
@@ -54,6 +56,7 @@ impl fmt::Display for CameraError {
                 "thin lens aperture_radius {aperture_radius}, focus_distance {focus_distance}: \
                  need a finite radius >= 0 and a finite distance > 0"
             ),
+            Self::OrthographicLens => write!(f, "an orthographic sensor has no lens"),
         }
     }
 }

@@ -91,15 +91,29 @@ pub enum IntegratorDesc {
     Guided(GuidedParams),
 }
 
-/// Mitsuba 3's `moment` integrator around a sampling integrator (`path` or `direct`): the
-/// image is the nested integrator's, and the EXR gains the per-pixel mean and second moment
-/// of its samples in CIE XYZ, as channels `NAME.X`, `NAME.Y`, `NAME.Z` and `m2_NAME.X`,
-/// `m2_NAME.Y`, `m2_NAME.Z`.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// Mitsuba 3's `moment` integrator around sampling integrators (`path` or `direct`): the
+/// image is the first nested integrator's, and the EXR gains, per nested integrator in file
+/// order, the per-pixel mean of its samples in CIE XYZ as channels `NAME.X`, `NAME.Y`,
+/// `NAME.Z`, then for each in the same order the second moment as `m2_NAME.X`, `m2_NAME.Y`,
+/// `m2_NAME.Z` (Mitsuba 3.9.1's order and names).
+#[derive(Debug, Clone, PartialEq)]
 pub struct MomentDesc {
-    /// The nested integrator's name: its `name` attribute, else `_arg_0` (Mitsuba's name
-    /// for the first unnamed nested object).
+    /// The first nested integrator's name (the description's integrator is that one): its
+    /// `name` attribute, else `_arg_0` (Mitsuba's name for the first unnamed nested object).
     pub name: String,
+    /// The further nested integrators, in file order (Mitsuba 3 accepts several); each
+    /// renders the same pixel samples as if it were alone, and adds its channels.
+    pub more: Vec<NestedIntegrator>,
+}
+
+/// A further integrator nested in `moment` ([`MomentDesc::more`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NestedIntegrator {
+    /// Its `name` attribute, else `_arg_N`, `N` counting the unnamed nested integrators
+    /// from 0 (as Mitsuba 3 names them).
+    pub name: String,
+    /// The integrator (`path` or `direct`).
+    pub integrator: Checked<IntegratorDesc>,
 }
 
 /// The integrator types, for overriding a scene file's choice (`--integrator`).
@@ -269,10 +283,25 @@ pub enum FovAxis {
     Larger,
 }
 
-/// A perspective sensor (Mitsuba's `perspective`).
+/// The camera's projection: Mitsuba 3's `perspective` (and `thinlens`) or `orthographic`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Projection {
+    /// A pinhole (or, with [`SensorDesc::lens`], a thin lens) with the field of view
+    /// [`SensorDesc::fov`].
+    #[default]
+    Perspective,
+    /// Mitsuba 3's `orthographic`: rays parallel to the camera's +z, leaving the camera-space
+    /// rectangle `[-1, 1] × [-1/a, 1/a]` on the near plane (`a` = width / height), which
+    /// `to_world` maps (its scale sets the extent); `fov`, `fov_axis` and `lens` are unused.
+    Orthographic,
+}
+
+/// A sensor: Mitsuba's `perspective`, `thinlens` or `orthographic`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SensorDesc {
-    /// Field of view in degrees, along [`SensorDesc::fov_axis`].
+    /// The projection.
+    pub projection: Projection,
+    /// Field of view in degrees, along [`SensorDesc::fov_axis`] (perspective only).
     pub fov: f32,
     /// Which axis `fov` spans.
     pub fov_axis: FovAxis,
@@ -287,13 +316,15 @@ pub struct SensorDesc {
     pub film: Checked<FilmDesc>,
     /// The sampler.
     pub sampler: SamplerDesc,
-    /// The thin lens of a `thinlens` sensor; `None` for a pinhole (`perspective`).
+    /// The thin lens of a `thinlens` sensor; `None` for a pinhole (`perspective`) and for
+    /// `orthographic` (whose check refuses a lens).
     pub lens: Option<ThinLensDesc>,
 }
 
 impl Default for SensorDesc {
     fn default() -> Self {
         Self {
+            projection: Projection::Perspective,
             fov: 45.0,
             fov_axis: FovAxis::X,
             near_clip: 1e-2,

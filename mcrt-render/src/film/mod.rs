@@ -127,8 +127,32 @@ impl Film {
         self.moment = Some(moment::Moment {
             name: name.to_string(),
             sum_sq_xyz: vec![[0.0; 3]; self.count.len()],
+            more: Vec::new(),
         });
         self
+    }
+
+    /// This film, keeping the sums of further integrators nested in `moment`, named `names`
+    /// in file order (their channels follow the first one's; nothing unless the film was
+    /// made [`with_moment`](Self::with_moment)).
+    pub(crate) fn with_moment_more(mut self, names: &[&str]) -> Self {
+        let n = self.count.len();
+        if let Some(m) = &mut self.moment {
+            m.more = names
+                .iter()
+                .map(|name| moment::MoreSums {
+                    name: name.to_string(),
+                    sum: vec![[0.0; 3]; n],
+                    sum_sq_xyz: vec![[0.0; 3]; n],
+                })
+                .collect();
+        }
+        self
+    }
+
+    /// Whether the film keeps the sums of more than one integrator nested in `moment`.
+    pub(crate) fn has_moment_more(&self) -> bool {
+        self.moment.as_ref().is_some_and(|m| !m.more.is_empty())
     }
 
     /// The `moment` channels beside the image `mean` (the pixel estimates), `unsampled`
@@ -235,6 +259,23 @@ impl Film {
         {
             for (s, x) in s.iter_mut().zip(sum_sq_xyz) {
                 *s += x;
+            }
+        }
+    }
+
+    /// Adds to pixel `index` the samples of the further nested integrators of `moment`,
+    /// each its accumulator and its sum of squared XYZ samples, in file order (ignored past
+    /// the end; the counts are the film's own).
+    pub(crate) fn add_moment_more(&mut self, index: usize, more: &[(PixelAccum, [f64; 3])]) {
+        let Some(m) = self.moment.as_mut() else {
+            return;
+        };
+        for (sums, (acc, sq)) in m.more.iter_mut().zip(more) {
+            if let (Some(s), Some(q)) = (sums.sum.get_mut(index), sums.sum_sq_xyz.get_mut(index)) {
+                for c in 0..3 {
+                    s[c] += acc.sum[c];
+                    q[c] += sq[c];
+                }
             }
         }
     }

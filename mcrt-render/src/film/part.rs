@@ -116,6 +116,14 @@ pub fn write_part(path: &Path, film: &Film, info: &PartInfo) -> Result<(), Image
         Layer, LayerAttributes, LineOrder, SmallVec, Vec2,
     };
     let (w, h) = (film.width(), film.height());
+    if film.has_moment_more() {
+        return Err(err(
+            path,
+            "a moment integrator with several nested integrators cannot be written as a part \
+             yet (the part format keeps one nested integrator's sums)"
+                .to_string(),
+        ));
+    }
     if (w, h) != (info.width, info.height) {
         return Err(err(
             path,

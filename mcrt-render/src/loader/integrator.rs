@@ -1,13 +1,13 @@
 //! `<integrator>`: `path`, `direct`, `bdpt`, `mlt`, `ptracer` and `guided`, read through their
-//! definitions (`param_defs::integrator`), and `moment` around `path` or `direct`.
+//! definitions (`param_defs::integrator`), and `moment` around one or more `path` or `direct`.
 
 use super::context::{Ctx, Res};
 use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type};
 use crate::description::{
-    BdptParams, DirectParams, GuidedParams, IntegratorDesc, MltParams, MomentDesc, PathParams,
-    PtracerParams,
+    BdptParams, Checked, DirectParams, GuidedParams, IntegratorDesc, MltParams, MomentDesc,
+    NestedIntegrator, PathParams, PtracerParams,
 };
 use crate::scene_error::SceneErrorKind;
 
@@ -20,8 +20,9 @@ pub(crate) struct ReadIntegrator {
 /// The integrator types that read their own parameters.
 const PLAIN: &[&str] = &["path", "direct", "bdpt", "mlt", "ptracer", "guided"];
 
-/// The name Mitsuba 3 gives the first nested object that has no `name` attribute.
-const FIRST_UNNAMED: &str = "_arg_0";
+/// The prefix of the names Mitsuba 3 gives nested objects without a `name` attribute:
+/// `_arg_0`, `_arg_1`, … counting those objects.
+const UNNAMED: &str = "_arg_";
 
 /// Reads an `<integrator>` element: a plain integrator, or `moment` around one.
 pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<ReadIntegrator> {
@@ -43,31 +44,61 @@ pub(crate) fn read_integrator(ctx: &Ctx, e: &Elem) -> Res<ReadIntegrator> {
     }
 }
 
-/// `moment`: exactly one nested `path` or `direct`, whose image it keeps; the mean and second
-/// moment channels are added when the film is written. Several nested integrators (Mitsuba
-/// 3 runs each on the same camera ray, one after the other on one sampler stream, and keeps
-/// the first one's image) are refused at the second: the render loop runs one estimator per
-/// sample (docs/scene-format.md, "The `moment` integrator around another").
+/// `moment`: one or more nested `path` or `direct` integrators. The first one's image is the
+/// render's; each adds its mean and second-moment channels, named after its `name`
+/// attribute or `_arg_N` (`N` counting the unnamed ones), as Mitsuba 3 does
+/// (docs/scene-format.md, "The `moment` integrator around another").
 fn read_moment(ctx: &Ctx, e: &Elem) -> Res<ReadIntegrator> {
     let p = Props::new(ctx, e)?;
     let objects = p.objects.clone();
-    let mut nested = objects.iter().copied();
-    let (Some(inner), None) = (nested.next(), nested.next()) else {
-        let (at, what) = match objects.get(1) {
-            Some(second) => (
-                *second,
-                "; several, which Mitsuba 3 runs one after the other on each camera ray, are \
-                 not supported (the render loop runs one estimator per sample)",
-            ),
-            None => (e, ""),
+    let mut nested: Vec<(String, IntegratorDesc, &Elem)> = Vec::new();
+    let mut unnamed = 0;
+    for inner in objects.iter().copied() {
+        let integrator = read_nested(ctx, inner)?;
+        let name = match inner.attr("name") {
+            Some(n) => n.to_string(),
+            None => {
+                unnamed += 1;
+                format!("{UNNAMED}{}", unnamed - 1)
+            }
         };
+        if let Some((_, _, first)) = nested.iter().find(|(n, _, _)| *n == name) {
+            return Err(ctx.err(
+                inner,
+                SceneErrorKind::InvalidValue(format!(
+                    "a second integrator named \"{name}\" in \"moment\" (the first is on line \
+                     {}): its channels would have the same names",
+                    first.line
+                )),
+            ));
+        }
+        nested.push((name, integrator, inner));
+    }
+    p.finish()?;
+    let mut nested = nested.into_iter();
+    let Some((name, integrator, _)) = nested.next() else {
         return Err(ctx.err(
-            at,
-            SceneErrorKind::Unsupported(format!(
-                "integrator \"moment\" needs exactly one nested <integrator>{what}"
-            )),
+            e,
+            SceneErrorKind::Unsupported(
+                "integrator \"moment\" needs at least one nested <integrator>".into(),
+            ),
         ));
     };
+    let more = nested
+        .map(|(name, d, inner)| {
+            let integrator = Checked::new(d)
+                .map_err(|i| ctx.err(inner, SceneErrorKind::InvalidValue(i.to_string())))?;
+            Ok(NestedIntegrator { name, integrator })
+        })
+        .collect::<Res<Vec<_>>>()?;
+    Ok(ReadIntegrator {
+        integrator,
+        moment: Some(MomentDesc { name, more }),
+    })
+}
+
+/// One integrator nested in `moment`: `path` or `direct`, which sample per pixel.
+fn read_nested(ctx: &Ctx, inner: &Elem) -> Res<IntegratorDesc> {
     if inner.tag != "integrator" {
         return Err(ctx.err(
             inner,
@@ -87,13 +118,7 @@ fn read_moment(ctx: &Ctx, e: &Elem) -> Res<ReadIntegrator> {
             )),
         ));
     }
-    let integrator = read_plain(ctx, inner, inner_ty)?;
-    p.finish()?;
-    let name = inner.attr("name").unwrap_or(FIRST_UNNAMED).to_string();
-    Ok(ReadIntegrator {
-        integrator,
-        moment: Some(MomentDesc { name }),
-    })
+    read_plain(ctx, inner, inner_ty)
 }
 
 /// One of the [`PLAIN`] integrators, each parameter read through its definition.

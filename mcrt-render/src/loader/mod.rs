@@ -5,7 +5,7 @@
 //! substitution (defines passed to [`load_scene`] beat defaults), `ref`/`id`, the value
 //! tags `integer`, `float`, `boolean`, `string`, `rgb`, `point`, `vector`, `transform`
 //! (`lookat`, `matrix`, `translate`, `rotate`, `scale`), and the plugins
-//! `path`/`direct`, `perspective`/`thinlens`, `independent`/`stratified`/`ldsampler`/`multijitter`/`orthogonal`, `hdrfilm` with
+//! `path`/`direct`, `perspective`/`thinlens`/`orthographic`, `independent`/`stratified`/`ldsampler`/`multijitter`/`orthogonal`, `hdrfilm` with
 //! `box`/`gaussian`/`tent` and `crop_*`, `rectangle`/`cube`/`disk`/`sphere`/`obj`/`ply`/`serialized`,
 //! `shapegroup`/`instance`,
 //! `diffuse`/`conductor`/`roughconductor`/`dielectric`/`twosided` and the other BSDFs of
@@ -180,6 +180,7 @@ pub fn parse_scene_with_warnings(
             _ => return Err(top_level_error(&ctx, c)),
         }
     }
+    orthographic_integrator(&ctx, &desc, sensor, integrator)?;
     // The total work: located at the sensor, or at the integrator if only it is given.
     let film = &desc.sensor.film;
     let window = film.window();
@@ -192,6 +193,42 @@ pub fn parse_scene_with_warnings(
         return Err(ctx.err(at, SceneErrorKind::InvalidValue(i.to_string())));
     }
     Ok((desc, ctx.take_warnings()))
+}
+
+/// An orthographic sensor is a delta in direction: no light path can be connected to it,
+/// and Mitsuba 3's `orthographic` has no `sample_direction` (its `ptracer` stops with
+/// "not implemented"). The integrators that connect light paths to the camera are refused
+/// with it, at the sensor.
+fn orthographic_integrator(
+    ctx: &Ctx,
+    desc: &SceneDescription,
+    sensor: Option<&Elem>,
+    integrator: Option<&Elem>,
+) -> Res<()> {
+    use crate::description::{IntegratorKind, Projection};
+    let (Some(sensor), Some(integrator)) = (sensor, integrator) else {
+        return Ok(());
+    };
+    let kind = desc.integrator.kind();
+    if desc.sensor.projection != Projection::Orthographic
+        || !matches!(
+            kind,
+            IntegratorKind::Bdpt | IntegratorKind::Mlt | IntegratorKind::Ptracer
+        )
+    {
+        return Ok(());
+    }
+    Err(ctx.err(
+        sensor,
+        SceneErrorKind::Unsupported(format!(
+            "sensor \"orthographic\" with integrator \"{}\" (line {}): it connects light \
+             paths to the camera, and an orthographic camera, a delta in direction, cannot be \
+             reached by them (Mitsuba 3's orthographic has no sample_direction either); use \
+             path, direct or guided",
+            kind.name(),
+            integrator.line
+        )),
+    ))
 }
 
 /// Runs `read` on a top-level declaration (see [`Ctx::declaration`]).

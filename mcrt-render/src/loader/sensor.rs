@@ -1,4 +1,4 @@
-//! `<sensor type="perspective">` or `"thinlens"` with its `<sampler>`, `<film type="hdrfilm">` and
+//! `<sensor type="perspective">`, `"thinlens"` or `"orthographic"` with its `<sampler>`, `<film type="hdrfilm">` and
 //! `<rfilter>`.
 
 use super::context::{Ctx, Res};
@@ -6,8 +6,8 @@ use super::props::Props;
 use super::tree::Elem;
 use super::{no_objects, plugin_type, unknown_plugin};
 use crate::description::{
-    Checked, CropWindow, FilmDesc, FilterDesc, FovAxis, SampleCount, SamplerDesc, SamplerKind,
-    SensorDesc, ThinLensDesc,
+    Checked, CropWindow, FilmDesc, FilterDesc, FovAxis, Projection, SampleCount, SamplerDesc,
+    SamplerKind, SensorDesc, ThinLensDesc,
 };
 use crate::param_defs::{film as film_defs, sampler, sensor as defs};
 use crate::scene_error::SceneErrorKind;
@@ -15,13 +15,80 @@ use crate::scene_error::SceneErrorKind;
 /// Reads a `<sensor>` element.
 pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<Checked<SensorDesc>> {
     let ty = plugin_type(ctx, e)?;
-    if ty != "perspective" && ty != "thinlens" {
+    if !matches!(ty, "perspective" | "thinlens" | "orthographic") {
         return Err(unknown_plugin(ctx, e, ty));
     }
     let mut p = Props::new(ctx, e)?;
     let mut s = SensorDesc::default();
+    let (diagonal, focal) = if ty == "orthographic" {
+        s.projection = Projection::Orthographic;
+        // Mitsuba 3's projective cameras all read `focus_distance`; this one never uses it.
+        p.float(defs::IGNORED_FOCUS_DISTANCE.name)?;
+        (None, None)
+    } else {
+        read_perspective(ctx, e, &mut p, &mut s, ty)?
+    };
+    s.near_clip = p.get_float(&defs::NEAR_CLIP)?;
+    s.far_clip = p.get_float(&defs::FAR_CLIP)?;
+    if !(s.near_clip > 0.0 && s.far_clip > s.near_clip) {
+        return Err(p.invalid("near_clip", e, "must be positive and below far_clip"));
+    }
+    s.to_world = p.transform(defs::TO_WORLD.name)?.unwrap_or(s.to_world);
+    let (mut film, mut sampler) = (None, None);
+    for o in &p.objects {
+        let slot_is_free = match o.tag.as_str() {
+            "film" => film.replace(read_film(ctx, o)?).is_none(),
+            "sampler" => sampler.replace(read_sampler(ctx, o)?).is_none(),
+            _ => {
+                return Err(ctx.err(
+                    o,
+                    SceneErrorKind::Misplaced(format!("<{}> inside a <sensor>", o.tag)),
+                ))
+            }
+        };
+        if !slot_is_free {
+            return Err(ctx.err(
+                o,
+                SceneErrorKind::Misplaced(format!("a second <{}> in the sensor", o.tag)),
+            ));
+        }
+    }
+    s.film = film.unwrap_or_default();
+    if let Some(d) = diagonal {
+        s.fov = horizontal_fov(d, s.film.width as f32 / s.film.height as f32);
+        s.fov_axis = FovAxis::X;
+        // A focal length of 10⁻⁴⁰ mm (or a diagonal fov next to 180) leaves none.
+        if !(s.fov > 0.0 && s.fov < 180.0) {
+            let (param, what) = match focal.as_deref() {
+                Some(t) => ("focal_length", format!("\"{t}\" is too short or too long")),
+                None => ("fov", "(diagonal) is too wide".to_string()),
+            };
+            let msg = format!(
+                "{what}: the horizontal field of view on this film must lie strictly between 0 \
+                 and 180 degrees"
+            );
+            return Err(p.invalid(param, e, &msg));
+        }
+    }
+    s.sampler = sampler.unwrap_or_default();
+    // Its `to_world` was checked at its <transform>; the sensor's check repeats that.
+    let s = Checked::new(s).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    p.finish()?;
+    Ok(s)
+}
+
+/// The field of view (and the lens of a `thinlens`) of a perspective sensor: sets `s.fov`,
+/// `s.fov_axis` and `s.lens`, and returns the diagonal field of view in radians that the
+/// film's aspect turns into a horizontal one, with the `focal_length` text it came from.
+fn read_perspective(
+    ctx: &Ctx,
+    e: &Elem,
+    p: &mut Props,
+    s: &mut SensorDesc,
+    ty: &str,
+) -> Res<(Option<f32>, Option<String>)> {
     if ty == "thinlens" {
-        s.lens = Some(read_lens(ctx, e, &mut p)?);
+        s.lens = Some(read_lens(ctx, e, p)?);
     } else {
         // Mitsuba 3's perspective reads `focus_distance` (a float, as every projective
         // camera does) and never uses it: accepted and ignored.
@@ -75,53 +142,7 @@ pub(crate) fn read_sensor(ctx: &Ctx, e: &Elem) -> Res<Checked<SensorDesc>> {
         };
         diagonal = Some(diagonal_fov(mm));
     }
-    s.near_clip = p.get_float(&defs::NEAR_CLIP)?;
-    s.far_clip = p.get_float(&defs::FAR_CLIP)?;
-    if !(s.near_clip > 0.0 && s.far_clip > s.near_clip) {
-        return Err(p.invalid("near_clip", e, "must be positive and below far_clip"));
-    }
-    s.to_world = p.transform(defs::TO_WORLD.name)?.unwrap_or(s.to_world);
-    let (mut film, mut sampler) = (None, None);
-    for o in &p.objects {
-        let slot_is_free = match o.tag.as_str() {
-            "film" => film.replace(read_film(ctx, o)?).is_none(),
-            "sampler" => sampler.replace(read_sampler(ctx, o)?).is_none(),
-            _ => {
-                return Err(ctx.err(
-                    o,
-                    SceneErrorKind::Misplaced(format!("<{}> inside a <sensor>", o.tag)),
-                ))
-            }
-        };
-        if !slot_is_free {
-            return Err(ctx.err(
-                o,
-                SceneErrorKind::Misplaced(format!("a second <{}> in the sensor", o.tag)),
-            ));
-        }
-    }
-    s.film = film.unwrap_or_default();
-    if let Some(d) = diagonal {
-        s.fov = horizontal_fov(d, s.film.width as f32 / s.film.height as f32);
-        s.fov_axis = FovAxis::X;
-        // A focal length of 10⁻⁴⁰ mm (or a diagonal fov next to 180) leaves none.
-        if !(s.fov > 0.0 && s.fov < 180.0) {
-            let (param, what) = match focal.as_deref() {
-                Some(t) => ("focal_length", format!("\"{t}\" is too short or too long")),
-                None => ("fov", "(diagonal) is too wide".to_string()),
-            };
-            let msg = format!(
-                "{what}: the horizontal field of view on this film must lie strictly between 0 \
-                 and 180 degrees"
-            );
-            return Err(p.invalid(param, e, &msg));
-        }
-    }
-    s.sampler = sampler.unwrap_or_default();
-    // Its `to_world` was checked at its <transform>; the sensor's check repeats that.
-    let s = Checked::new(s).map_err(|i| p.invalid(i.param, e, &i.message))?;
-    p.finish()?;
-    Ok(s)
+    Ok((diagonal, focal))
 }
 
 /// Mitsuba 3's `focal_length`: `N` or `Nmm`, N > 0 millimetres.

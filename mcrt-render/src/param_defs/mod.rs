@@ -262,6 +262,7 @@ pub(crate) const PLUGINS: &[PluginParams] = &[
     emitter::ENVMAP,
     sensor::PERSPECTIVE,
     sensor::THINLENS,
+    sensor::ORTHOGRAPHIC,
     film::HDRFILM,
     film::BOX,
     film::TENT,

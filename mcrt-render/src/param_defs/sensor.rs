@@ -1,4 +1,4 @@
-//! The parameters of the sensors `perspective` and `thinlens` (read by
+//! The parameters of the sensors `perspective`, `thinlens` and `orthographic` (read by
 //! `loader/sensor.rs`).
 
 use super::{FloatParam, OtherParam, ParamDef, PluginParams};
@@ -69,11 +69,21 @@ pub(crate) const TO_WORLD: OtherParam = other(
     "camera to world: the camera looks down its +z, +y up, +x to the image's left",
 );
 
-/// `focus_distance` of `perspective`: accepted and ignored, as by Mitsuba 3.
+/// `to_world` of `orthographic`: its scale sets the view's extent.
+pub(crate) const ORTHOGRAPHIC_TO_WORLD: OtherParam = other(
+    "to_world",
+    "transform",
+    "camera to world: rays run along its +z from the near plane's rectangle [-1, 1] × \
+     [-1/a, 1/a] (a = width / height, +x to the image's left, +y up), so its scale sets the \
+     view's extent",
+);
+
+/// `focus_distance` of `perspective` and `orthographic`: accepted and ignored, as by
+/// Mitsuba 3.
 pub(crate) const IGNORED_FOCUS_DISTANCE: OtherParam = other(
     "focus_distance",
     "float",
-    "accepted and ignored, as by Mitsuba 3's perspective camera",
+    "accepted and ignored, as by Mitsuba 3's perspective and orthographic cameras",
 );
 
 /// `aperture_radius` of `thinlens` (required: its `default` is never used).
@@ -134,5 +144,17 @@ pub(crate) const THINLENS: PluginParams = PluginParams {
         ParamDef::Other(&TO_WORLD),
         ParamDef::Float(&APERTURE_RADIUS),
         ParamDef::Float(&FOCUS_DISTANCE),
+    ],
+};
+
+/// `<sensor type="orthographic">` (Mitsuba 3's `orthographic`).
+pub(crate) const ORTHOGRAPHIC: PluginParams = PluginParams {
+    category: "sensor",
+    plugin: "orthographic",
+    params: &[
+        ParamDef::Float(&NEAR_CLIP),
+        ParamDef::Float(&FAR_CLIP),
+        ParamDef::Other(&ORTHOGRAPHIC_TO_WORLD),
+        ParamDef::Other(&IGNORED_FOCUS_DISTANCE),
     ],
 };

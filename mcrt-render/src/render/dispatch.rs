@@ -37,6 +37,7 @@ impl Renderer {
             progress,
             cancel,
             moment: self.moment.as_deref(),
+            moment_more: &self.moment_more,
         };
         let (film, stats) = on_threads(self.threads, || self.dispatch(&params));
         RenderOutput {

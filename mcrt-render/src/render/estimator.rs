@@ -143,6 +143,7 @@ impl Renderer {
         }
         let spp = resolved.spp.get();
         let (samples, crop) = split::window(opts, &integrator, spp, width, height)?;
+        let moment_more = moment_more(desc, strategy, opts)?;
         let mut described = desc.clone();
         described.integrator = resolved.integrator;
         // The sampler is no part of the sensor's check (its count is a checked one).
@@ -190,6 +191,7 @@ impl Renderer {
             crop,
             identity,
             moment: desc.moment.as_ref().map(|m| m.name.clone()),
+            moment_more,
         })
     }
 }
@@ -273,7 +275,32 @@ fn check_guided(opts: &RenderOptions) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// What `bdpt` and `mlt` need of the camera and the strategy.
+/// The further integrators nested in `moment`, with their names. Each renders the same
+/// pixel samples as it would alone, so a render in parts could merge them; their sums are
+/// not in the part format yet, so a render with them is refused in parts.
+fn moment_more(
+    desc: &SceneDescription,
+    strategy: Strategy,
+    opts: &RenderOptions,
+) -> Result<Vec<(String, Integrator)>, RenderError> {
+    let Some(m) = desc.moment.as_ref().filter(|m| !m.more.is_empty()) else {
+        return Ok(Vec::new());
+    };
+    if opts.samples.is_some() || opts.crop.is_some() {
+        return Err(RenderError::Split(
+            "a moment integrator with several nested integrators cannot be rendered in parts \
+             (--samples, --crop) yet: the part format keeps one nested integrator's sums"
+                .into(),
+        ));
+    }
+    Ok(m.more
+        .iter()
+        .map(|n| (n.name.clone(), integrator(&n.integrator, strategy, None)))
+        .collect())
+}
+
+/// What `bdpt` (and `ptracer`, which runs as it) and `mlt` need of the camera and the
+/// strategy.
 fn check_bidirectional(
     integrator: &Integrator,
     camera: &Camera,
@@ -281,6 +308,13 @@ fn check_bidirectional(
 ) -> Result<(), RenderError> {
     if !matches!(integrator, Integrator::Bdpt(_) | Integrator::Mlt(_)) {
         return Ok(());
+    }
+    if camera.is_orthographic() {
+        return Err(RenderError::Unsupported {
+            integrator: integrator.name(),
+            reason: "an orthographic camera is a delta in direction: light paths cannot be \
+                     connected to it (render it with path, direct or guided)",
+        });
     }
     if !camera.is_similarity() {
         return Err(RenderError::Unsupported {

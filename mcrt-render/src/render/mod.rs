@@ -81,6 +81,8 @@ pub struct Renderer {
     identity: u64,
     /// The `moment` integrator's nested name, if the scene has one.
     moment: Option<String>,
+    /// The further integrators nested in `moment`, with their names (empty without one).
+    moment_more: Vec<(String, Integrator)>,
 }
 
 /// A stop flag that is never set.

@@ -38,12 +38,26 @@ pub(crate) struct LoopParams<'a> {
     pub cancel: &'a AtomicBool,
     /// The `moment` integrator's nested name, if the film keeps its sums.
     pub moment: Option<&'a str>,
+    /// The further integrators nested in `moment`, with their names: each renders every
+    /// pixel sample again from its start, as it would alone.
+    pub moment_more: &'a [(String, Integrator)],
 }
 
 /// One tile's per-pixel accumulators, each pixel's sum of squared XYZ samples for the
-/// `moment` channels (empty unless the film keeps them), its ray count and its count of
-/// non-finite samples.
-type TileResult = (Vec<(usize, PixelAccum)>, Vec<[f64; 3]>, u64, u64);
+/// `moment` channels (empty unless the film keeps them), its ray count, its count of
+/// non-finite samples, and per pixel the accumulators of the further nested integrators of
+/// `moment` (empty without them).
+type TileResult = (
+    Vec<(usize, PixelAccum)>,
+    Vec<[f64; 3]>,
+    u64,
+    u64,
+    Vec<MoreAccum>,
+);
+
+/// A pixel's samples of the further integrators nested in `moment`: per integrator, its
+/// accumulator and its sum of squared XYZ samples.
+type MoreAccum = Vec<(PixelAccum, [f64; 3])>;
 
 /// Counters of the work done.
 #[derive(Debug, Clone, Default)]
@@ -104,40 +118,36 @@ fn render_tile_with<S: Scene, R: Sampler>(
 ) -> TileResult {
     let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
     let mut moments = Vec::new();
+    let mut mores = Vec::new();
     let (mut rays, mut nonfinite) = (0u64, 0u64);
     for y in y0..y1 {
         for x in x0..x1 {
             let index = (y * p.width + x) as usize;
             let mut acc = PixelAccum::default();
             let mut moment = [0.0f64; 3];
+            let mut more: MoreAccum = vec![Default::default(); p.moment_more.len()];
             for s in s0..s1 {
                 if p.cancel.load(Ordering::Relaxed) {
                     out.push((index, acc));
                     if p.moment.is_some() {
                         moments.push(moment);
                     }
-                    return (out, moments, rays, nonfinite);
+                    if !more.is_empty() {
+                        mores.push(more);
+                    }
+                    return (out, moments, rays, nonfinite, mores);
                 }
-                rng.start_pixel_sample([x, y], s);
-                let off = p.filter.sample(rng.next_2d());
-                let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
-                // A thin lens draws its lens sample after the film position (as Mitsuba
-                // 3's integrators do); a pinhole draws none.
-                let (ray, t_max) = if p.camera.has_lens() {
-                    p.camera.generate_ray_through_lens(film, rng.next_2d())
-                } else {
-                    p.camera.generate_ray_with_tmax(film)
-                };
-                let r = p
-                    .integrator
-                    .li(scene, ray.origin, ray.dir, t_max.min(p.t_max), &mut rng);
+                let r = pixel_sample(scene, p, p.integrator, &mut rng, [x, y], s);
                 if p.cancel.load(Ordering::Relaxed) {
                     // The path may have been cut short by the cancel (`SceneView::stop`).
                     out.push((index, acc));
                     if p.moment.is_some() {
                         moments.push(moment);
                     }
-                    return (out, moments, rays, nonfinite);
+                    if !more.is_empty() {
+                        mores.push(more);
+                    }
+                    return (out, moments, rays, nonfinite, mores);
                 }
                 rays += r.rays as u64;
                 let v = r.radiance;
@@ -152,14 +162,56 @@ fn render_tile_with<S: Scene, R: Sampler>(
                     nonfinite += 1;
                     acc.add(glam::Vec3::ZERO);
                 }
+                // The further nested integrators, each from the pixel sample's start.
+                for ((_, integrator), (acc, m2)) in p.moment_more.iter().zip(more.iter_mut()) {
+                    let r = pixel_sample(scene, p, integrator, &mut rng, [x, y], s);
+                    rays += r.rays as u64;
+                    let v = r.radiance;
+                    if v.is_finite() {
+                        acc.add(v);
+                        for (m, x) in m2.iter_mut().zip(xyz_squared(v)) {
+                            *m += x;
+                        }
+                    } else {
+                        nonfinite += 1;
+                        acc.add(glam::Vec3::ZERO);
+                    }
+                }
             }
             out.push((index, acc));
             if p.moment.is_some() {
                 moments.push(moment);
             }
+            if !more.is_empty() {
+                mores.push(more);
+            }
         }
     }
-    (out, moments, rays, nonfinite)
+    (out, moments, rays, nonfinite, mores)
+}
+
+/// Pixel sample `s` of pixel `[x, y]` by `integrator`: the sampler started at that sample,
+/// a film position by the pixel filter, the camera ray, the estimate.
+#[inline]
+fn pixel_sample<S: Scene, R: Sampler>(
+    scene: &S,
+    p: &LoopParams<'_>,
+    integrator: &Integrator,
+    rng: &mut R,
+    [x, y]: [u32; 2],
+    s: u32,
+) -> mcrt::integrator::PathResult {
+    rng.start_pixel_sample([x, y], s);
+    let off = p.filter.sample(rng.next_2d());
+    let film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + off;
+    // A thin lens draws its lens sample after the film position (as Mitsuba 3's
+    // integrators do); a pinhole draws none.
+    let (ray, t_max) = if p.camera.has_lens() {
+        p.camera.generate_ray_through_lens(film, rng.next_2d())
+    } else {
+        p.camera.generate_ray_with_tmax(film)
+    };
+    integrator.li(scene, ray.origin, ray.dir, t_max.min(p.t_max), rng)
 }
 
 /// Renders the sample range in the window (fewer samples if cancelled) into a film.
@@ -167,6 +219,8 @@ pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Fi
     let mut film = Film::new(p.width, p.height);
     if let Some(name) = p.moment {
         film = film.with_moment(name);
+        let names: Vec<&str> = p.moment_more.iter().map(|(n, _)| n.as_str()).collect();
+        film = film.with_moment_more(&names);
     }
     let mut stats = LoopStats::default();
     let tiles = tiles(p.window);
@@ -189,7 +243,7 @@ pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Fi
                 Some(r)
             })
             .collect();
-        for (px, moments, rays, nonfinite) in results.into_iter().flatten() {
+        for (px, moments, rays, nonfinite, mores) in results.into_iter().flatten() {
             stats.rays += rays;
             stats.nonfinite += nonfinite;
             for (k, (i, a)) in px.iter().enumerate() {
@@ -199,6 +253,9 @@ pub(crate) fn render_loop<S: Scene + Sync>(scene: &S, p: &LoopParams<'_>) -> (Fi
                 debug_assert!(merged.is_ok());
                 if let Some(m) = moments.get(k) {
                     film.add_moment(*i, *m);
+                }
+                if let Some(more) = mores.get(k) {
+                    film.add_moment_more(*i, more);
                 }
             }
         }
