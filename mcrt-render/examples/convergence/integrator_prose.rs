@@ -91,8 +91,8 @@ over three seeds).\n\n\
   guided tracer's relMSE equals the path tracer's within 5% from 16 spp on (indirect room \
   at 256 spp: 5.38·10⁻³ against 5.24·10⁻³; Cornell box: 6.19·10⁻⁴ against 6.12·10⁻⁴), in \
   about twice the time, training included (9.6 s against 4.7 s; 25.7 s against 11.0 s): \
-  0.48–0.57× the path tracer's efficiency on the indirect room, 0.42–0.59× on the Cornell \
-  box. What it learns on the indirect room (where the light comes from a small bright patch \
+  0.46–0.57× the path tracer's efficiency on the indirect room and 0.42–0.57× on the Cornell \
+  box from 4 spp on. What it learns on the indirect room (where the light comes from a small bright patch \
   of ceiling) does not yet beat cosine sampling with next-event estimation per sample.\n\
 - *Door: MLT wins, BDPT has the least error per sample.* Light reaches the camera's room \
   only through the gap; every estimator's error is dominated by rare bright paths. BDPT's \
