@@ -3,8 +3,9 @@
 //! vector arithmetic gives the four children's importances at a point (derivations, Part V
 //! §7: the `f32` bound and its margins).
 
-use glam::Vec3;
-use wide::{f32x4, CmpGt, CmpLe, CmpLt};
+// glam's `Vec4` is four SSE2 lanes on x86-64 (NEON on aarch64), so the library needs no
+// SIMD crate of its own (the dependency diet, `downstream/tests/dependencies.rs`).
+use glam::{Vec3, Vec4 as f32x4};
 
 use super::node::{Lane, Node};
 
@@ -22,6 +23,13 @@ const D2_FLOOR: f32 = 1e-30;
 /// The half-space test rules a child out only when `p` lies behind the plane of its box's
 /// rearmost corner by this fraction of the coordinates' size (`f32` rounding is ~10⁻⁷).
 const PLANE_MARGIN: f32 = 1e-5;
+
+/// The lane-wise square root (glam's `Vec4` has none; the four are one `sqrtps` where the
+/// compiler vectorises them).
+#[inline]
+fn sqrt4(v: f32x4) -> f32x4 {
+    f32x4::from_array(v.to_array().map(f32::sqrt))
+}
 
 /// One node of the collapsed tree: its children's bounds lane by lane (an unused lane has
 /// power 0 and gets importance 0), what each child is, and the node's own cut.
@@ -85,7 +93,7 @@ impl Wide {
             .map(|s| kids.get(s).map_or(EMPTY_LANE, |k| k.lane()))
             .collect();
         let f = |g: fn(&Lane) -> f32| {
-            f32x4::new([g(&lanes[0]), g(&lanes[1]), g(&lanes[2]), g(&lanes[3])])
+            f32x4::from_array([g(&lanes[0]), g(&lanes[1]), g(&lanes[2]), g(&lanes[3])])
         };
         let mut leaf_bits = 0u8;
         for (s, k) in kids.iter().enumerate() {
@@ -158,48 +166,43 @@ impl Wide {
             + self.slack * (l1 + self.radius)
             + f32x4::splat(PLANE_MARGIN) * (self.scale + f32x4::splat(p_l1))
             + self.front_off;
-        let behind = plane.cmp_lt(zero);
+        let behind = plane.cmplt(zero);
         let dist2 = vx * vx + vy * vy + vz * vz;
-        let inside = dist2.cmp_le(self.radius2);
-        let inv = one / dist2.sqrt();
+        let inside = dist2.cmple(self.radius2);
+        let inv = one / sqrt4(dist2);
         let (wx, wy, wz) = (vx * inv, vy * inv, vz * inv);
         // θ_w: between the axis and the direction from the centre to p.
         let cos_w = (self.ax * wx + self.ay * wy + self.az * wz)
-            .fast_max(-one)
-            .fast_min(one);
-        let cos_w = cos_w.fast_max(cos_w * self.flip);
-        let sin_w = (one - cos_w * cos_w).fast_max(zero).sqrt();
+            .max(-one)
+            .min(one);
+        let cos_w = cos_w.max(cos_w * self.flip);
+        let sin_w = sqrt4((one - cos_w * cos_w).max(zero));
         // θ_b: the half-angle of the bounding sphere seen from p.
-        let sin2_b = (self.radius2 / dist2).fast_min(one);
-        let sin_b = sin2_b.sqrt();
-        let cos_b = (one - sin2_b).sqrt();
+        let sin2_b = (self.radius2 / dist2).min(one);
+        let sin_b = sqrt4(sin2_b);
+        let cos_b = sqrt4(one - sin2_b);
         // θ' = max(0, θ_w − θ_o − θ_b).
-        let within_o = cos_w.cmp_gt(self.cos_o);
-        let cos_x = within_o.blend(one, cos_w * self.cos_o + sin_w * self.sin_o);
-        let sin_x = within_o.blend(zero, sin_w * self.cos_o - cos_w * self.sin_o);
-        let cos_p = cos_x
-            .cmp_gt(cos_b)
-            .blend(one, cos_x * cos_b + sin_x * sin_b);
-        let outside_e = cos_p.cmp_lt(self.cos_e - f32x4::splat(COS_MARGIN));
+        let within_o = cos_w.cmpgt(self.cos_o);
+        let cos_x = f32x4::select(within_o, one, cos_w * self.cos_o + sin_w * self.sin_o);
+        let sin_x = f32x4::select(within_o, zero, sin_w * self.cos_o - cos_w * self.sin_o);
+        let cos_p = f32x4::select(cos_x.cmpgt(cos_b), one, cos_x * cos_b + sin_x * sin_b);
+        let outside_e = cos_p.cmplt(self.cos_e - f32x4::splat(COS_MARGIN));
         let floor = f32x4::splat(COS_FLOOR);
-        let mut imp = self.phi * cos_p.fast_max(floor) / dist2.fast_max(f32x4::splat(D2_FLOOR));
+        let mut imp = self.phi * cos_p.max(floor) / dist2.max(f32x4::splat(D2_FLOOR));
         if let Some(n) = n {
             // θ_i: between ±n and the direction to the centre, less θ_b.
             let cos_i = (wx * f32x4::splat(n.x) + wy * f32x4::splat(n.y) + wz * f32x4::splat(n.z))
                 .abs()
-                .fast_min(one);
-            let sin_i = (one - cos_i * cos_i).fast_max(zero).sqrt();
-            let cos_pi = cos_i
-                .cmp_gt(cos_b)
-                .blend(one, cos_i * cos_b + sin_i * sin_b);
-            imp *= cos_pi.fast_max(floor);
+                .min(one);
+            let sin_i = sqrt4((one - cos_i * cos_i).max(zero));
+            let cos_pi = f32x4::select(cos_i.cmpgt(cos_b), one, cos_i * cos_b + sin_i * sin_b);
+            imp *= cos_pi.max(floor);
         }
-        let near = self.phi / self.radius2.fast_max(f32x4::splat(D2_FLOOR));
-        let imp = inside.blend(near, outside_e.blend(zero, imp));
-        let imp = behind.blend(zero, imp);
+        let near = self.phi / self.radius2.max(f32x4::splat(D2_FLOOR));
+        let imp = f32x4::select(inside, near, f32x4::select(outside_e, zero, imp));
+        let imp = f32x4::select(behind, zero, imp);
         // NaN (an overflowing query) → 0; ∞ → f32::MAX.
-        imp.cmp_gt(zero)
-            .blend(imp.fast_min(f32x4::splat(f32::MAX)), zero)
+        f32x4::select(imp.cmpgt(zero), imp.min(f32x4::splat(f32::MAX)), zero)
     }
 }
 
