@@ -13,7 +13,7 @@
 
 use super::aabb::Aabb;
 use super::bvh::Bvh;
-use glam::{Vec3, Vec4};
+use glam::Vec4;
 
 /// Marks a stack entry or child as a leaf: `LEAF | leaf index`.
 pub(super) const LEAF: u32 = 1 << 31;
@@ -146,82 +146,9 @@ impl Bvh4 {
         }
         me as u32
     }
-
-    /// Visits the primitives that may be hit in `(0, t_max)`, nearest subtrees first.
-    /// `test(i, t_max)` intersects primitive `i` (in stored order) and returns the hit
-    /// distance if it hits before `t_max`; the search then continues with that distance as
-    /// the new bound. Returns the nearest distance found, if any.
-    #[inline]
-    pub(crate) fn closest(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut test: impl FnMut(u32, f32) -> Option<f32>,
-    ) -> Option<f32> {
-        let mut best = None;
-        self.closest_leaf(origin, dir, t_max, |k, bound| {
-            let (first, n) = self.leaves[k as usize];
-            for i in first..first + n {
-                if let Some(t) = test(i, *bound) {
-                    *bound = t;
-                    best = Some(t);
-                }
-            }
-        });
-        best
-    }
-
-    /// Visits the leaves that may hold a hit in `(0, t_max)`, nearest subtrees first:
-    /// `visit(k, bound)` intersects the primitives of leaf `k` ([`Bvh4::leaf`]) and lowers
-    /// `bound` to the distance of any hit nearer than it; leaves entered beyond the bound
-    /// are skipped. Returns the final bound.
-    #[inline(always)]
-    pub(crate) fn closest_leaf(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut visit: impl FnMut(u32, &mut f32),
-    ) -> f32 {
-        let mut t_max = t_max;
-        self.walk::<true>(origin, dir, &mut t_max, |k, bound| {
-            visit(k, bound);
-            false
-        });
-        t_max
-    }
-
-    /// True when `visit(k, t_max)` holds for some leaf `k` the ray may meet within
-    /// `(0, t_max)`; stops at the first one. Leaves are visited in no particular order.
-    #[inline(always)]
-    pub(crate) fn any_leaf(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut visit: impl FnMut(u32, f32) -> bool,
-    ) -> bool {
-        let mut t_max = t_max;
-        self.walk::<false>(origin, dir, &mut t_max, |k, t| visit(k, *t))
-    }
-
-    /// True when `test(i, t_max)` holds for some primitive `i`; stops at the first one.
-    #[inline]
-    pub(crate) fn any(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut test: impl FnMut(u32, f32) -> bool,
-    ) -> bool {
-        // Any hit will do: children are visited in node order, not sorted by distance.
-        self.any_leaf(origin, dir, t_max, |k, t| {
-            let (first, n) = self.leaves[k as usize];
-            (first..first + n).any(|i| test(i, t))
-        })
-    }
 }
+
+super::leaf_queries::leaf_queries!(Bvh4);
 
 #[cfg(test)]
 mod tests {

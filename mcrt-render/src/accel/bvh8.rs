@@ -13,7 +13,6 @@
 use super::aabb::Aabb;
 use super::bvh::Bvh;
 use super::lanes8::Simd8;
-use glam::Vec3;
 
 /// Marks a stack entry or child as a leaf: `LEAF | leaf index`.
 pub(super) const LEAF: u32 = 1 << 31;
@@ -159,83 +158,9 @@ impl Bvh8 {
         }
         me as u32
     }
-
-    /// Visits the primitives that may be hit in `(0, t_max)`, nearest subtrees first, as
-    /// [`super::Bvh4::closest`] does. Returns the nearest distance found, if any.
-    #[inline]
-    pub(crate) fn closest(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut test: impl FnMut(u32, f32) -> Option<f32>,
-    ) -> Option<f32> {
-        let mut best = None;
-        self.closest_leaf(origin, dir, t_max, |k, bound| {
-            let (first, n) = self.leaves[k as usize];
-            for i in first..first + n {
-                if let Some(t) = test(i, *bound) {
-                    *bound = t;
-                    best = Some(t);
-                }
-            }
-        });
-        best
-    }
-
-    /// Visits the leaves that may hold a hit in `(0, t_max)`, nearest subtrees first, as
-    /// [`super::Bvh4::closest_leaf`] does. Returns the final bound.
-    #[inline(always)]
-    pub(crate) fn closest_leaf(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut visit: impl FnMut(u32, &mut f32),
-    ) -> f32 {
-        let mut t_max = t_max;
-        self.walk::<true>(origin, dir, &mut t_max, |k, bound| {
-            visit(k, bound);
-            false
-        });
-        t_max
-    }
-
-    /// True when `visit(k, t_max)` holds for some leaf `k` the ray may meet within
-    /// `(0, t_max)`; stops at the first one. Leaves are visited in no particular order.
-    #[inline(always)]
-    pub(crate) fn any_leaf(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut visit: impl FnMut(u32, f32) -> bool,
-    ) -> bool {
-        let mut t_max = t_max;
-        self.walk::<false>(
-            origin,
-            dir,
-            &mut t_max,
-            #[inline(always)]
-            |k, t| visit(k, *t),
-        )
-    }
-
-    /// True when `test(i, t_max)` holds for some primitive `i`; stops at the first one.
-    #[inline]
-    pub(crate) fn any(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        mut test: impl FnMut(u32, f32) -> bool,
-    ) -> bool {
-        self.any_leaf(origin, dir, t_max, |k, t| {
-            let (first, n) = self.leaves[k as usize];
-            (first..first + n).any(|i| test(i, t))
-        })
-    }
 }
+
+super::leaf_queries::leaf_queries!(Bvh8);
 
 #[cfg(test)]
 #[path = "bvh8_tests.rs"]

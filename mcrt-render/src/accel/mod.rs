@@ -38,6 +38,7 @@ mod bvh_node;
 mod grid;
 mod kdtree;
 mod lanes8;
+mod leaf_queries;
 mod traverse;
 mod traverse8;
 
@@ -51,6 +52,7 @@ pub(crate) use bvh4::Bvh4;
 pub(crate) use bvh8::Bvh8;
 use grid::Grid;
 use kdtree::KdTree;
+pub(crate) use leaf_queries::LeafQueries;
 
 use glam::Vec3;
 

@@ -13,13 +13,13 @@ use super::pairing::{Quad, Unit, WeightMaps};
 use super::quad4::{QuadPacket, QuadRay4};
 use super::tri4::{TriPacket, TriRay4};
 use super::{HitRecord, Ray, Stored};
-use crate::accel::{Bvh4, Bvh8};
-use glam::Vec3;
+use crate::accel::{Bvh4, Bvh8, LeafQueries};
 use std::ops::Range;
 
-/// A BVH whose leaves hold ranges of stored primitives, walked per leaf: [`Bvh4`] and
-/// [`Bvh8`] (their methods of the same names).
-pub(crate) trait LeafTree {
+/// A BVH whose leaves hold ranges of stored primitives, walked per leaf
+/// ([`LeafQueries::closest_leaf`], [`LeafQueries::any_leaf`]): [`Bvh4`] and [`Bvh8`] (the
+/// rest are their inherent methods of the same names).
+pub(crate) trait LeafTree: LeafQueries {
     /// `order[i]`: the input index of the unit stored at position `i`.
     fn order(&self) -> &[u32];
     /// Number of leaves.
@@ -28,22 +28,6 @@ pub(crate) trait LeafTree {
     fn leaf(&self, k: usize) -> Range<u32>;
     /// Heap bytes held.
     fn heap_bytes(&self) -> usize;
-    /// The leaves that may hold a hit, nearest subtrees first; returns the final bound.
-    fn closest_leaf(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        visit: impl FnMut(u32, &mut f32),
-    ) -> f32;
-    /// True when `visit` holds for some leaf the ray may meet.
-    fn any_leaf(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        t_max: f32,
-        visit: impl FnMut(u32, f32) -> bool,
-    ) -> bool;
 }
 
 macro_rules! leaf_tree {
@@ -60,26 +44,6 @@ macro_rules! leaf_tree {
             }
             fn heap_bytes(&self) -> usize {
                 <$t>::heap_bytes(self)
-            }
-            #[inline(always)]
-            fn closest_leaf(
-                &self,
-                origin: Vec3,
-                dir: Vec3,
-                t_max: f32,
-                visit: impl FnMut(u32, &mut f32),
-            ) -> f32 {
-                <$t>::closest_leaf(self, origin, dir, t_max, visit)
-            }
-            #[inline(always)]
-            fn any_leaf(
-                &self,
-                origin: Vec3,
-                dir: Vec3,
-                t_max: f32,
-                visit: impl FnMut(u32, f32) -> bool,
-            ) -> bool {
-                <$t>::any_leaf(self, origin, dir, t_max, visit)
             }
         }
     };
