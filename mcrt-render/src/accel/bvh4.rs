@@ -152,7 +152,9 @@ super::leaf_queries::leaf_queries!(Bvh4);
 
 #[cfg(test)]
 mod tests {
+    use super::super::LeafQueries;
     use super::*;
+    use glam::Vec3;
 
     #[test]
     fn identical_boxes_still_build() {

@@ -1,8 +1,9 @@
 //! Tests of the 8-wide BVH: its leaves, both lane paths, and agreement with the 4-wide tree.
 
 use super::super::lanes8::Simd8;
-use super::super::Bvh4;
+use super::super::{Bvh4, LeafQueries};
 use super::*;
+use glam::Vec3;
 use rand_core::{RngCore, SeedableRng};
 
 /// The tree on the detected lanes and on the portable ones.
