@@ -13,7 +13,7 @@ seed, so running it again writes the same files).
 - door.xml: Veach's door scene: two rooms; the camera's room is lit only through the narrow
   gap of a door left ajar, from a lamp on the ceiling of the next room.
 
-Usage: python3 scripts/make_issue28_scenes.py [--out DIR]
+Usage: python3 scripts/make_issue28_scenes.py [--out DIR] [--shade-height H]
 """
 
 from __future__ import annotations
@@ -234,7 +234,9 @@ def many_lights(out: Path, keep: int | None = None) -> None:
     (out / (f"many-lights-{keep}.xml" if keep else "many-lights.xml")).write_text(s)
 
 
-def indirect(out: Path) -> None:
+def indirect(out: Path, shade: float = 0.2, name: str = "indirect.xml") -> None:
+    """The indirect room, its lamp's shade `shade` high (0.2: issue 28's test scene, whose lit
+    patch spreads over much of the ceiling; 0.5: a small bright patch, for guiding studies)."""
     s = HEADER.format(
         comment="Issue 28's indirect room, written by scripts/make_issue28_scenes.py: a "
         "closed room whose only light, a small panel facing the ceiling, sits in an "
@@ -247,16 +249,16 @@ def indirect(out: Path) -> None:
     s += open_room()
     s += rect([0, 0, 1], [1, 0, 0], [0, -1, 0], "white")  # front wall, normal -z
     # The lamp: a 0.16 × 0.16 panel at y = -0.2 facing up, in a shade of four walls
-    # (0.2 high, open at the top) on a stand.
+    # (`shade` high, open at the top) on a stand.
     y = -0.2
     s += rect([0.3, y + 0.005, -0.4], [0.08, 0, 0], [0, 0, -0.08], "dark", [200, 180, 150])
     s += cube([0.3, y - 0.01, -0.4], [0.1, 0.01, 0.1], "dark")  # base below the panel
     for dx, dz, hx, hz in ((0.1, 0, 0.005, 0.1), (-0.1, 0, 0.005, 0.1), (0, 0.1, 0.1, 0.005), (0, -0.1, 0.1, 0.005)):
-        s += cube([0.3 + dx, y + 0.09, -0.4 + dz], [hx, 0.1, hz], "dark")
+        s += cube([0.3 + dx, y - 0.01 + shade / 2, -0.4 + dz], [hx, shade / 2, hz], "dark")
     s += cube([0.3, (y - 0.02 - 1) / 2, -0.4], [0.02, (y - 0.02 + 1) / 2, 0.02], "dark")  # stand
     s += cube([-0.45, -0.7, -0.3], [0.25, 0.3, 0.25], "white")  # a box on the floor
     s += "</scene>\n"
-    (out / "indirect.xml").write_text(s)
+    (out / name).write_text(s)
 
 
 def door(out: Path) -> None:
@@ -304,8 +306,15 @@ def main() -> None:
     ap.add_argument("--threshold-study", type=int, nargs="*", metavar="N",
                     help="write only many-lights-N.xml for each N: N of the room's "
                          "rectangle lights, no sphere")
+    ap.add_argument("--shade-height", type=float, metavar="H",
+                    help="write only indirect-deep.xml: the indirect room with a shade H high "
+                         "(0.5 makes the lit patch small; a study scene, no reference)")
     a = ap.parse_args()
     a.out.mkdir(parents=True, exist_ok=True)
+    if a.shade_height is not None:
+        indirect(a.out, a.shade_height, "indirect-deep.xml")
+        print(f"wrote {a.out}/indirect-deep.xml")
+        return
     if a.threshold_study:
         for n in a.threshold_study:
             many_lights(a.out, n)
