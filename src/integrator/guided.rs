@@ -4,7 +4,8 @@
 use super::path::{depth_limit, hit_weight, nee, PrevVertex};
 use super::{is_positive, Bsdf, PathResult, PathTracer, SampleSource, Scene, Strategy};
 use crate::sampling::guiding::{
-    DQuadTree, GuidingRecord, GuidingRecords, PathVertex, SdTree, SelectionRecord,
+    sphere_to_square, DQuadTree, GuidingRecord, GuidingRecords, PathVertex, SdTree,
+    SelectionRecord, StoredRecord, SQUARE_TO_SPHERE_JACOBIAN,
 };
 use crate::sampling::Frame;
 use glam::{Vec2, Vec3};
@@ -139,13 +140,15 @@ impl GuidedPathTracer {
     ) -> Option<GuidedSample> {
         let alpha = self.alpha_for(bsdf.flags(), guide);
         self.sample_with_densities(alpha, bsdf, frame, wo, guide, samples, false)
-            .map(|(s, _)| s)
+            .map(|(s, _, _)| s)
     }
 
     /// [`GuidedPathTracer::sample_direction`] with the selection probability `alpha`, and
     /// for a non-delta direction the guide's and the BSDF's densities of it (the guide's
     /// also where `alpha` is 0 if `guide_density`, else 0 there), which the learning of the
-    /// selection probability records.
+    /// selection probability records; and the direction's point of the square
+    /// ([`sphere_to_square`](crate::sampling::guiding::sphere_to_square)) where its guide
+    /// density was read (zero where it was not), which recording it reuses.
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn sample_with_densities<B: Bsdf, R: SampleSource>(
@@ -157,9 +160,9 @@ impl GuidedPathTracer {
         guide: &DQuadTree,
         samples: &mut R,
         guide_density: bool,
-    ) -> Option<(GuidedSample, [f32; 2])> {
+    ) -> Option<(GuidedSample, [f32; 2], Vec2)> {
         if samples.next_1d() < alpha {
-            let (wi, p_guide) = guide.sample(samples.next_2d());
+            let (wi, p_guide, square) = guide.sample_on_square(samples.next_2d());
             let (f, p_bsdf) = bsdf.eval_pdf(wo, frame.to_local(wi));
             let pdf = mixture(alpha, p_guide, p_bsdf);
             let s = GuidedSample {
@@ -169,16 +172,18 @@ impl GuidedPathTracer {
                 delta: false,
                 eta: 1.0,
             };
-            return (is_positive(pdf) && pdf.is_finite()).then_some((s, [p_guide, p_bsdf]));
+            return (is_positive(pdf) && pdf.is_finite()).then_some((s, [p_guide, p_bsdf], square));
         }
         let bs = super::sample_bsdf(bsdf, wo, samples)?;
         let wi = frame.to_world(bs.wi);
         let mut densities = [0.0, bs.pdf];
+        let mut square = Vec2::ZERO;
         let (weight, pdf) = if bs.delta {
             (bs.weight / (1.0 - alpha), bs.pdf * (1.0 - alpha))
         } else {
             if alpha > 0.0 || guide_density {
-                densities[0] = guide.pdf(wi);
+                square = sphere_to_square(wi);
+                densities[0] = guide.pdf_square(square) / SQUARE_TO_SPHERE_JACOBIAN;
             }
             let pdf = mixture(alpha, densities[0], bs.pdf);
             (bs.weight * (bs.pdf / pdf), pdf)
@@ -190,7 +195,7 @@ impl GuidedPathTracer {
             delta: bs.delta,
             eta: bs.eta,
         };
-        (is_positive(pdf) && pdf.is_finite()).then_some((s, densities))
+        (is_positive(pdf) && pdf.is_finite()).then_some((s, densities, square))
     }
 
     /// The density with which [`GuidedPathTracer::sample_direction`] returns the world
@@ -284,7 +289,7 @@ impl GuidedPathTracer {
                 }
             }
             let recording = records.is_some();
-            let Some((step, [p_guide, p_bsdf])) =
+            let Some((step, [p_guide, p_bsdf], square)) =
                 self.sample_with_densities(alpha, bsdf, &sp.frame, wo, dist, samples, recording)
             else {
                 break;
@@ -308,6 +313,7 @@ impl GuidedPathTracer {
                     p: sp.p,
                     dir: step.wi,
                     pdf: step.pdf,
+                    square,
                     f_cos: step.weight * step.pdf,
                     p_guide,
                     p_bsdf,
@@ -332,18 +338,19 @@ impl GuidedPathTracer {
             let n = r.scratch.len();
             for i in 0..n {
                 let v = r.scratch[i];
-                r.push(GuidingRecord {
-                    p: v.p,
-                    dir: v.dir,
-                    radiance: v.radiance.element_sum() / 3.0,
-                    pdf: v.pdf,
-                });
-                r.selection.push(SelectionRecord {
-                    record: r.len() - 1,
-                    integrand: (v.f_cos * v.radiance).element_sum() / 3.0,
-                    p_guide: v.p_guide,
-                    p_bsdf: v.p_bsdf,
-                    pdf: v.pdf,
+                r.push_stored(StoredRecord {
+                    record: GuidingRecord {
+                        p: v.p,
+                        dir: v.dir,
+                        radiance: v.radiance.element_sum() / 3.0,
+                        pdf: v.pdf,
+                    },
+                    square: v.square,
+                    selection: Some(SelectionRecord {
+                        integrand: (v.f_cos * v.radiance).element_sum() / 3.0,
+                        p_guide: v.p_guide,
+                        p_bsdf: v.p_bsdf,
+                    }),
                 });
             }
             r.scratch.clear();

@@ -20,6 +20,7 @@ use mcrt::sampling::guiding::{GuidingPass, GuidingRecords, GuidingSchedule, SdTr
 use mcrt::sampling::sampler::{AnySampler, Sampler};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
 use std::time::Instant;
 
 /// Tiles rendered between two merges of their records (bounds the records held at once).
@@ -204,7 +205,7 @@ fn run_pass<S: Scene + Sync>(
     ranges: &[(u32, u32)],
     record: bool,
     done: &AtomicU64,
-    mut take: impl FnMut(TileOut) + Send,
+    mut take: impl FnMut(&TileOut) + Send,
 ) {
     let all = tiles(p.window);
     let total = p.samples.len() as u64 * p.window.area();
@@ -219,6 +220,15 @@ fn run_pass<S: Scene + Sync>(
         }
     }
     let mut pending: Vec<TileOut> = Vec::new();
+    // Record buffers of merged tiles, cleared, for the next tiles (no allocation per tile;
+    // which buffer a tile gets does not change its records).
+    let pool: Mutex<Vec<GuidingRecords>> = Mutex::new(Vec::new());
+    let give_back = |mut out: TileOut| {
+        out.records.clear();
+        if let Ok(mut pool) = pool.lock() {
+            pool.push(out.records);
+        }
+    };
     for (chunk, (a, b)) in batches {
         if p.cancel.load(Ordering::Relaxed) {
             break;
@@ -230,7 +240,9 @@ fn run_pass<S: Scene + Sync>(
                     if p.cancel.load(Ordering::Relaxed) {
                         return None;
                     }
-                    let r = render_tile(scene, p, g, guide, t, (a, b), record);
+                    let buffer = pool.lock().ok().and_then(|mut pool| pool.pop());
+                    let buffer = buffer.unwrap_or_default();
+                    let r = render_tile(scene, p, g, guide, t, (a, b), record, buffer);
                     let n = ((t.2 - t.0) * (t.3 - t.1) * (b - a)) as u64;
                     let d = done.fetch_add(n, Ordering::Relaxed) + n;
                     (p.progress)(d, total);
@@ -239,13 +251,20 @@ fn run_pass<S: Scene + Sync>(
                 .collect::<Vec<Option<TileOut>>>()
         };
         let earlier = std::mem::take(&mut pending);
-        let (results, ()) = rayon::join(render, || earlier.into_iter().for_each(&mut take));
+        let merge = || {
+            for out in earlier {
+                take(&out);
+                give_back(out);
+            }
+        };
+        let (results, ()) = rayon::join(render, merge);
         pending = results.into_iter().flatten().collect();
     }
-    pending.into_iter().for_each(take);
+    pending.iter().for_each(take);
 }
 
-/// One tile with the sampler's concrete type.
+/// One tile with the sampler's concrete type, recording into `records` (emptied) if `record`.
+#[allow(clippy::too_many_arguments)]
 fn render_tile<S: Scene>(
     scene: &S,
     p: &LoopParams<'_>,
@@ -254,6 +273,7 @@ fn render_tile<S: Scene>(
     tile: (u32, u32, u32, u32),
     samples: (u32, u32),
     record: bool,
+    records: GuidingRecords,
 ) -> TileOut {
     let t = Tile {
         scene,
@@ -266,13 +286,13 @@ fn render_tile<S: Scene>(
         cancel: p.cancel,
     };
     match p.sampler {
-        AnySampler::Independent(s) => t.run(s.clone(), tile, samples, record),
-        AnySampler::Stratified(s) => t.run(s.clone(), tile, samples, record),
-        AnySampler::Sobol(s) => t.run(s.clone(), tile, samples, record),
-        AnySampler::Halton(s) => t.run(s.clone(), tile, samples, record),
-        AnySampler::R2(s) => t.run(s.clone(), tile, samples, record),
-        AnySampler::Cmj(s) => t.run(s.clone(), tile, samples, record),
-        AnySampler::Sobol4d(s) => t.run(s.clone(), tile, samples, record),
+        AnySampler::Independent(s) => t.run(s.clone(), tile, samples, record, records),
+        AnySampler::Stratified(s) => t.run(s.clone(), tile, samples, record, records),
+        AnySampler::Sobol(s) => t.run(s.clone(), tile, samples, record, records),
+        AnySampler::Halton(s) => t.run(s.clone(), tile, samples, record, records),
+        AnySampler::R2(s) => t.run(s.clone(), tile, samples, record, records),
+        AnySampler::Cmj(s) => t.run(s.clone(), tile, samples, record, records),
+        AnySampler::Sobol4d(s) => t.run(s.clone(), tile, samples, record, records),
     }
 }
 
@@ -298,10 +318,11 @@ impl<S: Scene> Tile<'_, S> {
         (x0, y0, x1, y1): (u32, u32, u32, u32),
         (s0, s1): (u32, u32),
         record: bool,
+        records: GuidingRecords,
     ) -> TileOut {
         let mut out = TileOut {
             pixels: Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize),
-            records: GuidingRecords::new(),
+            records,
             rays: 0,
             nonfinite: 0,
         };

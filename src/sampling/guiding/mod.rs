@@ -20,6 +20,6 @@ mod tests;
 pub use map::{sphere_to_square, square_to_sphere, EqualAreaSphere, SQUARE_TO_SPHERE_JACOBIAN};
 pub use quadtree::DQuadTree;
 pub use records::{GuidingRecord, GuidingRecords};
-pub(crate) use records::{PathVertex, SelectionRecord};
+pub(crate) use records::{PathVertex, SelectionRecord, StoredRecord};
 pub use schedule::{GuidingPass, GuidingSchedule};
 pub use spatial::SdTree;

@@ -264,8 +264,17 @@ impl DQuadTree {
         if !(value >= 0.0 && value.is_finite()) {
             return;
         }
+        self.record_square(sphere_to_square(dir), value);
+    }
+
+    /// [`DQuadTree::record`] of the direction whose point of the square
+    /// ([`sphere_to_square`](super::sphere_to_square)) is `u`, for a caller that has mapped
+    /// it already.
+    pub(crate) fn record_square(&mut self, u: Vec2, value: f64) {
+        if !(value >= 0.0 && value.is_finite()) {
+            return;
+        }
         self.derived.take();
-        let u = sphere_to_square(dir);
         let mut x = [f64::from(u.x), f64::from(u.y)];
         let mut n = 0usize;
         loop {
@@ -358,8 +367,18 @@ impl DQuadTree {
     /// A direction drawn from the tree with `u ∈ [0, 1)²`, and its density per steradian,
     /// which is exactly [`DQuadTree::pdf`] of that direction.
     pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
+        let (d, pdf, _) = self.sample_on_square(u);
+        (d, pdf)
+    }
+
+    /// [`DQuadTree::sample`], with the direction's point of the square
+    /// ([`sphere_to_square`](super::sphere_to_square) of it, which its density was read at),
+    /// so that recording the direction need not map it again.
+    #[inline]
+    pub(crate) fn sample_on_square(&self, u: Vec2) -> (Vec3, f32, Vec2) {
         let d = square_to_sphere(self.sample_square(u));
-        (d, self.pdf(d))
+        let s = sphere_to_square(d);
+        (d, self.pdf_square(s) / SQUARE_TO_SPHERE_JACOBIAN, s)
     }
 
     /// The tree for the next training iteration, with no energy: every quadrant holding more

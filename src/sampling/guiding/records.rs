@@ -1,7 +1,7 @@
 //! A worker's buffer of radiance records, merged into an [`SdTree`](super::SdTree) in a fixed
 //! order.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// One radiance record: radiance arriving at `p` along `dir`, sampled with density `pdf`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,24 +35,32 @@ pub struct GuidingRecord {
 /// ```
 #[derive(Debug, Clone, Default)]
 pub struct GuidingRecords {
-    records: Vec<GuidingRecord>,
+    /// The records, each with its direction's point of the square and, if the guided path
+    /// tracer made it, what the learning of the selection probability needs: one vector, so
+    /// that a merge reads each record once, in order.
+    records: Vec<StoredRecord>,
+    pub(crate) scratch: Vec<PathVertex>,
+}
+
+/// A [`GuidingRecord`] as the buffer holds it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct StoredRecord {
+    pub record: GuidingRecord,
+    /// [`sphere_to_square`](super::sphere_to_square) of `record.dir`, mapped once.
+    pub square: Vec2,
     /// What the guided path tracer saw of its choice between guide and BSDF, for a tree that
     /// learns its selection probability ([`SdTree::learn_selection`](super::SdTree::learn_selection)).
-    pub(crate) selection: Vec<SelectionRecord>,
-    pub(crate) scratch: Vec<PathVertex>,
+    pub selection: Option<SelectionRecord>,
 }
 
 /// One direction sampled from the mixture of guide and BSDF, as the learning of the
 /// selection probability needs it: the integrand `F = f·|cos θ|·L` (channels averaged) and
-/// the three densities.
+/// the guide's and the BSDF's densities (the mixture's is the record's `pdf`).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct SelectionRecord {
-    /// The index of the radiance record of the same vertex (same point).
-    pub record: usize,
     pub integrand: f32,
     pub p_guide: f32,
     pub p_bsdf: f32,
-    pub pdf: f32,
 }
 
 /// A vertex of a guided path, while its incident radiance is being summed.
@@ -61,6 +69,8 @@ pub(crate) struct PathVertex {
     pub p: Vec3,
     pub dir: Vec3,
     pub pdf: f32,
+    /// The direction's point of the square ([`sphere_to_square`](super::sphere_to_square)).
+    pub square: Vec2,
     /// `f·|cos θ|` of the sampled direction per channel, and the guide's and the BSDF's
     /// densities of it.
     pub f_cos: Vec3,
@@ -82,12 +92,29 @@ impl GuidingRecords {
     /// Appends a record.
     #[inline]
     pub fn push(&mut self, r: GuidingRecord) {
+        let square = super::sphere_to_square(r.dir);
+        self.records.push(StoredRecord {
+            record: r,
+            square,
+            selection: None,
+        });
+    }
+
+    /// Appends a record whose direction's point of the square is `square`, with what the
+    /// guided path tracer saw of its choice.
+    #[inline]
+    pub(crate) fn push_stored(&mut self, r: StoredRecord) {
         self.records.push(r);
     }
 
     /// The records, in the order they were pushed.
     pub fn iter(&self) -> impl Iterator<Item = &GuidingRecord> {
-        self.records.iter()
+        self.records.iter().map(|r| &r.record)
+    }
+
+    /// The records as stored, in order.
+    pub(crate) fn stored(&self) -> &[StoredRecord] {
+        &self.records
     }
 
     /// The number of records.
@@ -103,6 +130,5 @@ impl GuidingRecords {
     /// Removes every record (keeping the allocation).
     pub fn clear(&mut self) {
         self.records.clear();
-        self.selection.clear();
     }
 }

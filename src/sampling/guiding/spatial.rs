@@ -4,7 +4,7 @@
 use super::quadtree::DQuadTree;
 use super::records::GuidingRecords;
 use crate::sampling::unit::clamp_unit;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// A node of the spatial tree: an inner node (the children's indices, the split axis is the
 /// depth modulo 3) or a leaf (the index of its [`Leaf`]). Small, so that the descent to a
@@ -198,11 +198,12 @@ impl SdTree {
     /// record whose `pdf` is not positive and finite is ignored; a radiance that is negative
     /// or not finite counts as a record of zero energy.
     pub fn record(&mut self, p: Vec3, dir: Vec3, radiance: f32, pdf: f32) {
-        self.record_at(p, dir, radiance, pdf);
+        self.record_at(p, super::sphere_to_square(dir), radiance, pdf);
     }
 
-    /// [`SdTree::record`], returning the index of `p`'s leaf.
-    fn record_at(&mut self, p: Vec3, dir: Vec3, radiance: f32, pdf: f32) -> usize {
+    /// [`SdTree::record`] of the direction whose point of the square is `square`, returning
+    /// the index of `p`'s leaf.
+    fn record_at(&mut self, p: Vec3, square: Vec2, radiance: f32, pdf: f32) -> usize {
         let i = self.leaf_index(p);
         if !(pdf > 0.0 && pdf.is_finite()) {
             return i;
@@ -210,7 +211,7 @@ impl SdTree {
         let value = f64::from(radiance) / f64::from(pdf);
         let leaf = &mut self.leaves[i];
         leaf.samples += 1;
-        leaf.tree.record(dir, value);
+        leaf.tree.record_square(square, value);
         i
     }
 
@@ -218,14 +219,12 @@ impl SdTree {
     /// probability, what the tracer recorded of its choices).
     pub fn merge(&mut self, records: &GuidingRecords) {
         let learn = self.learn_selection;
-        let mut selection = records.selection.iter().peekable();
-        for (k, r) in records.iter().enumerate() {
-            let i = self.record_at(r.p, r.dir, r.radiance, r.pdf);
-            while let Some(s) = selection.next_if(|s| s.record == k) {
-                if learn {
-                    let t = &mut self.leaves[i].tree;
-                    t.record_selection(s.integrand, s.p_guide, s.p_bsdf, s.pdf);
-                }
+        for s in records.stored() {
+            let r = &s.record;
+            let i = self.record_at(r.p, s.square, r.radiance, r.pdf);
+            if let (true, Some(sel)) = (learn, s.selection) {
+                let t = &mut self.leaves[i].tree;
+                t.record_selection(sel.integrand, sel.p_guide, sel.p_bsdf, r.pdf);
             }
         }
     }

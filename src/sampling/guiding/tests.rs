@@ -223,20 +223,21 @@ fn the_selection_probability_follows_the_density_that_matches_the_integrand() {
 fn an_sd_tree_learns_the_selection_probability_only_when_asked() {
     let mut records = GuidingRecords::new();
     for k in 0..100 {
-        records.push(GuidingRecord {
-            p: Vec3::ZERO,
-            dir: Vec3::Z,
-            radiance: 1.0,
-            pdf: 1.0,
-        });
         let f = [1.0, 0.0][k % 2];
         let (pg, pb) = [(1.8, 0.2), (0.2, 1.8)][k % 2];
-        records.selection.push(records::SelectionRecord {
-            record: k,
-            integrand: f,
-            p_guide: pg,
-            p_bsdf: pb,
-            pdf: 1.0,
+        records.push_stored(records::StoredRecord {
+            record: GuidingRecord {
+                p: Vec3::ZERO,
+                dir: Vec3::Z,
+                radiance: 1.0,
+                pdf: 1.0,
+            },
+            square: sphere_to_square(Vec3::Z),
+            selection: Some(records::SelectionRecord {
+                integrand: f,
+                p_guide: pg,
+                p_bsdf: pb,
+            }),
         });
     }
     let mut off = SdTree::new(Vec3::splat(-1.0), Vec3::ONE);
@@ -255,4 +256,28 @@ fn an_sd_tree_learns_the_selection_probability_only_when_asked() {
     let next = on.refined(1e9, 0.01, 20);
     assert!(next.learns_selection());
     assert_eq!(next.distribution(Vec3::ZERO).selection_probability(), None);
+}
+
+/// `sample_on_square` is `sample` with the direction's point of the square, and recording
+/// at that point is recording the direction (what the tracer and the merge rely on).
+#[test]
+fn sample_on_square_matches_sample_and_record() {
+    let mut t = DQuadTree::new();
+    t.record(Vec3::new(0.3, -0.2, 0.9).normalize(), 1.0);
+    t.record(-Vec3::X, 0.5);
+    let t = t.refined(0.01, 20);
+    let (mut a, mut b) = (t.refined(0.01, 20), t.refined(0.01, 20));
+    for i in 0..500u32 {
+        let u = Vec2::new(
+            (i as f32 * 0.618_034).fract(),
+            (i as f32 * 0.754_878).fract(),
+        );
+        let (d, pdf, s) = t.sample_on_square(u);
+        assert!(pdf.is_finite() && pdf > 0.0, "{pdf}");
+        assert_eq!((d, pdf), t.sample(u));
+        assert_eq!(s, sphere_to_square(d));
+        a.record(d, 1.0 + f64::from(i));
+        b.record_square(s, 1.0 + f64::from(i));
+    }
+    assert_eq!(a, b);
 }
