@@ -1,6 +1,6 @@
 //! The sampling core: warps, distributions, change of variables, MIS weights and samplers,
-//! the [`Frame`] that turns directions sampled about `+z` toward any axis, and two streaming
-//! utilities ([`WeightedReservoir`], [`VarianceEstimator`]), and the light BVH that picks one of
+//! the [`Frame`] that turns directions sampled about `+z` toward any axis, and three streaming
+//! utilities ([`WeightedReservoir`], [`Resampler`], [`VarianceEstimator`]), and the light BVH that picks one of
 //! many lights ([`light_bvh::LightBvh`]).
 //!
 //! Needs only [`glam`] (and `rand_core` with `rand_pcg` for the independent sampler).
@@ -13,6 +13,7 @@ pub mod jacobian;
 pub mod light_bvh;
 pub mod mis;
 mod reservoir;
+mod ris;
 pub mod sampler;
 pub(crate) mod unit;
 mod variance;
@@ -21,5 +22,6 @@ pub mod warp;
 pub use error::SamplingError;
 pub use frame::Frame;
 pub use reservoir::WeightedReservoir;
+pub use ris::Resampler;
 pub use unit::ONE_MINUS_EPSILON;
 pub use variance::VarianceEstimator;

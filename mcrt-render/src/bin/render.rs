@@ -202,6 +202,24 @@ const OPTIONS: &[Opt] = &[
         },
     },
     Opt {
+        long: "light-candidates",
+        short: None,
+        value: Some("M"),
+        help: "path and direct: next-event estimation draws M light-BVH candidates and keeps \
+               one in proportion to its unshadowed contribution (resampled importance \
+               sampling), where the BVH chooses and every light is an untextured rectangle \
+               or emitting mesh; 1 for one BVH sample, at most 64 [default: 1]",
+        apply: |a, v| {
+            a.opts.light_candidates = Some(
+                v.parse()
+                    .ok()
+                    .filter(|m| (1..=mcrt_render::light::MAX_LIGHT_CANDIDATES).contains(m))
+                    .ok_or_else(|| format!("--light-candidates {v}: expected 1 to 64"))?,
+            );
+            Ok(())
+        },
+    },
+    Opt {
         long: "light-sampling",
         short: None,
         value: Some("auto|solid-angle|area"),

@@ -221,6 +221,7 @@ impl Lights {
             shape_light,
             env,
             has_delta,
+            candidates: 0,
         })
     }
 }

@@ -11,6 +11,7 @@ mod emission;
 mod envmap;
 mod error;
 mod projector;
+mod resampled;
 mod spot;
 #[cfg(test)]
 mod tests;
@@ -23,6 +24,7 @@ use choice::LightChoice;
 pub use envmap::EnvMap;
 pub use error::LightError;
 pub use projector::Projector;
+pub use resampled::MAX_LIGHT_CANDIDATES;
 pub use spot::Spot;
 
 use crate::geometry::{Geometry, RectangleSampler, ShapeSample, ShapeSampling};
@@ -94,6 +96,9 @@ pub struct Lights {
     /// [`Lights::sample`] reads `u_pick`: a light on a triangle mesh (the
     /// choice among several lights reads `u.x`).
     reads_pick: bool,
+    /// Candidates of resampled next-event estimation over the light BVH (`resampled.rs`);
+    /// 0 or 1: one BVH sample, no resampling.
+    candidates: u32,
 }
 
 /// How [`Lights::sample`] proceeds, chosen once when the lights are built (with the
@@ -171,6 +176,19 @@ impl Lights {
         self.picker
             .as_ref()
             .map_or(0.0, |t| t.pmf(from.p, i as usize))
+    }
+
+    /// Resamples next-event estimation's light sample from `m` light-BVH candidates (at most
+    /// [`MAX_LIGHT_CANDIDATES`]; 0 or 1: one BVH sample), where the tree chooses and every
+    /// light is an untextured rectangle or a mesh split by triangle (`resampled.rs`);
+    /// returns whether resampling is on.
+    pub fn set_light_candidates(&mut self, m: u32) -> bool {
+        self.candidates = if self.resampling_applies() {
+            m.min(MAX_LIGHT_CANDIDATES)
+        } else {
+            0
+        };
+        self.candidates > 1
     }
 
     /// The number of lights the light BVH chooses among (each emitting triangle of a mesh
@@ -306,6 +324,9 @@ impl Lights {
         // (see `LightChoice::sample`), so each light's points stay stratified. The light
         // BVH chooses with `u_pick.x` (and may choose one triangle of a mesh).
         let (i, pick, u, triangle) = if let Some(b) = &self.bvh {
+            if self.candidates > 1 {
+                return self.sample_resampled(b, self.candidates, geo, from, u_pick, u);
+            }
             let c = b.sample(from.p, from.frame.n, u_pick.x)?;
             (c.light, c.pick, u, c.triangle)
         } else if single {

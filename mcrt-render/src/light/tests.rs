@@ -229,3 +229,41 @@ fn positive_finite_is_the_float_comparison() {
         );
     }
 }
+
+/// The irradiance at a point of the Cornell box's floor, `E[L·|cos θ|/p]` over a 4-D grid of
+/// sample values (8 strata per dimension, so `u_pick.y`, which chooses among candidates, is
+/// independent of the rest), with `m` resampling candidates over the light BVH.
+fn floor_irradiance(m: u32) -> f64 {
+    let desc = crate::cornell_box::cornell_box();
+    let geo = Geometry::new(&desc.shapes, None, AccelKind::Bvh).unwrap();
+    let mut lights = Lights::with_bvh(&desc, &geo, 10.0, super::LightBvhUse::Always).unwrap();
+    assert_eq!(lights.set_light_candidates(m), m > 1);
+    let from = point(Vec3::new(0.3, -0.99, -0.2));
+    let s = |k: usize| (k as f32 + 0.5) / 8.0;
+    let mut sum = 0.0f64;
+    for k in 0..8 * 8 * 8 * 8 {
+        let u_pick = Vec2::new(s(k % 8), s(k / 8 % 8));
+        let u = Vec2::new(s(k / 64 % 8), s(k / 512));
+        if let Some(ls) = lights.sample(&geo, &from, u_pick, u) {
+            let e = ls.radiance.x * ls.wi.dot(Vec3::Y).abs() / ls.pdf;
+            assert!(e.is_finite());
+            sum += f64::from(e);
+        }
+    }
+    sum / 4096.0
+}
+
+/// Resampling is on only where the BVH chooses and every light is a rectangle or a split
+/// mesh, and its estimate of the irradiance agrees with one BVH sample's (a contribution
+/// weight without the `1/M` would be off by a factor `M`).
+#[test]
+fn resampled_light_samples_keep_the_irradiance() {
+    let (_, mut plain) = cornell(ShapeSampling::Auto);
+    assert!(!plain.set_light_candidates(4)); // one light: no BVH
+    let one = floor_irradiance(1);
+    assert!(one.is_finite() && one > 0.0);
+    for m in [2, 4, 8] {
+        let e = floor_irradiance(m);
+        assert!(close(e as f32, one as f32, 0.02), "M = {m}: {e} vs {one}");
+    }
+}

@@ -54,8 +54,17 @@ impl Renderer {
                 }
             })?
             .with_shape_sampling(shape_sampling);
-        let lights = Lights::with_bvh(desc, &geo, scene_radius(desc), opts.light_bvh)
+        let mut lights = Lights::with_bvh(desc, &geo, scene_radius(desc), opts.light_bvh)
             .map_err(RenderError::Lights)?;
+        if matches!(
+            resolved.integrator.kind(),
+            IntegratorKind::Path | IntegratorKind::Direct
+        ) {
+            lights.set_light_candidates(
+                opts.light_candidates
+                    .unwrap_or(super::options::DEFAULT_LIGHT_CANDIDATES),
+            );
+        }
         let camera = Camera::new(&desc.sensor).map_err(RenderError::Camera)?;
         // Per shape in the numbering hits report: the scene's, then its groups'.
         let all_shapes = desc.all_shapes();

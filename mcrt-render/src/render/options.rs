@@ -29,6 +29,12 @@ pub struct RenderOptions {
     /// When next-event estimation chooses its light by the light BVH (by default above 16
     /// lights with a position, each emitting triangle counted).
     pub light_bvh: LightBvhUse,
+    /// Candidates of resampled next-event estimation over the light BVH for the path and
+    /// direct integrators (`render --light-candidates M`; `docs/renderer.md`, "Choosing among
+    /// many lights"): `M` BVH samples, one kept in proportion to its unshadowed contribution,
+    /// where every light is an untextured rectangle or emitting mesh; 1 for one BVH sample.
+    /// `None`: [`DEFAULT_LIGHT_CANDIDATES`].
+    pub light_candidates: Option<u32>,
     /// Sample generator (else the file's `sampler` type).
     pub sampler: Option<SamplerKind>,
     /// Integrator type (else the file's); the file's `max_depth` and `rr_depth` carry over
@@ -50,6 +56,9 @@ pub struct RenderOptions {
     pub crop: Option<Crop>,
 }
 
+/// The candidates of resampled next-event estimation when `--light-candidates` is not given.
+pub const DEFAULT_LIGHT_CANDIDATES: u32 = 1;
+
 impl Default for RenderOptions {
     fn default() -> Self {
         Self {
@@ -61,6 +70,7 @@ impl Default for RenderOptions {
             sampler: None,
             light_sampling: ShapeSampling::Auto,
             light_bvh: LightBvhUse::Auto,
+            light_candidates: None,
             specialize: true,
             integrator: None,
             bdpt_only: None,
