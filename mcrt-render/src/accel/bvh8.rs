@@ -7,8 +7,9 @@
 //! of largest surface area until eight children are gathered.
 //!
 //! The leaves are the binary tree's leaves (at most four primitives each), the same as the
-//! 4-wide tree's, so the geometry packs them the same way. Child codes and leaf numbering
-//! follow [`super::Bvh4`]'s. Traversal is in `traverse8.rs`.
+//! 4-wide tree's, or with [`Bvh8::build_merging`] binary subtrees of up to eight primitives
+//! merged into one leaf (for the geometry's 8-lane leaf tests). Child codes and leaf
+//! numbering follow [`super::Bvh4`]'s. Traversal is in `traverse8.rs`.
 
 use super::aabb::Aabb;
 use super::bvh::Bvh;
@@ -49,8 +50,15 @@ pub(crate) struct Bvh8 {
 
 impl Bvh8 {
     /// Builds the binary SAH BVH over the bounds and collapses it; box tests use the widest
-    /// lanes the processor has.
+    /// lanes the processor has. The leaves are the binary tree's.
     pub(crate) fn build(bounds: &[Aabb]) -> Self {
+        Self::build_merging(bounds, 0)
+    }
+
+    /// [`Bvh8::build`], with every binary subtree of at most `merge` primitives made one
+    /// leaf (its primitives are contiguous in the stored order); the binary leaves stay
+    /// leaves whatever `merge`.
+    pub(crate) fn build_merging(bounds: &[Aabb], merge: u32) -> Self {
         let bvh = Bvh::build(bounds);
         let mut out = Self {
             nodes: Vec::with_capacity(bvh.node_count() / 6 + 1),
@@ -61,10 +69,16 @@ impl Bvh8 {
             simd: Simd8::detect(),
         };
         if !bounds.is_empty() {
-            out.root = out.collapse(&bvh, 0);
+            let spans = Spans::new(&bvh, merge);
+            out.root = out.collapse(&bvh, &spans, 0);
             out.depth = out.node_depth(out.root);
         }
         out
+    }
+
+    /// How the box tests run.
+    pub(crate) fn simd(&self) -> Simd8 {
+        self.simd
     }
 
     /// This tree with its box tests run on `simd` (tests compare both paths).
@@ -113,8 +127,8 @@ impl Bvh8 {
     }
 
     /// The code of binary node `b`: a leaf code, or the index of its 8-wide node.
-    fn collapse(&mut self, bvh: &Bvh, b: usize) -> u32 {
-        if let Some(range) = bvh.leaf(b) {
+    fn collapse(&mut self, bvh: &Bvh, spans: &Spans, b: usize) -> u32 {
+        if let Some(range) = spans.leaf(b) {
             debug_assert!(self.leaves.len() < LEAF as usize, "leaf code overflow");
             self.leaves.push(range);
             return LEAF | (self.leaves.len() - 1) as u32;
@@ -128,7 +142,7 @@ impl Bvh8 {
             let open = kids[..len]
                 .iter()
                 .enumerate()
-                .filter(|(_, &k)| bvh.leaf(k).is_none())
+                .filter(|(_, &k)| spans.leaf(k).is_none())
                 .max_by(|a, b| bvh.area(*a.1).total_cmp(&bvh.area(*b.1)))
                 .map(|(i, _)| i);
             let Some(i) = open else { break };
@@ -146,7 +160,7 @@ impl Bvh8 {
             valid: 0,
         });
         for (lane, &k) in kids[..len].iter().enumerate() {
-            let code = self.collapse(bvh, k);
+            let code = self.collapse(bvh, spans, k);
             let (lo, hi) = bvh.node_box(k);
             let n = &mut self.nodes[me];
             for a in 0..3 {
@@ -157,6 +171,44 @@ impl Bvh8 {
             n.valid |= 1 << lane;
         }
         me as u32
+    }
+}
+
+/// Which binary nodes become leaves, and their primitive ranges.
+struct Spans {
+    /// `Some((first, count))` for a binary node that becomes a leaf.
+    leaf: Vec<Option<(u32, u32)>>,
+}
+
+impl Spans {
+    /// Binary leaves, and subtrees of at most `merge` primitives (a binary node's children
+    /// come after it, so the subtree ranges are gathered bottom-up).
+    fn new(bvh: &Bvh, merge: u32) -> Self {
+        let mut range = vec![(0, 0); bvh.node_count()];
+        let mut leaf = vec![None; bvh.node_count()];
+        for b in (0..bvh.node_count()).rev() {
+            range[b] = match bvh.leaf(b) {
+                Some(r) => {
+                    leaf[b] = Some(r);
+                    r
+                }
+                None => {
+                    let [l, r] = bvh.children(b).map(|c| range[c]);
+                    debug_assert_eq!(l.0 + l.1, r.0, "a subtree's primitives are contiguous");
+                    let r = (l.0, l.1 + r.1);
+                    if r.1 <= merge {
+                        leaf[b] = Some(r);
+                    }
+                    r
+                }
+            };
+        }
+        Self { leaf }
+    }
+
+    /// Binary node `b`'s range if it becomes a leaf.
+    fn leaf(&self, b: usize) -> Option<(u32, u32)> {
+        self.leaf[b]
     }
 }
 

@@ -127,3 +127,65 @@ fn agrees_with_the_four_wide_tree_on_random_boxes() {
     }
     assert!(hits > 300, "{hits}");
 }
+
+/// With merging, every leaf is a binary leaf or a subtree of at most eight boxes, the
+/// leaves still partition the stored order (the binary tree's), and random rays find the
+/// same nearest box and occlusion as through the 4-wide tree, on both lane paths.
+#[test]
+fn merged_leaves_partition_the_order_and_agree_with_the_four_wide_tree() {
+    let mut rng = rand_pcg::Pcg32::seed_from_u64(28);
+    let mut f = move || (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0;
+    for n in [0usize, 1, 5, 8, 9, 40, 3000] {
+        let b: Vec<Aabb> = (0..n)
+            .map(|_| {
+                let p = Vec3::new(f(), f(), f()) * 10.0;
+                let e = Vec3::new(f(), f(), f()).abs() * 0.3;
+                Aabb::from_points(&[p, p + e])
+            })
+            .collect();
+        let four = Bvh4::build(&b);
+        let merged = Bvh8::build_merging(&b, 8);
+        assert_eq!(merged.order(), four.order());
+        let mut ranges: Vec<_> = (0..merged.leaf_count()).map(|k| merged.leaf(k)).collect();
+        ranges.sort_by_key(|r| r.start);
+        let mut next = 0;
+        for r in &ranges {
+            assert!(
+                r.start == next && r.end > r.start && r.len() <= 8,
+                "n {n} {r:?}"
+            );
+            next = r.end;
+        }
+        assert_eq!(next as usize, n);
+        if n >= 40 {
+            assert!(merged.leaf_count() < four.leaf_count(), "n {n}");
+        }
+        let hit = |order: &[u32], i: u32, o: Vec3, d: Vec3, tm: f32| {
+            let bx = b[order[i as usize] as usize];
+            let (mut t0, mut t1) = (0f64, f64::from(tm));
+            for a in 0..3 {
+                let inv = 1.0 / f64::from(d[a]);
+                let u = (f64::from(bx.min[a]) - f64::from(o[a])) * inv;
+                let v = (f64::from(bx.max[a]) - f64::from(o[a])) * inv;
+                t0 = t0.max(u.min(v));
+                t1 = t1.min(u.max(v));
+            }
+            (t0 <= t1 && t0 > 0.0 && (t0 as f32) < tm).then_some(t0 as f32)
+        };
+        for bvh in [merged.clone(), merged.clone().with_simd(Simd8::Portable)] {
+            for _ in 0..300 {
+                let o = Vec3::new(f(), f(), f()) * 12.0;
+                let d = Vec3::new(f(), f(), f()).normalize_or(Vec3::Z);
+                let t_max = if f() > 0.0 { f32::INFINITY } else { 3.0 };
+                let want = four.closest(o, d, t_max, |i, tm| hit(four.order(), i, o, d, tm));
+                let got = bvh.closest(o, d, t_max, |i, tm| hit(bvh.order(), i, o, d, tm));
+                assert_eq!(got, want, "n {n}");
+                let occluded = four.any(o, d, t_max, |i, tm| {
+                    hit(four.order(), i, o, d, tm).is_some()
+                });
+                let any = bvh.any(o, d, t_max, |i, tm| hit(bvh.order(), i, o, d, tm).is_some());
+                assert_eq!(any, occluded, "n {n}");
+            }
+        }
+    }
+}

@@ -39,6 +39,7 @@ mod grid;
 mod kdtree;
 mod lanes8;
 mod leaf_queries;
+mod stack;
 mod traverse;
 mod traverse8;
 
@@ -52,6 +53,9 @@ pub(crate) use bvh4::Bvh4;
 pub(crate) use bvh8::Bvh8;
 use grid::Grid;
 use kdtree::KdTree;
+#[cfg(test)]
+pub(crate) use lanes8::Simd8;
+pub(crate) use lanes8::{Lanes8, WithLanes8};
 pub(crate) use leaf_queries::LeafQueries;
 
 use glam::Vec3;

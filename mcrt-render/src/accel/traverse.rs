@@ -13,6 +13,7 @@
 
 use super::aabb::RayBoxTest;
 use super::bvh4::{Bvh4, Node4, EMPTY, LEAF};
+use super::stack::{entry, pop_within, ArrayStack, Stack};
 use glam::{Vec3, Vec4};
 use std::cell::RefCell;
 
@@ -93,15 +94,10 @@ impl Bvh4 {
                 }
             }
             // Pop the nearest pending child that may still hold a closer hit.
-            loop {
-                let Some(e) = stack.pop() else {
-                    return false;
-                };
-                if f32::from_bits((e >> 32) as u32) <= *t_max {
-                    code = e as u32;
-                    break;
-                }
-            }
+            let Some(next) = pop_within(stack, *t_max) else {
+                return false;
+            };
+            code = next;
         }
     }
 }
@@ -126,62 +122,6 @@ impl SlabRay {
             far = far.min(t0.max(t1) * SLAB_GROW);
         }
         (near.cmple(far).bitmask() & n.valid, near)
-    }
-}
-
-/// A stack entry: child code in the low half, entry distance's bits in the high half.
-#[inline(always)]
-fn entry(code: u32, t: f32) -> u64 {
-    u64::from(code) | u64::from(t.to_bits()) << 32
-}
-
-/// A traversal stack of packed entries ([`entry`]).
-trait Stack {
-    fn push(&mut self, e: u64);
-    fn pop(&mut self) -> Option<u64>;
-}
-
-impl Stack for Vec<u64> {
-    #[inline(always)]
-    fn push(&mut self, e: u64) {
-        Vec::push(self, e);
-    }
-    #[inline(always)]
-    fn pop(&mut self) -> Option<u64> {
-        Vec::pop(self)
-    }
-}
-
-/// A fixed-capacity stack on the call stack (capacity checked against the tree depth
-/// before use).
-struct ArrayStack<const N: usize> {
-    items: [u64; N],
-    len: usize,
-}
-
-impl<const N: usize> ArrayStack<N> {
-    #[inline(always)]
-    fn new() -> Self {
-        Self {
-            items: [0; N],
-            len: 0,
-        }
-    }
-}
-
-impl<const N: usize> Stack for ArrayStack<N> {
-    #[inline(always)]
-    fn push(&mut self, e: u64) {
-        debug_assert!(self.len < N);
-        if let Some(slot) = self.items.get_mut(self.len) {
-            *slot = e;
-            self.len += 1;
-        }
-    }
-    #[inline(always)]
-    fn pop(&mut self) -> Option<u64> {
-        self.len = self.len.checked_sub(1)?;
-        Some(self.items[self.len])
     }
 }
 

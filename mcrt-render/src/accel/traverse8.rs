@@ -4,8 +4,9 @@
 //! distances (popped entries beyond the nearest hit so far are skipped); an any-hit walk
 //! pushes entered children in node order.
 //!
-//! The lanes ([`Lanes8`]) are chosen once per query: [`Simd8::dispatch`] runs the whole walk,
-//! the caller's leaf visits included, on AVX2 or on two 4-lane halves.
+//! The lanes ([`Lanes8`]) are chosen once per query: [`Simd8::dispatch`](super::lanes8::Simd8::dispatch) runs the whole walk,
+//! the caller's leaf visits included, on AVX2 or on two 4-lane halves; a caller whose leaf
+//! tests use the lanes too dispatches itself and walks with [`Bvh8::walk_on`].
 //!
 //! The stack is a fixed array on the call stack sized for the tree (each level pushes at
 //! most seven entries), or a per-thread buffer for trees too deep for the largest array.
@@ -13,6 +14,7 @@
 use super::aabb::RayBoxTest;
 use super::bvh8::{Bvh8, Node8, EMPTY, LEAF};
 use super::lanes8::{Lanes8, WithLanes8};
+use super::stack::{entry, pop_within, ArrayStack, Stack};
 use glam::Vec3;
 use std::cell::RefCell;
 
@@ -40,12 +42,10 @@ impl Bvh8 {
         t_max: &mut f32,
         visit: impl FnMut(u32, &mut f32) -> bool,
     ) -> bool {
-        if self.root == EMPTY {
-            return false;
-        }
         self.simd.dispatch(Walk::<_, ORDERED> {
             bvh: self,
-            ray: RayBoxTest::new(origin, dir),
+            origin,
+            dir,
             t_max,
             visit,
         })
@@ -55,7 +55,8 @@ impl Bvh8 {
 /// A walk to run on some lanes.
 struct Walk<'a, F, const ORDERED: bool> {
     bvh: &'a Bvh8,
-    ray: RayBoxTest,
+    origin: Vec3,
+    dir: Vec3,
     t_max: &'a mut f32,
     visit: F,
 }
@@ -67,29 +68,51 @@ impl<F: FnMut(u32, &mut f32) -> bool, const ORDERED: bool> WithLanes8 for Walk<'
     fn run<L: Lanes8>(self, l: L) -> bool {
         let Walk {
             bvh,
-            ray,
+            origin,
+            dir,
             t_max,
             visit,
         } = self;
+        bvh.walk_on::<L, ORDERED>(l, origin, dir, t_max, visit)
+    }
+}
+
+impl Bvh8 {
+    /// [`Bvh8::walk`] on lanes `l` already chosen (for a caller whose leaf visits use them
+    /// too, inside its own [`Simd8::dispatch`](super::lanes8::Simd8::dispatch)).
+    #[inline(always)]
+    pub(crate) fn walk_on<L: Lanes8, const ORDERED: bool>(
+        &self,
+        l: L,
+        origin: Vec3,
+        dir: Vec3,
+        t_max: &mut f32,
+        visit: impl FnMut(u32, &mut f32) -> bool,
+    ) -> bool {
+        if self.root == EMPTY {
+            return false;
+        }
+        let ray = RayBoxTest::new(origin, dir);
+        let (o, inv) = (ray.origin, ray.inv_dir);
         let ray = SlabRay {
-            o: [0, 1, 2].map(|a| l.splat(ray.origin[a])),
-            inv: [0, 1, 2].map(|a| l.splat(ray.inv_dir[a])),
+            o: [l.splat(o.x), l.splat(o.y), l.splat(o.z)],
+            inv: [l.splat(inv.x), l.splat(inv.y), l.splat(inv.z)],
             l,
         };
-        let levels = 7 * bvh.depth;
+        let levels = 7 * self.depth;
         if levels <= TINY {
             let mut stack = ArrayStack::<TINY>::new();
-            traverse::<L, ORDERED>(bvh, &mut stack, &ray, t_max, visit)
+            traverse::<L, ORDERED>(self, &mut stack, &ray, t_max, visit)
         } else if levels <= SMALL {
             let mut stack = ArrayStack::<SMALL>::new();
-            traverse::<L, ORDERED>(bvh, &mut stack, &ray, t_max, visit)
+            traverse::<L, ORDERED>(self, &mut stack, &ray, t_max, visit)
         } else if levels <= LARGE {
             let mut stack = ArrayStack::<LARGE>::new();
-            traverse::<L, ORDERED>(bvh, &mut stack, &ray, t_max, visit)
+            traverse::<L, ORDERED>(self, &mut stack, &ray, t_max, visit)
         } else {
             STACK.with_borrow_mut(|stack| {
                 stack.clear();
-                traverse::<L, ORDERED>(bvh, stack, &ray, t_max, visit)
+                traverse::<L, ORDERED>(self, stack, &ray, t_max, visit)
             })
         }
     }
@@ -122,15 +145,10 @@ fn traverse<L: Lanes8, const ORDERED: bool>(
             }
         }
         // Pop the nearest pending child that may still hold a closer hit.
-        loop {
-            let Some(e) = stack.pop() else {
-                return false;
-            };
-            if f32::from_bits((e >> 32) as u32) <= *t_max {
-                code = e as u32;
-                break;
-            }
-        }
+        let Some(next) = pop_within(stack, *t_max) else {
+            return false;
+        };
+        code = next;
     }
 }
 
@@ -157,62 +175,6 @@ impl<L: Lanes8> SlabRay<L> {
             far = l.min(far, l.mul(l.max(t0, t1), grow));
         }
         (l.le_bits(near, far) & n.valid, near)
-    }
-}
-
-/// A stack entry: child code in the low half, entry distance's bits in the high half.
-#[inline(always)]
-fn entry(code: u32, t: f32) -> u64 {
-    u64::from(code) | u64::from(t.to_bits()) << 32
-}
-
-/// A traversal stack of packed entries ([`entry`]).
-trait Stack {
-    fn push(&mut self, e: u64);
-    fn pop(&mut self) -> Option<u64>;
-}
-
-impl Stack for Vec<u64> {
-    #[inline(always)]
-    fn push(&mut self, e: u64) {
-        Vec::push(self, e);
-    }
-    #[inline(always)]
-    fn pop(&mut self) -> Option<u64> {
-        Vec::pop(self)
-    }
-}
-
-/// A fixed-capacity stack on the call stack (capacity checked against the tree depth
-/// before use).
-struct ArrayStack<const N: usize> {
-    items: [u64; N],
-    len: usize,
-}
-
-impl<const N: usize> ArrayStack<N> {
-    #[inline(always)]
-    fn new() -> Self {
-        Self {
-            items: [0; N],
-            len: 0,
-        }
-    }
-}
-
-impl<const N: usize> Stack for ArrayStack<N> {
-    #[inline(always)]
-    fn push(&mut self, e: u64) {
-        debug_assert!(self.len < N);
-        if let Some(slot) = self.items.get_mut(self.len) {
-            *slot = e;
-            self.len += 1;
-        }
-    }
-    #[inline(always)]
-    fn pop(&mut self) -> Option<u64> {
-        self.len = self.len.checked_sub(1)?;
-        Some(self.items[self.len])
     }
 }
 

@@ -1,27 +1,33 @@
 //! Ray queries: the one place where the geometry finds what a ray hits.
 //!
 //! [`RayQuery`] is the switch over backends. With [`AccelKind::Bvh`] the primitives live in
-//! the 4-wide BVH's leaves (with [`AccelKind::Bvh8`] in the 8-wide BVH's, the same leaves),
-//! packed for SIMD tests ([`packed_bvh`]: quads, that is triangle
+//! the 4-wide BVH's leaves, packed for SIMD tests ([`packed_bvh`]: quads, that is triangle
 //! pairs forming a parallelogram ([`pairing`], [`quad4`]), and other triangles four at a
-//! time ([`tri4`])). Every other kind goes through the primitive-agnostic [`Accel`], which
+//! time ([`tri4`])); with [`AccelKind::Bvh8`] in the 8-wide BVH's leaves of up to eight
+//! units, eight at a time ([`packed_bvh8`], [`quad8`], [`tri8`]). Every other kind goes through the primitive-agnostic [`Accel`], which
 //! calls back per primitive into the scalar tests ([`scalar`]).
 //!
 //! Primitives are stored in the backend's *slot* order ([`QueryBuild::slots`]); queries
 //! report slots ([`HitRecord::slot`]).
 
 mod packed_bvh;
+mod packed_bvh8;
+#[cfg(test)]
+mod packets8_tests;
 mod pairing;
 mod quad4;
+mod quad8;
 pub(super) mod scalar;
 mod tri4;
+mod tri8;
 
 pub(crate) use scalar::TriSoa;
 
 use super::data::{Prim, PrimsView, ShapeData};
 use super::Ray;
-use crate::accel::{Aabb, Accel, AccelKind, Bvh4, Bvh8};
+use crate::accel::{Aabb, Accel, AccelKind, Bvh4};
 use packed_bvh::PackedBvh;
+use packed_bvh8::PackedBvh8;
 use pairing::Unit;
 use rayon::prelude::*;
 use scalar::{hit_disk, hit_sphere, TriRay};
@@ -73,8 +79,8 @@ impl Stored<'_> {
 pub(super) enum RayQuery {
     /// The 4-wide BVH with packed leaves.
     PackedBvh(PackedBvh),
-    /// The 8-wide BVH with packed leaves.
-    PackedBvh8(PackedBvh<Bvh8>),
+    /// The 8-wide BVH with leaves of up to 8 units, packed 8 lanes wide.
+    PackedBvh8(PackedBvh8),
     /// Any other structure, one primitive per callback.
     Accel(Accel),
 }
@@ -102,7 +108,7 @@ impl RayQuery {
                 let (slots, packed) = PackedBvh::pack(Bvh4::build(&boxes), &units, prims);
                 (slots, RayQuery::PackedBvh(packed))
             } else {
-                let (slots, packed) = PackedBvh::pack(Bvh8::build(&boxes), &units, prims);
+                let (slots, packed) = PackedBvh8::build(&boxes, &units, prims);
                 (slots, RayQuery::PackedBvh8(packed))
             };
             return QueryBuild {

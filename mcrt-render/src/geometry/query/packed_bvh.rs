@@ -53,38 +53,152 @@ leaf_tree!(Bvh8);
 
 /// A BVH leaf as the geometry stores it.
 #[derive(Debug, Clone)]
-struct Leaf {
+pub(super) struct Leaf {
     /// First slot: quad `l` of the leaf is slots `first + 2l` and `first + 2l + 1`; its
     /// triangles follow the quads, then its spheres and disks, up to `end`.
-    first: u32,
-    end: u32,
+    pub(super) first: u32,
+    pub(super) end: u32,
     /// Index of the quad packet and of the triangle packet (when there are any).
-    quad: u32,
-    tri: u32,
-    quads: u8,
-    tris: u8,
+    pub(super) quad: u32,
+    pub(super) tri: u32,
+    pub(super) quads: u8,
+    pub(super) tris: u8,
 }
 
 impl Leaf {
     /// The slot of the leaf's first triangle outside a quad (its triangle packet's lane 0).
     #[inline(always)]
-    fn first_tri(&self) -> u32 {
+    pub(super) fn first_tri(&self) -> u32 {
         self.first + 2 * u32::from(self.quads)
     }
 
     /// The slot of the leaf's first sphere or disk.
     #[inline(always)]
-    fn first_other(&self) -> u32 {
+    pub(super) fn first_other(&self) -> u32 {
         self.first_tri() + u32::from(self.tris)
     }
 }
 
-/// Where a quad packet's lanes live: the first slot of each lane's pair and how its
+/// Where a quad packet's `N` lanes live: the first slot of each lane's pair and how its
 /// parameters map to barycentrics ([`Quad::barycentrics`]).
-#[derive(Debug, Clone, Copy, Default)]
-struct QuadSlots {
-    slot: [u32; 4],
-    maps: [WeightMaps; 4],
+#[derive(Debug, Clone, Copy)]
+pub(super) struct QuadSlots<const N: usize> {
+    slot: [u32; N],
+    maps: [WeightMaps; N],
+}
+
+impl<const N: usize> QuadSlots<N> {
+    fn new() -> Self {
+        Self {
+            slot: [0; N],
+            maps: [WeightMaps::default(); N],
+        }
+    }
+
+    /// The triangle slot and barycentrics of a hit at parameters `(u, v)` in lane `lane`.
+    #[inline(always)]
+    pub(super) fn record(&self, lane: u32, u: f32, v: f32) -> HitRecord {
+        let lane = lane as usize % N;
+        let (k, b1, b2) = Quad::barycentrics(&self.maps[lane], u, v);
+        HitRecord {
+            slot: self.slot[lane] + k,
+            b1,
+            b2,
+        }
+    }
+}
+
+/// Packed leaves with at most `N` quads and `N` triangles each (before the packets, which
+/// the caller makes from each leaf's quads and triangles).
+pub(super) struct Packing<const N: usize> {
+    /// The slots' input primitive indices.
+    pub(super) slots: Vec<u32>,
+    /// By leaf number.
+    pub(super) leaves: Vec<Leaf>,
+    pub(super) quad_slots: Vec<QuadSlots<N>>,
+}
+
+impl<const N: usize> Packing<N> {
+    /// Orders the units of each leaf of `bvh` (built over `units`; `prims` in input order)
+    /// quads first, then triangles, then the rest, and calls `quads_packet` and
+    /// `tris_packet` with each leaf's quads and triangles (when it has any) to make its
+    /// packets.
+    pub(super) fn new(
+        bvh: &impl LeafTree,
+        units: &[Unit],
+        prims: &[Prim],
+        mut quads_packet: impl FnMut(&[Quad]),
+        mut tris_packet: impl FnMut(&[[glam::Vec3; 3]]),
+    ) -> Self {
+        let kind = |u: &Unit| match u {
+            Unit::Pair { .. } => 0,
+            Unit::One(i) if matches!(prims[*i as usize], Prim::Tri(_)) => 1,
+            Unit::One(_) => 2,
+        };
+        let mut order = bvh.order().to_vec();
+        let mut ranges: Vec<_> = (0..bvh.leaf_count()).map(|k| (bvh.leaf(k), k)).collect();
+        ranges.sort_unstable_by_key(|(r, _)| r.start); // the starts differ
+        let mut slots = Vec::with_capacity(prims.len());
+        let mut quad_slots = Vec::new();
+        let (mut quad_packets, mut tri_packets) = (0, 0);
+        let mut leaves = vec![None; ranges.len()];
+        // Each leaf's quads and triangles, cleared per leaf (allocated once).
+        let (mut quads, mut tris) = (Vec::with_capacity(N), Vec::with_capacity(N));
+        for (r, k) in ranges {
+            let leaf_units = &mut order[r.start as usize..r.end as usize];
+            leaf_units.sort_by_key(|&u| kind(&units[u as usize])); // stable
+            let first = slots.len() as u32;
+            let mut q_slots = QuadSlots::new();
+            quads.clear();
+            tris.clear();
+            for &u in leaf_units.iter() {
+                match units[u as usize] {
+                    Unit::Pair {
+                        first,
+                        second,
+                        quad,
+                    } => {
+                        q_slots.slot[quads.len() % N] = slots.len() as u32;
+                        q_slots.maps[quads.len() % N] = quad.maps();
+                        quads.push(quad);
+                        slots.extend([first, second]);
+                    }
+                    Unit::One(i) => {
+                        if let Prim::Tri(t) = &prims[i as usize] {
+                            tris.push(t.vertices());
+                        }
+                        slots.push(i);
+                    }
+                }
+            }
+            debug_assert!(
+                quads.len() + tris.len() <= N,
+                "BVH leaves hold at most {N} units"
+            );
+            leaves[k] = Some(Leaf {
+                first,
+                end: slots.len() as u32,
+                quad: quad_packets,
+                tri: tri_packets,
+                quads: quads.len() as u8,
+                tris: tris.len() as u8,
+            });
+            if !quads.is_empty() {
+                quads_packet(&quads);
+                quad_slots.push(q_slots);
+                quad_packets += 1;
+            }
+            if !tris.is_empty() {
+                tris_packet(&tris);
+                tri_packets += 1;
+            }
+        }
+        Self {
+            slots,
+            leaves: leaves.into_iter().flatten().collect(),
+            quad_slots,
+        }
+    }
 }
 
 /// A BVH (4-wide or 8-wide) and its packed leaves.
@@ -93,14 +207,14 @@ pub(crate) struct PackedBvh<T: LeafTree = Bvh4> {
     bvh: T,
     leaves: Vec<Leaf>,
     quads: Vec<QuadPacket>,
-    quad_slots: Vec<QuadSlots>,
+    quad_slots: Vec<QuadSlots<4>>,
     tris: Vec<TriPacket>,
 }
 
 /// What a closest-hit search found in a leaf: a primitive, or a quad lane and its
 /// parameters (mapped to a triangle and barycentrics once the search is over).
 #[derive(Clone, Copy)]
-enum LeafHit {
+pub(super) enum LeafHit {
     Prim(HitRecord),
     Quad {
         packet: u32,
@@ -124,75 +238,22 @@ impl<T: LeafTree> PackedBvh<T> {
     /// Packs the leaves of `bvh` (built over `units`); returns the slots' input primitive
     /// indices and the packed BVH. `prims` is in input order.
     pub(super) fn pack(bvh: T, units: &[Unit], prims: &[Prim]) -> (Vec<u32>, Self) {
-        let kind = |u: &Unit| match u {
-            Unit::Pair { .. } => 0,
-            Unit::One(i) if matches!(prims[*i as usize], Prim::Tri(_)) => 1,
-            Unit::One(_) => 2,
-        };
-        let mut order = bvh.order().to_vec();
-        let mut ranges: Vec<_> = (0..bvh.leaf_count()).map(|k| (bvh.leaf(k), k)).collect();
-        ranges.sort_unstable_by_key(|(r, _)| r.start); // the starts differ
-        let mut slots = Vec::with_capacity(prims.len());
-        let (mut quad_packets, mut quad_slots, mut tri_packets) =
-            (Vec::new(), Vec::new(), Vec::new());
-        let mut leaves = vec![None; ranges.len()];
-        // Each leaf's quads and triangles, cleared per leaf (allocated once).
-        let (mut quads, mut tris) = (Vec::with_capacity(4), Vec::with_capacity(4));
-        for (r, k) in ranges {
-            let leaf_units = &mut order[r.start as usize..r.end as usize];
-            leaf_units.sort_by_key(|&u| kind(&units[u as usize])); // stable
-            let first = slots.len() as u32;
-            let mut q_slots = QuadSlots::default();
-            quads.clear();
-            tris.clear();
-            for &u in leaf_units.iter() {
-                match units[u as usize] {
-                    Unit::Pair {
-                        first,
-                        second,
-                        quad,
-                    } => {
-                        q_slots.slot[quads.len()] = slots.len() as u32;
-                        q_slots.maps[quads.len()] = quad.maps();
-                        quads.push(quad);
-                        slots.extend([first, second]);
-                    }
-                    Unit::One(i) => {
-                        if let Prim::Tri(t) = &prims[i as usize] {
-                            tris.push(t.vertices());
-                        }
-                        slots.push(i);
-                    }
-                }
-            }
-            debug_assert!(
-                quads.len() + tris.len() <= 4,
-                "BVH leaves hold at most 4 units"
-            );
-            leaves[k] = Some(Leaf {
-                first,
-                end: slots.len() as u32,
-                quad: quad_packets.len() as u32,
-                tri: tri_packets.len() as u32,
-                quads: quads.len() as u8,
-                tris: tris.len() as u8,
-            });
-            if !quads.is_empty() {
-                quad_packets.push(QuadPacket::new(&quads));
-                quad_slots.push(q_slots);
-            }
-            if !tris.is_empty() {
-                tri_packets.push(TriPacket::new(&tris));
-            }
-        }
+        let (mut quads, mut tris) = (Vec::new(), Vec::new());
+        let p = Packing::<4>::new(
+            &bvh,
+            units,
+            prims,
+            |q| quads.push(QuadPacket::new(q)),
+            |t| tris.push(TriPacket::new(t)),
+        );
         let packed = Self {
             bvh,
-            leaves: leaves.into_iter().flatten().collect(),
-            quads: quad_packets,
-            quad_slots,
-            tris: tri_packets,
+            leaves: p.leaves,
+            quads,
+            quad_slots: p.quad_slots,
+            tris,
         };
-        (slots, packed)
+        (p.slots, packed)
     }
 
     /// The nearest hit with `0 < t < t_max`.
@@ -229,14 +290,7 @@ impl<T: LeafTree> PackedBvh<T> {
         let rec = match found? {
             LeafHit::Prim(r) => r,
             LeafHit::Quad { packet, lane, u, v } => {
-                let s = &self.quad_slots[packet as usize];
-                let lane = lane as usize & 3;
-                let (k, b1, b2) = Quad::barycentrics(&s.maps[lane], u, v);
-                HitRecord {
-                    slot: s.slot[lane] + k,
-                    b1,
-                    b2,
-                }
+                self.quad_slots[packet as usize].record(lane, u, v)
             }
         };
         Some((t, rec))

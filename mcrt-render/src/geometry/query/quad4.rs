@@ -64,6 +64,13 @@ impl Lane {
     };
 }
 
+/// Quad `q`'s normal, corner and dual vectors (`n`, `c`, `a`, `b`), computed in f64 and
+/// rounded to f32 as a packet stores them; NaN for no quad.
+pub(crate) fn lane_vectors(q: Option<&Quad>) -> [[f32; 3]; 4] {
+    let l = q.map_or(Lane::NAN, Lane::new);
+    [l.n, l.c, l.a, l.b].map(|v| v.to_array().map(|x| x as f32))
+}
+
 impl QuadPacket {
     /// Packs 0 to 4 parallelograms (more are ignored).
     pub(crate) fn new(quads: &[Quad]) -> Self {

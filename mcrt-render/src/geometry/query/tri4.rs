@@ -79,20 +79,11 @@ struct Edges {
 impl TriRay4 {
     #[inline]
     pub(crate) fn new(origin: Vec3, dir: Vec3) -> Self {
-        // (kx, ky) follow kz cyclically, swapped when dz < 0 to keep the winding.
-        const NEXT: [[usize; 2]; 3] = [[1, 2], [2, 0], [0, 1]];
-        let kz = dir.abs().max_position();
-        let [kx, ky] = if dir[kz] < 0.0 {
-            let [a, b] = NEXT[kz];
-            [b, a]
-        } else {
-            NEXT[kz]
-        };
-        let sz = 1.0 / dir[kz];
+        let (k, o, s) = shear(origin, dir);
         Self {
-            k: [kx, ky, kz],
-            o: [kx, ky, kz].map(|a| Vec4::splat(origin[a])),
-            s: [dir[kx] * sz, dir[ky] * sz, sz].map(Vec4::splat),
+            k,
+            o: o.map(Vec4::splat),
+            s: s.map(Vec4::splat),
         }
     }
 
@@ -167,6 +158,29 @@ impl TriRay4 {
     }
 }
 
+/// The ray's set-up for the test: the world axes (kx, ky, kz) that make the direction's
+/// largest component z (kept right-handed), the origin along them and the shear
+/// `Sx = dx/dz`, `Sy = dy/dz`, `Sz = 1/dz` (each as `d · (1/dz)`, as the one-triangle test
+/// rounds them).
+#[inline(always)]
+pub(crate) fn shear(origin: Vec3, dir: Vec3) -> ([usize; 3], [f32; 3], [f32; 3]) {
+    // (kx, ky) follow kz cyclically, swapped when dz < 0 to keep the winding.
+    const NEXT: [[usize; 2]; 3] = [[1, 2], [2, 0], [0, 1]];
+    let kz = dir.abs().max_position();
+    let [kx, ky] = if dir[kz] < 0.0 {
+        let [a, b] = NEXT[kz];
+        [b, a]
+    } else {
+        NEXT[kz]
+    };
+    let sz = 1.0 / dir[kz];
+    (
+        [kx, ky, kz],
+        [kx, ky, kz].map(|a| origin[a]),
+        [dir[kx] * sz, dir[ky] * sz, sz],
+    )
+}
+
 /// Recomputes in f64 the edge functions of the lanes in `lanes` (a bitmask) where some edge
 /// is exactly 0 in f32, as the paper does so that shared edges are claimed consistently.
 #[cold]
@@ -174,14 +188,22 @@ impl TriRay4 {
 fn edges_f64(e: &mut [Vec4; 3], lanes: u32, x: [Vec4; 3], y: [Vec4; 3]) {
     let mut out = e.map(|v| v.to_array());
     for l in (0..4).filter(|l| lanes & (1 << l) != 0) {
-        let px = DVec3::new(x[0][l].into(), x[1][l].into(), x[2][l].into());
-        let py = DVec3::new(y[0][l].into(), y[1][l].into(), y[2][l].into());
-        let u = px.z * py.y - py.z * px.y;
-        let v = px.x * py.z - py.x * px.z;
-        let w = px.y * py.x - py.y * px.x;
-        [out[0][l], out[1][l], out[2][l]] = [u as f32, v as f32, w as f32];
+        let w = edge_f64([x[0][l], x[1][l], x[2][l]], [y[0][l], y[1][l], y[2][l]]);
+        [out[0][l], out[1][l], out[2][l]] = w;
     }
     *e = out.map(Vec4::from_array);
+}
+
+/// One lane's three edge functions in f64 from its sheared vertices' `x` and `y` (vertices
+/// 0, 1, 2), rounded back to f32.
+#[inline(always)]
+pub(crate) fn edge_f64(x: [f32; 3], y: [f32; 3]) -> [f32; 3] {
+    let px = DVec3::new(x[0].into(), x[1].into(), x[2].into());
+    let py = DVec3::new(y[0].into(), y[1].into(), y[2].into());
+    let u = px.z * py.y - py.z * px.y;
+    let v = px.x * py.z - py.x * px.z;
+    let w = px.y * py.x - py.y * px.x;
+    [u as f32, v as f32, w as f32]
 }
 
 #[cfg(test)]
