@@ -6,7 +6,7 @@
 //!
 //! Light tracing and Metropolis sampling splat anywhere on the film, so per-pixel variances
 //! are not known: every comparison renders 16 independent replicates (seeds 1000…) and
-//! t-tests the block means at a family-wise α = 0.01 per comparison (Šidák over blocks and
+//! t-tests the block means at the suite's per-test α per comparison (Šidák over blocks and
 //! channels; `tests/common/replicates.rs`), with an allowance for the reference's own error
 //! and a 1% bias bound (1.5% for the caustic box, whose reference agrees with itself to 0.72%
 //! on 32×32 blocks). Fixed seeds.

@@ -3,6 +3,9 @@
 //! where its flattened copy is, with the same shading; memory stays flat in the number of
 //! instances.
 
+mod common;
+
+use common::located::check_located;
 use mcrt::glam::{DVec3, Mat4, Quat, Vec2, Vec3};
 use mcrt_render::description::{Checked, ShapeDesc, ShapeGroupDesc, ShapeKind};
 use mcrt_render::geometry::{AccelKind, Geometry, Ray};
@@ -26,16 +29,6 @@ fn err(body: &str) -> SceneError {
         Ok(d) => panic!("expected an error, got {d:?}"),
         Err(e) => e,
     }
-}
-
-/// Checks the position and that the message names file, line, `element` and `words`.
-fn check(e: &SceneError, line: u32, element: &str, words: &str) {
-    let msg = e.to_string();
-    assert_eq!(e.line, Some(line), "{msg}");
-    assert!(msg.contains(FILE), "{msg}");
-    assert!(msg.contains(&format!("line {line}")), "{msg}");
-    assert!(msg.contains(element), "{msg}");
-    assert!(msg.contains(words), "{msg}");
 }
 
 const GROUP: &str = "<shape type=\"shapegroup\" id=\"g\"><shape type=\"sphere\"/></shape>";
@@ -104,11 +97,17 @@ fn an_instance_needs_exactly_one_known_group() {
         matches!(e.kind, SceneErrorKind::UndefinedReference(_)),
         "{e}"
     );
-    check(&e, 3, "<ref id=\"nope\">", "no object has id \"nope\"");
+    check_located(
+        &e,
+        FILE,
+        3,
+        "<ref id=\"nope\">",
+        "no object has id \"nope\"",
+    );
 
     let e = err("\n<shape type=\"instance\"/>");
     assert!(matches!(e.kind, SceneErrorKind::MissingAttribute(_)), "{e}");
-    check(&e, 3, "<shape type=\"instance\">", "shapegroup");
+    check_located(&e, FILE, 3, "<shape type=\"instance\">", "shapegroup");
 
     let e =
         err("<bsdf type=\"diffuse\" id=\"b\"/>\n<shape type=\"instance\"><ref id=\"b\"/></shape>");
@@ -116,19 +115,25 @@ fn an_instance_needs_exactly_one_known_group() {
         matches!(e.kind, SceneErrorKind::UndefinedReference(_)),
         "{e}"
     );
-    check(&e, 3, "<ref id=\"b\">", "not a <shape type=\"shapegroup\">");
+    check_located(
+        &e,
+        FILE,
+        3,
+        "<ref id=\"b\">",
+        "not a <shape type=\"shapegroup\">",
+    );
 
     let e = err(&format!(
         "{GROUP}\n<shape type=\"instance\"><ref id=\"g\"/>\n<ref id=\"g\"/></shape>"
     ));
     assert!(matches!(e.kind, SceneErrorKind::Misplaced(_)), "{e}");
-    check(&e, 4, "<ref id=\"g\">", "a second shapegroup");
+    check_located(&e, FILE, 4, "<ref id=\"g\">", "a second shapegroup");
 
     let e = err(&format!(
         "{GROUP}\n<shape type=\"instance\"><ref id=\"g\"/>\n<bsdf type=\"diffuse\"/></shape>"
     ));
     assert!(matches!(e.kind, SceneErrorKind::Misplaced(_)), "{e}");
-    check(&e, 4, "<bsdf type=\"diffuse\">", "inside an instance");
+    check_located(&e, FILE, 4, "<bsdf type=\"diffuse\">", "inside an instance");
 
     let e = err(&format!(
         "{GROUP}\n<shape type=\"instance\"><ref id=\"g\"/>\n\
@@ -138,12 +143,13 @@ fn an_instance_needs_exactly_one_known_group() {
         matches!(e.kind, SceneErrorKind::UnknownParameter { .. }),
         "{e}"
     );
-    check(&e, 4, "flip_normals", "unknown parameter");
+    check_located(&e, FILE, 4, "flip_normals", "unknown parameter");
 
     let e = err("<shape type=\"instance\">\n<shape type=\"shapegroup\"><shape type=\"cube\"/></shape></shape>");
     assert!(matches!(e.kind, SceneErrorKind::Misplaced(_)), "{e}");
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<shape type=\"shapegroup\">",
         "declare it directly inside <scene>",
@@ -157,19 +163,32 @@ fn groups_refuse_emitters_nesting_and_other_objects() {
          <emitter type=\"area\"/></shape></shape>",
     );
     assert!(matches!(e.kind, SceneErrorKind::Unsupported(_)), "{e}");
-    check(&e, 4, "<emitter type=\"area\">", "instancing of emitters");
+    check_located(
+        &e,
+        FILE,
+        4,
+        "<emitter type=\"area\">",
+        "instancing of emitters",
+    );
 
     let e = err(&format!(
         "{GROUP}\n<shape type=\"shapegroup\" id=\"h\">\n<shape type=\"instance\"><ref id=\"g\"/></shape></shape>"
     ));
     assert!(matches!(e.kind, SceneErrorKind::Unsupported(_)), "{e}");
-    check(&e, 4, "<shape type=\"instance\">", "nested instancing");
+    check_located(
+        &e,
+        FILE,
+        4,
+        "<shape type=\"instance\">",
+        "nested instancing",
+    );
 
     let e =
         err("<shape type=\"shapegroup\" id=\"g\">\n<shape type=\"shapegroup\" id=\"h\"/></shape>");
     assert!(matches!(e.kind, SceneErrorKind::Unsupported(_)), "{e}");
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<shape type=\"shapegroup\" id=\"h\">",
         "nested groups",
@@ -177,7 +196,7 @@ fn groups_refuse_emitters_nesting_and_other_objects() {
 
     let e = err("<shape type=\"shapegroup\" id=\"g\">\n<bsdf type=\"diffuse\"/></shape>");
     assert!(matches!(e.kind, SceneErrorKind::Misplaced(_)), "{e}");
-    check(&e, 3, "<bsdf type=\"diffuse\">", "holds shapes only");
+    check_located(&e, FILE, 3, "<bsdf type=\"diffuse\">", "holds shapes only");
 
     // An unused group is still read, so its errors surface.
     let e = err(
@@ -192,7 +211,7 @@ fn groups_refuse_emitters_nesting_and_other_objects() {
         matches!(e.kind, SceneErrorKind::UnknownParameter { .. }),
         "{e}"
     );
-    check(&e, 3, "<float name=\"x\">", "unknown parameter");
+    check_located(&e, FILE, 3, "<float name=\"x\">", "unknown parameter");
 }
 
 // ---- Geometry ----------------------------------------------------------------------------

@@ -1,6 +1,9 @@
 //! Every kind of loader error: the message names the file, the line and the element, and
 //! says what is wrong.
 
+mod common;
+
+use common::located::check_located;
 use mcrt_render::loader::{load_scene, parse_scene, SceneError, SceneErrorKind};
 use std::path::Path;
 
@@ -13,16 +16,6 @@ fn err(body: &str) -> SceneError {
         Ok(d) => panic!("expected an error, got {d:?}"),
         Err(e) => e,
     }
-}
-
-/// Checks the position and that the message names file, line and `element`.
-fn check(e: &SceneError, line: u32, element: &str, words: &str) {
-    let msg = e.to_string();
-    assert_eq!(e.line, Some(line), "{msg}");
-    assert!(msg.contains(FILE), "{msg}");
-    assert!(msg.contains(&format!("line {line}")), "{msg}");
-    assert!(msg.contains(element), "{msg}");
-    assert!(msg.contains(words), "{msg}");
 }
 
 #[test]
@@ -42,7 +35,7 @@ fn bad_or_missing_version() {
     ] {
         let e = parse_scene(xml, Some(Path::new(FILE)), &[]).unwrap_err();
         assert!(matches!(e.kind, SceneErrorKind::Version(_)), "{e}");
-        check(&e, 1, "<scene>", words);
+        check_located(&e, FILE, 1, "<scene>", words);
     }
 }
 
@@ -50,19 +43,20 @@ fn bad_or_missing_version() {
 fn unknown_element_attribute_plugin_and_parameter() {
     let e = err("<shape type=\"cube\">\n<color name=\"x\" value=\"1\"/></shape>");
     assert!(matches!(e.kind, SceneErrorKind::UnknownElement(_)), "{e}");
-    check(&e, 3, "<color name=\"x\">", "unknown element <color>");
+    check_located(&e, FILE, 3, "<color name=\"x\">", "unknown element <color>");
 
     let e = err("<shape type=\"cube\" size=\"2\"/>");
     assert!(matches!(e.kind, SceneErrorKind::UnknownAttribute(_)), "{e}");
-    check(&e, 2, "<shape type=\"cube\">", "\"size\"");
+    check_located(&e, FILE, 2, "<shape type=\"cube\">", "\"size\"");
 
     let e = err("\n<bsdf type=\"hair\"/>");
     assert!(
         matches!(e.kind, SceneErrorKind::UnknownPlugin { .. }),
         "{e}"
     );
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<bsdf type=\"hair\">",
         "unknown bsdf plugin type \"hair\"",
@@ -73,8 +67,9 @@ fn unknown_element_attribute_plugin_and_parameter() {
         matches!(e.kind, SceneErrorKind::UnknownParameter { .. }),
         "{e}"
     );
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<float name=\"fvo\">",
         "unknown parameter \"fvo\" for sensor \"perspective\"",
@@ -85,7 +80,7 @@ fn unknown_element_attribute_plugin_and_parameter() {
 fn wrong_types_and_malformed_values() {
     let e = err("<sensor type=\"perspective\"><string name=\"fov\" value=\"40\"/></sensor>");
     assert!(matches!(e.kind, SceneErrorKind::WrongType { .. }), "{e}");
-    check(&e, 2, "<string name=\"fov\">", "must be a <float>");
+    check_located(&e, FILE, 2, "<string name=\"fov\">", "must be a <float>");
 
     let cases = [
         ("<float name=\"fov\" value=\"4o\"/>", "<float name=\"fov\">"),
@@ -107,11 +102,11 @@ fn wrong_types_and_malformed_values() {
     for (prop, element) in cases {
         let e = err(&format!("<shape type=\"sphere\">\n{prop}\n</shape>"));
         assert!(matches!(e.kind, SceneErrorKind::Malformed(_)), "{e}");
-        check(&e, 3, element, "malformed");
+        check_located(&e, FILE, 3, element, "malformed");
     }
     let e = err("<shape type=\"cube\"><transform name=\"to_world\">\n<matrix value=\"1 0 0\"/>\n</transform></shape>");
     assert!(matches!(e.kind, SceneErrorKind::Malformed(_)), "{e}");
-    check(&e, 3, "<matrix>", "16 or 9 values");
+    check_located(&e, FILE, 3, "<matrix>", "16 or 9 values");
 }
 
 #[test]
@@ -123,25 +118,25 @@ fn undefined_parameter_and_reference() {
         matches!(e.kind, SceneErrorKind::UndefinedParameter(_)),
         "{e}"
     );
-    check(&e, 3, "<integer name=\"max_depth\">", "$depth");
+    check_located(&e, FILE, 3, "<integer name=\"max_depth\">", "$depth");
 
     let e = err("<shape type=\"cube\">\n<ref id=\"nowhere\"/></shape>");
     assert!(
         matches!(e.kind, SceneErrorKind::UndefinedReference(_)),
         "{e}"
     );
-    check(&e, 3, "<ref id=\"nowhere\">", "nowhere");
+    check_located(&e, FILE, 3, "<ref id=\"nowhere\">", "nowhere");
 
     let e = err("<shape type=\"cube\" id=\"c\"/>\n<shape type=\"cube\"><ref id=\"c\"/></shape>");
     assert!(
         matches!(e.kind, SceneErrorKind::UndefinedReference(_)),
         "{e}"
     );
-    check(&e, 3, "<ref id=\"c\">", "not a <bsdf>");
+    check_located(&e, FILE, 3, "<ref id=\"c\">", "not a <bsdf>");
 
     let e = err("<bsdf type=\"diffuse\" id=\"a\"/>\n<bsdf type=\"diffuse\" id=\"a\"/>");
     assert!(matches!(e.kind, SceneErrorKind::DuplicateId(_)), "{e}");
-    check(&e, 3, "id=\"a\"", "duplicate id \"a\"");
+    check_located(&e, FILE, 3, "id=\"a\"", "duplicate id \"a\"");
 }
 
 #[test]
@@ -152,11 +147,17 @@ fn missing_or_unreadable_files() {
 
     let e = err("<shape type=\"obj\">\n<string name=\"filename\" value=\"missing.obj\"/></shape>");
     assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
-    check(&e, 2, "<shape type=\"obj\">", "missing.obj");
+    check_located(&e, FILE, 2, "<shape type=\"obj\">", "missing.obj");
 
     let e = err("<emitter type=\"envmap\">\n<string name=\"filename\" value=\"cornell-box.xml\"/></emitter>");
     assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
-    check(&e, 2, "<emitter type=\"envmap\">", "not an OpenEXR file");
+    check_located(
+        &e,
+        FILE,
+        2,
+        "<emitter type=\"envmap\">",
+        "not an OpenEXR file",
+    );
 }
 
 #[test]
@@ -211,7 +212,7 @@ fn unsupported_and_misplaced() {
     ];
     for (body, line, element, words) in cases {
         let e = err(body);
-        check(&e, line, element, words);
+        check_located(&e, FILE, line, element, words);
     }
 }
 
@@ -222,9 +223,15 @@ fn duplicate_parameter_and_second_sensor() {
         matches!(e.kind, SceneErrorKind::DuplicateParameter(_)),
         "{e}"
     );
-    check(&e, 3, "<float name=\"radius\">", "given twice");
+    check_located(&e, FILE, 3, "<float name=\"radius\">", "given twice");
     let e = err("<sensor type=\"perspective\"/>\n<sensor type=\"perspective\"/>");
-    check(&e, 3, "<sensor type=\"perspective\">", "second <sensor>");
+    check_located(
+        &e,
+        FILE,
+        3,
+        "<sensor type=\"perspective\">",
+        "second <sensor>",
+    );
 }
 
 #[test]
@@ -282,7 +289,7 @@ fn bidirectional_integrators_read_and_refuse_with_locations() {
         ),
     ] {
         let e = err(body);
-        check(&e, 2, element, words);
+        check_located(&e, FILE, 2, element, words);
     }
 }
 
@@ -350,8 +357,9 @@ fn spectrum_crop_tent_and_mesh_file_errors() {
         "<bsdf type=\"diffuse\">\n<spectrum name=\"reflectance\" value=\"500:1, 400:2\"/></bsdf>",
     );
     assert!(matches!(e.kind, SceneErrorKind::Malformed(_)), "{e}");
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<spectrum name=\"reflectance\">",
         "wavelengths must increase",
@@ -375,9 +383,9 @@ fn spectrum_crop_tent_and_mesh_file_errors() {
     let e = film("<rfilter type=\"tent\"><float name=\"radius\" value=\"0\"/></rfilter>");
     assert!(e.to_string().contains("radius"), "{e}");
     let e = err("<shape type=\"ply\">\n<string name=\"filename\" value=\"missing.ply\"/></shape>");
-    check(&e, 2, "<shape type=\"ply\">", "missing.ply");
+    check_located(&e, FILE, 2, "<shape type=\"ply\">", "missing.ply");
     let e = err("<shape type=\"serialized\">\n<string name=\"filename\" value=\"meshes/shapes.serialized\"/>\n<integer name=\"shape_index\" value=\"-1\"/></shape>");
-    check(&e, 4, "<integer name=\"shape_index\">", "outside");
+    check_located(&e, FILE, 4, "<integer name=\"shape_index\">", "outside");
 }
 
 /// Textures: files that are missing or not images, unknown modes and plugins, textures
@@ -392,22 +400,30 @@ fn texture_errors() {
     let file = |f: &str| format!("<string name=\"filename\" value=\"{f}\"/>");
     let e = err(&bitmap(&file("missing.png")));
     assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<texture type=\"bitmap\" name=\"reflectance\">",
         "missing.png",
     );
     let e = err(&bitmap(&file("cornell-box.xml")));
     assert!(matches!(e.kind, SceneErrorKind::Io { .. }), "{e}");
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<texture type=\"bitmap\"",
         "not a PNG, JPEG or OpenEXR image",
     );
     let e = err(&bitmap(""));
-    check(&e, 3, "<texture type=\"bitmap\"", "needs a \"filename\"");
+    check_located(
+        &e,
+        FILE,
+        3,
+        "<texture type=\"bitmap\"",
+        "needs a \"filename\"",
+    );
 
     // A PNG cut short after its header: located, never a panic.
     let dir = std::env::temp_dir().join(format!("mcrt-texture-errors-{}", std::process::id()));
@@ -416,18 +432,19 @@ fn texture_errors() {
     let cut = dir.join("cut.png");
     std::fs::write(&cut, &png[..60]).unwrap();
     let e = err(&bitmap(&file(cut.to_str().unwrap())));
-    check(&e, 3, "<texture type=\"bitmap\"", "PNG");
+    check_located(&e, FILE, 3, "<texture type=\"bitmap\"", "PNG");
     let jpg = std::fs::read("tests/data/textures/rings.jpg").unwrap();
     let cut = dir.join("cut.jpg");
     std::fs::write(&cut, &jpg[..jpg.len() / 3]).unwrap();
     let e = err(&bitmap(&file(cut.to_str().unwrap())));
-    check(&e, 3, "<texture type=\"bitmap\"", "JPEG");
+    check_located(&e, FILE, 3, "<texture type=\"bitmap\"", "JPEG");
     // A PNG whose header claims 10⁵ × 10⁵ pixels: refused before any pixel is allocated.
     let huge = dir.join("huge.png");
     std::fs::write(&huge, png_header(100_000, 100_000)).unwrap();
     let e = err(&bitmap(&file(huge.to_str().unwrap())));
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<texture type=\"bitmap\"",
         "more than the 67108864 a texture may have",
@@ -437,8 +454,9 @@ fn texture_errors() {
     let huge = dir.join("huge.exr");
     std::fs::write(&huge, exr_claiming(100_000, 100_000)).unwrap();
     let e = err(&bitmap(&file(huge.to_str().unwrap())));
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<texture type=\"bitmap\"",
         "100000 × 100000 pixels is more than the 67108864 allowed",
@@ -483,7 +501,7 @@ fn texture_errors() {
     ];
     for (body, line, element, words) in cases {
         let e = err(&body);
-        check(&e, line, element, words);
+        check_located(&e, FILE, line, element, words);
     }
 }
 

@@ -3,6 +3,9 @@
 //! errors for what is refused (an outer integrator other than `moment`, a nested one that
 //! does not sample per pixel, several nested ones).
 
+mod common;
+
+use common::located::check_located;
 use mcrt_render::description::{IntegratorDesc, MomentDesc, SceneDescription};
 use mcrt_render::loader::{parse_scene, SceneError};
 use std::path::Path;
@@ -22,15 +25,6 @@ fn err(body: &str) -> SceneError {
         Ok(d) => panic!("expected an error, got {d:?}"),
         Err(e) => e,
     }
-}
-
-/// The error names the file, the line, the element and `words`.
-fn check(e: &SceneError, line: u32, element: &str, words: &str) {
-    let msg = e.to_string();
-    assert_eq!(e.line, Some(line), "{msg}");
-    assert!(msg.contains(FILE), "{msg}");
-    assert!(msg.contains(element), "{msg}");
-    assert!(msg.contains(words), "{msg}");
 }
 
 #[test]
@@ -74,9 +68,9 @@ fn ptracer_reads_mitsubas_parameters() {
     let e = err(
         "<integrator type=\"ptracer\">\n<integer name=\"max_depth\" value=\"-2\"/></integrator>",
     );
-    check(&e, 3, "<integer name=\"max_depth\">", "max_depth");
+    check_located(&e, FILE, 3, "<integer name=\"max_depth\">", "max_depth");
     let e = err("<integrator type=\"ptracer\">\n<float name=\"sigma\" value=\"1\"/></integrator>");
-    check(&e, 3, "sigma", "sigma");
+    check_located(&e, FILE, 3, "sigma", "sigma");
 }
 
 #[test]
@@ -139,32 +133,46 @@ fn several_nested_integrators_are_read_in_file_order() {
 #[test]
 fn what_moment_cannot_hold_is_a_located_error() {
     let e = err("<integrator type=\"moment\">\n<integrator type=\"bdpt\"/></integrator>");
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<integrator type=\"bdpt\">",
         "only \"path\" and \"direct\"",
     );
     let e = err("<integrator type=\"moment\">\n<integrator type=\"moment\"/></integrator>");
-    check(&e, 3, "<integrator type=\"moment\">", "inside \"moment\"");
+    check_located(
+        &e,
+        FILE,
+        3,
+        "<integrator type=\"moment\">",
+        "inside \"moment\"",
+    );
     // Several nested integrators are read (`several_nested_integrators_are_read_in_file_order`);
     // two of one name would give their channels one name.
     let e = err("<integrator type=\"moment\"><integrator type=\"path\" name=\"a\"/>\n<integrator type=\"path\" name=\"a\"/></integrator>");
-    check(
+    check_located(
         &e,
+        FILE,
         3,
         "<integrator type=\"path\"",
         "a second integrator named \"a\" in \"moment\" (the first is on line 2)",
     );
     let e = err("<integrator type=\"moment\">\n</integrator>");
-    check(&e, 2, "<integrator type=\"moment\">", "at least one nested");
+    check_located(
+        &e,
+        FILE,
+        2,
+        "<integrator type=\"moment\">",
+        "at least one nested",
+    );
     let e = err("<integrator type=\"moment\">\n<bsdf type=\"diffuse\"/></integrator>");
-    check(&e, 3, "<bsdf type=\"diffuse\">", "cannot be nested");
+    check_located(&e, FILE, 3, "<bsdf type=\"diffuse\">", "cannot be nested");
     let e = err("<integrator type=\"moment\"><integrator type=\"path\"/>\n<integer name=\"x\" value=\"1\"/></integrator>");
-    check(&e, 3, "<integer name=\"x\">", "x");
+    check_located(&e, FILE, 3, "<integer name=\"x\">", "x");
     // A nested integrator's own parameters are checked where they are.
     let e = err("<integrator type=\"moment\"><integrator type=\"path\">\n<integer name=\"rr_depth\" value=\"0\"/></integrator></integrator>");
-    check(&e, 3, "<integer name=\"rr_depth\">", "rr_depth");
+    check_located(&e, FILE, 3, "<integer name=\"rr_depth\">", "rr_depth");
 }
 
 #[test]
@@ -173,8 +181,9 @@ fn an_outer_integrator_we_do_not_support_is_named() {
         let e = err(&format!(
             "<integrator type=\"{ty}\">\n<integrator type=\"path\"/></integrator>"
         ));
-        check(
+        check_located(
             &e,
+            FILE,
             2,
             &format!("<integrator type=\"{ty}\">"),
             "only \"moment\"",
@@ -182,8 +191,20 @@ fn an_outer_integrator_we_do_not_support_is_named() {
     }
     // An unknown one with something nested: the outer element is named, not the inner.
     let e = err("<integrator type=\"volpathmis\">\n<integrator type=\"path\"/></integrator>");
-    check(&e, 2, "<integrator type=\"volpathmis\">", "volpathmis");
+    check_located(
+        &e,
+        FILE,
+        2,
+        "<integrator type=\"volpathmis\">",
+        "volpathmis",
+    );
     // A known integrator still refuses a nested one where it stands.
     let e = err("<integrator type=\"path\">\n<integrator type=\"path\"/></integrator>");
-    check(&e, 3, "<integrator type=\"path\">", "cannot be nested here");
+    check_located(
+        &e,
+        FILE,
+        3,
+        "<integrator type=\"path\">",
+        "cannot be nested here",
+    );
 }

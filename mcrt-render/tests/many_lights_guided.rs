@@ -4,11 +4,13 @@
 //! references (`tests/data/REFERENCES.md`).
 //!
 //! The block tests are `tests/reference_match.rs`'s: a z-test on block means (blocks
-//! brighter than 5% of the image mean), Šidák-corrected over blocks and channels to a
-//! family-wise α = 0.01, with our per-pixel variance plus the reference's own, and the image
+//! brighter than 5% of the image mean), Šidák-corrected over blocks and channels to the
+//! suite's per-test α (one test each of the budget of `tests/common/suite.rs`), with our per-pixel variance plus the reference's own, and the image
 //! mean within 1% of the reference plus 3 standard errors. The reference's variance is
 //! read from the `-variance.exr` beside it (the spread of its passes): Mitsuba chooses
 //! among the 421 emitters uniformly, so its noise is not ours scaled. Fixed seeds.
+
+mod common;
 
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::integrator::SurfacePoint;
@@ -59,7 +61,8 @@ fn check_against_mitsuba(
     );
     let img = out.image();
     let var = out.film.variance();
-    let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, block, 0.05, 0.01);
+    let alpha = common::per_test_alpha();
+    let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, block, 0.05, alpha);
     let n = img.len() as f32;
     let ref_mean = rf.iter().copied().sum::<Vec3>() / n;
     let var_mean =

@@ -34,7 +34,6 @@ fn check(scene: &str) {
     let c = Comparison {
         block: 8,
         min_blocks: 40,
-        alpha: common::published::per_test_alpha(),
         allowance: 0.0,
         ..Comparison::new(scene, reference, SPP, REFERENCE_SPP, 2025)
     };

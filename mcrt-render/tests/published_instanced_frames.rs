@@ -11,7 +11,7 @@
 //!
 //! As `tests/reference_match.rs` does (`common/published.rs`): no NaN or infinite pixel; a
 //! z-test on 16×16 block means with our variance plus the reference's, Šidák-corrected
-//! to a family-wise α = 0.01, each block allowed 1% beyond the noise; the image mean within
+//! to the suite's per-test α (`tests/common/suite.rs`), each block allowed 1% beyond the noise; the image mean within
 //! 1% of the reference plus 3 standard errors. Fixed seed. One statistical test.
 
 mod common;

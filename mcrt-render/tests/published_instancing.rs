@@ -31,7 +31,6 @@ fn instancing_matches_mitsuba() {
     let desc = mcrt_render::loader::load_scene(&data("instancing.xml"), &[]).expect("loads");
     let c = Comparison {
         min_blocks: 24,
-        alpha: common::published::per_test_alpha(),
         ..Comparison::new(
             "instancing",
             data("instancing.exr"),

@@ -10,7 +10,7 @@
 //! - `ptracer.xml`: the Cornell box by the particle tracer, against the path tracer's
 //!   reference `cornell-box.exr` averaged over 4×4 pixels (the same image, 64×64): light
 //!   tracing splats anywhere, so 16 replicates t-test the 16×16 block means
-//!   (`tests/common/replicates.rs`, α = 0.01 per comparison, 1% allowance for bias and the
+//!   (`tests/common/replicates.rs`, the suite's per-test α per comparison, 1% allowance for bias and the
 //!   reference's error).
 //! - `moment.xml`: `moment` around `path`. Its mean channels are the image in CIE XYZ,
 //!   checked exactly against our own image and, for Mitsuba's matrix and names, Mitsuba's

@@ -11,8 +11,8 @@
 //!
 //! As `tests/reference_match.rs` does: no NaN or infinite pixel; a z-test on 16×16 block
 //! means (blocks brighter than 5% of the image mean) with our per-pixel variance plus the
-//! reference's (ours × spp / 4096), Šidák-corrected over blocks and channels to a
-//! family-wise α = 0.01, each block allowed 1% beyond the noise (8-bit textures
+//! reference's (ours × spp / 4096), Šidák-corrected over blocks and channels to the
+//! suite's per-test α (`tests/common/suite.rs`), each block allowed 1% beyond the noise (8-bit textures
 //! interpolated in single precision by both renderers); and the image mean within 1% of
 //! the reference plus 3 standard errors. Fixed seed. One statistical test per scene.
 

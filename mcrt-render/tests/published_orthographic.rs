@@ -4,11 +4,12 @@
 //! The render (`tests/data/published/orthographic/spheres.xml`, 96 × 64, box filter;
 //! reference at 4096 spp, `tests/data/REFERENCES.md`, "Published-scene features:
 //! orthographic") is compared as `tests/published_lights.rs` compares its scenes
-//! (`common/published.rs`: block z-tests Šidák-corrected to a family-wise α = 0.01, and the
+//! (`common/published.rs`: block z-tests Šidák-corrected to the suite's per-test α, and the
 //! image mean): one statistical test.
 
 mod common;
 
+use common::located::check_located;
 use mcrt_render::description::{IntegratorKind, Projection};
 use mcrt_render::loader::{parse_scene, SceneError, SceneErrorKind};
 use mcrt_render::render::{RenderOptions, Renderer};
@@ -34,16 +35,6 @@ fn err(xml: &str) -> SceneError {
         Ok(d) => panic!("expected an error, got {:?}", d.sensor),
         Err(e) => e,
     }
-}
-
-/// Checks the position and that the message names file, line, `element` and `words`.
-fn check(e: &SceneError, line: u32, element: &str, words: &str) {
-    let msg = e.to_string();
-    assert_eq!(e.line, Some(line), "{msg}");
-    assert!(msg.contains(FILE), "{msg}");
-    assert!(msg.contains(&format!("line {line}")), "{msg}");
-    assert!(msg.contains(element), "{msg}");
-    assert!(msg.contains(words), "{msg}");
 }
 
 const ORTHO: &str = "<sensor type=\"orthographic\">\n<float name=\"near_clip\" value=\"0.5\"/>\n\
@@ -79,8 +70,9 @@ fn integrators_that_connect_to_the_camera_are_refused_with_it() {
         let integrator = format!("<integrator type=\"{ty}\"/>");
         let e = err(&scene(&integrator, ORTHO));
         assert!(matches!(e.kind, SceneErrorKind::Unsupported(_)), "{e}");
-        check(
+        check_located(
             &e,
+            FILE,
             3,
             "<sensor type=\"orthographic\">",
             &format!("integrator \"{ty}\" (line 2)"),
@@ -88,8 +80,9 @@ fn integrators_that_connect_to_the_camera_are_refused_with_it() {
         // The sensor first (line 2), the integrator after it (line 6).
         let xml = format!("<scene version=\"3.0.0\">\n{ORTHO}\n{integrator}\n</scene>");
         let e = err(&xml);
-        check(
+        check_located(
             &e,
+            FILE,
             2,
             "<sensor type=\"orthographic\">",
             &format!("integrator \"{ty}\" (line 6)"),
@@ -124,9 +117,9 @@ fn bad_parameters_are_located() {
         ))
     };
     let e = bad("<float name=\"near_clip\" value=\"-1\"/>");
-    check(&e, 4, "near_clip", "must be positive");
+    check_located(&e, FILE, 4, "near_clip", "must be positive");
     let e = bad("<float name=\"near_clip\" value=\"5\"/><float name=\"far_clip\" value=\"2\"/>");
-    check(&e, 4, "<float name=\"near_clip\">", "below far_clip");
+    check_located(&e, FILE, 4, "<float name=\"near_clip\">", "below far_clip");
     // The perspective camera's and the thin lens's parameters are unknown here (as in
     // Mitsuba 3, which reports them unreferenced).
     for p in ["fov", "aperture_radius"] {
@@ -135,8 +128,14 @@ fn bad_parameters_are_located() {
             matches!(e.kind, SceneErrorKind::UnknownParameter { .. }),
             "{e}"
         );
-        check(&e, 4, &format!("<float name=\"{p}\">"), "orthographic");
+        check_located(
+            &e,
+            FILE,
+            4,
+            &format!("<float name=\"{p}\">"),
+            "orthographic",
+        );
     }
     let e = bad("<transform name=\"to_world\"><scale x=\"0\"/></transform>");
-    check(&e, 4, "to_world", "to_world");
+    check_located(&e, FILE, 4, "to_world", "to_world");
 }

@@ -13,11 +13,11 @@
 
 mod common;
 
-use common::published::assert_blocks_match;
+use common::published::{assert_blocks_match, Comparison};
 use mcrt::glam::Vec3;
 use mcrt_render::description::{IntegratorDesc, SceneDescription};
 use mcrt_render::film::read_exr;
-use mcrt_render::render::{RenderOptions, Renderer, ShapeSampling};
+use mcrt_render::render::Renderer;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
@@ -57,21 +57,21 @@ fn guided_hides_emitters_as_mitsubas_path_does() {
     let desc = with_integrator(
         r#"<integrator type="guided"><boolean name="hide_emitters" value="true"/></integrator>"#,
     );
-    let spp = 64;
-    let opts = RenderOptions {
-        spp: Some(spp),
-        seed: Some(2024),
-        light_sampling: ShapeSampling::Area,
-        ..RenderOptions::default()
-    };
-    let out = Renderer::new(&desc, &opts)
+    // The options of the reference comparisons (64 spp, lights by area, seed 2024).
+    let c = Comparison::new(
+        "guided, hide_emitters",
+        scene_file().with_extension("exr"),
+        64,
+        16384,
+        2024,
+    );
+    let out = Renderer::new(&desc, &c.opts)
         .expect("scene builds")
         .render(&|_, _| {}, &AtomicBool::new(false));
     let g = out.guiding.expect("guided reports its training");
     assert!(g.passes >= 2 && g.final_spp >= 16, "{g:?}");
     assert_eq!(out.nonfinite_samples, 0, "non-finite samples");
-    let (rw, rh, reference) =
-        read_exr(&scene_file().with_extension("exr")).expect("reference reads");
+    let (rw, rh, reference) = read_exr(&c.reference).expect("reference reads");
     let (w, h) = (out.film.width(), out.film.height());
     assert_eq!((w, h), (rw, rh));
     let img = out.image();
@@ -83,11 +83,5 @@ fn guided_hides_emitters_as_mitsubas_path_does() {
     assert!(sky.iter().all(|&i| img[i] == Vec3::ZERO));
     // The variance is the combined image's; the reference's is taken as ours scaled by the
     // final pass's share of the reference's samples (conservative: the image holds more).
-    assert_blocks_match(
-        "guided, hide_emitters",
-        &out,
-        (g.final_spp, 16384),
-        &reference,
-        4,
-    );
+    assert_blocks_match(c.name, &out, (g.final_spp, c.reference_spp), &reference, 4);
 }

@@ -5,7 +5,7 @@
 //!
 //! Per scene: no non-finite sample or pixel; a z-test on 16×16 block means with the render's
 //! own per-pixel variance plus the reference's (ours × spp / reference spp), Šidák-corrected
-//! over blocks and channels to a family-wise α = 0.01 (one statistical test per scene); and
+//! over blocks and channels to the suite's per-test α (one test of `tests/common/suite.rs`'s budget per scene); and
 //! the image mean within 1% of the reference's plus 3 standard errors. Fixed seed, as
 //! `tests/reference_match.rs` does.
 

@@ -11,7 +11,8 @@
 //! material scenes 32×32, each allowed 1% beyond the noise: see `check_material_scene`; blocks brighter
 //! than 5% of the image mean) with the render's own per-pixel variance plus the reference's
 //! (lights are sampled as Mitsuba does, so that is ours × spp / reference spp),
-//! Šidák-corrected over blocks and channels to a family-wise α = 0.01; and a bias bound on the image mean: within
+//! Šidák-corrected over blocks and channels to the suite's per-test α (each test one of the
+//! shared budget of `tests/common/suite.rs`: α = 0.01 over `N_TESTS`); and a bias bound on the image mean: within
 //! 1% of the reference plus 3 standard errors. Fixed seed.
 //!
 //! The strict figures at 1024 spp (every 32×32 block within 3%, image mean within 1%; about
@@ -22,11 +23,13 @@
 use mcrt::glam::Vec3;
 use mcrt_render::description::SceneDescription;
 use mcrt_render::film::{compare_blocks, read_exr};
-use mcrt_render::render::{RenderOptions, Renderer, ShapeSampling};
+use mcrt_render::render::Renderer;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 
 mod common;
+
+use common::published::Comparison;
 
 fn data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -88,12 +91,7 @@ fn run(
     // reference's own variance is ours scaled by spp / reference spp. (Solid-angle sampling
     // has up to 300× less variance near the Cornell box's light; the reference's noise
     // would then dominate the test without being counted.)
-    let opts = RenderOptions {
-        spp: Some(spp),
-        seed: Some(2024),
-        light_sampling: ShapeSampling::Area,
-        ..RenderOptions::default()
-    };
+    let opts = Comparison::new(scene, data(reference), spp, reference_spp(reference), 2024).opts;
     let out = Renderer::new(&desc, &opts)
         .expect("scene builds")
         .render(&|_, _| {}, &AtomicBool::new(false));
@@ -105,7 +103,9 @@ fn run(
     let var = out.film.variance();
     let scale = spp as f32 / reference_spp(reference) as f32;
     let ref_var: Vec<Vec3> = var.iter().map(|v| *v * scale).collect();
-    let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, block, 0.05, 0.01);
+    // One test of the suite's budget (`tests/common/suite.rs`), Šidák over blocks and channels.
+    let alpha = common::per_test_alpha();
+    let r = compare_blocks(&img, &var, &rf, Some(&ref_var), w, h, block, 0.05, alpha);
     assert_eq!(r.non_finite, 0, "{scene}: NaN or infinite pixels");
     assert!(
         r.blocks >= min_blocks,

@@ -2,7 +2,10 @@
 //! only, MIS with the balance and with the power heuristic) converges to the same image.
 //! Each strategy's render is compared with the power-heuristic render by 8×8 block means:
 //! a z-test using both renders' own variances, Šidák-corrected over blocks and channels
-//! (family-wise α = 10⁻³ per comparison), and no NaN or infinite pixel. Fixed seeds.
+//! (each comparison one test of the suite's budget, `tests/common/suite.rs`: family-wise
+//! α = 2.513·10⁻⁵ per comparison), and no NaN or infinite pixel. Fixed seeds.
+
+mod common;
 
 use mcrt::glam::{Mat4, Vec3};
 use mcrt::integrator::Strategy;
@@ -44,7 +47,17 @@ fn all_agree(desc: &SceneDescription, spp: u32) {
     .enumerate()
     {
         let (img, var) = render(desc, s, spp, 2 + k as u64);
-        let r = compare_blocks(&img, &var, &base, Some(&base_var), w, h, 8, 0.05, 1e-3);
+        let r = compare_blocks(
+            &img,
+            &var,
+            &base,
+            Some(&base_var),
+            w,
+            h,
+            8,
+            0.05,
+            common::per_test_alpha(),
+        );
         assert_eq!(r.non_finite, 0, "{s:?}");
         assert!(r.blocks > 10, "{s:?}: only {} blocks", r.blocks);
         assert!(
@@ -125,7 +138,17 @@ fn direct_integrator_equals_path_tracer_with_max_depth_2() {
     let (w, h) = (path.sensor.film.width, path.sensor.film.height);
     let (a, va) = render(&path, Strategy::MisPower, 64, 11);
     let (b, vb) = render(&direct, Strategy::MisPower, 64, 12);
-    let r = compare_blocks(&a, &va, &b, Some(&vb), w, h, 8, 0.05, 1e-3);
+    let r = compare_blocks(
+        &a,
+        &va,
+        &b,
+        Some(&vb),
+        w,
+        h,
+        8,
+        0.05,
+        common::per_test_alpha(),
+    );
     assert_eq!(r.non_finite, 0);
     assert!(
         r.z_test_passes(),

@@ -6,8 +6,10 @@
 //! Every chi-square test of the suite uses the same family-wise level [`ALPHA`] over a fixed,
 //! stated number of tests [`N_TESTS`] (Šidák correction), so a filtered run (`cargo test --release
 //! --test chi2_warps ggx`) applies exactly the same per-test threshold as the full suite.
-//! `N_TESTS` is an upper bound on the number of chi-square runs in the suite; counting more
-//! runs than exist only makes each run slightly stricter.
+//! `N_TESTS` is an upper bound on the number of statistical tests in the suite: the
+//! chi-square runs of both crates and the renderer's image comparisons (block z-tests and
+//! replicate t-tests against a reference, each one test at [`per_test_alpha`]); counting
+//! more tests than exist only makes each one slightly stricter.
 
 use mcrt::stats::{ChiSquareTest, Directions, Domain, JacobianCheck};
 
@@ -16,6 +18,15 @@ pub const ALPHA: f64 = 0.01;
 
 /// The number of chi-square runs the suite's level is corrected for.
 pub const N_TESTS: u32 = 400;
+
+/// The per-test significance level of the suite: Šidák over [`N_TESTS`] at [`ALPHA`]
+/// (2.513·10⁻⁵). Every statistical test of the workspace that is counted in the budget runs
+/// at this level: each chi-square run, and each image comparison of the renderer
+/// (`mcrt-render/tests`: a render's block means against a reference, Šidák-corrected over
+/// its own blocks and channels to this level).
+pub fn per_test_alpha() -> f64 {
+    1.0 - (1.0 - ALPHA).powf(1.0 / f64::from(N_TESTS))
+}
 
 /// The suite's seed.
 pub const SEED: u64 = 0x6d63_7274; // "mcrt"

@@ -4,7 +4,8 @@
 //! with lights sampled by area, against its Mitsuba reference at [`REFERENCE_SPP`]. No NaN
 //! or infinite pixel; a z-test on [`BLOCK`]² block means (blocks brighter than 5% of the
 //! image mean) with our per-pixel variance plus the reference's (ours × SPP/REFERENCE_SPP),
-//! Šidák-corrected over blocks and channels to a family-wise α = 0.01, each block allowed
+//! Šidák-corrected over blocks and channels to the suite's per-test α (one test of the shared
+//! budget, `tests/common/suite.rs`: 2.513·10⁻⁵), each block allowed
 //! [`ALLOWANCE`] beyond the noise; the image mean within 1% of the reference plus 3
 //! standard errors. Fixed seed.
 
@@ -43,12 +44,6 @@ pub fn check(dir: &str, scene: &str, reference: &str, min_blocks: usize) {
     render_and_compare(&desc, &c);
 }
 
-/// The suite's per-test significance level (Šidák over its budget of tests,
-/// `tests/common/suite.rs`).
-pub fn per_test_alpha() -> f64 {
-    1.0 - (1.0 - super::ALPHA).powf(1.0 / f64::from(super::N_TESTS))
-}
-
 /// The block z-test alone of a render `out` against `reference` (rendered at
 /// `reference_spp`; its variance taken as ours × `spp` / `reference_spp`), 16×16 blocks
 /// brighter than 5% of the mean, at least `min_blocks`, at the suite's per-test level: no
@@ -66,7 +61,7 @@ pub fn assert_blocks_match(
     let var = out.film.variance();
     let scale = spp as f32 / reference_spp as f32;
     let ref_var: Vec<Vec3> = var.iter().map(|v| *v * scale).collect();
-    let alpha = per_test_alpha();
+    let alpha = super::per_test_alpha();
     let r = compare_blocks(&img, &var, reference, Some(&ref_var), w, h, 16, 0.05, alpha);
     println!("{what}: {r:?}");
     assert_eq!(r.non_finite, 0, "{what}: NaN or infinite pixels");
@@ -98,7 +93,8 @@ pub struct Comparison<'a> {
     pub block: u32,
     /// Bright blocks that must at least be compared.
     pub min_blocks: usize,
-    /// Family-wise level of the block z-test over blocks and channels.
+    /// Family-wise level of the block z-test over blocks and channels (the suite's
+    /// per-test level, `tests/common/suite.rs`).
     pub alpha: f64,
     /// Relative difference a block may have beyond the noise (0: none).
     pub allowance: f64,
@@ -107,7 +103,7 @@ pub struct Comparison<'a> {
 impl<'a> Comparison<'a> {
     /// `spp` samples with lights sampled by area (as Mitsuba samples them, so the
     /// reference's variance is ours scaled), seed `seed`; [`BLOCK`]² blocks, at least 12,
-    /// α = 0.01, [`ALLOWANCE`].
+    /// the suite's per-test α (`tests/common/suite.rs`), [`ALLOWANCE`].
     pub fn new(name: &'a str, reference: PathBuf, spp: u32, reference_spp: u32, seed: u64) -> Self {
         Self {
             name,
@@ -121,7 +117,7 @@ impl<'a> Comparison<'a> {
             reference_spp,
             block: BLOCK,
             min_blocks: 12,
-            alpha: 0.01,
+            alpha: super::per_test_alpha(),
             allowance: ALLOWANCE,
         }
     }

@@ -2,16 +2,14 @@
 //! not know (light tracing and Metropolis splat anywhere on the film): the image is rendered
 //! as `R` independent replicates (different seeds), and each 32×32 block's mean is compared
 //! with a Student-t test on the `R` replicate means, Šidák-corrected over the blocks and
-//! channels tested.
+//! channels tested to the suite's per-test level (one test of the shared budget,
+//! `tests/common/suite.rs`).
 
 use mcrt::glam::Vec3;
 use mcrt_render::description::SceneDescription;
 use mcrt_render::render::{RenderOptions, Renderer};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::sync::atomic::AtomicBool;
-
-/// Family-wise significance level of one replicate comparison.
-pub const ALPHA: f64 = 0.01;
 
 /// The replicate images (`replicates` renders with seeds `seed`, `seed + 1`, …).
 pub fn render_replicates(
@@ -94,7 +92,7 @@ pub fn compare(
         .filter(|&i| (refb[i].x + refb[i].y + refb[i].z) / 3.0 > threshold)
         .collect();
     let tests = (bright.len() * 3).max(1) as f64;
-    let per_test = 1.0 - (1.0 - ALPHA).powf(1.0 / tests);
+    let per_test = 1.0 - (1.0 - super::per_test_alpha()).powf(1.0 / tests);
     let t_critical = StudentsT::new(0.0, 1.0, (r - 1) as f64)
         .expect("valid t distribution")
         .inverse_cdf(1.0 - per_test / 2.0);
