@@ -131,7 +131,10 @@ fn least_secs(reps: usize, f: impl Fn()) -> f64 {
 fn assert_linear(what: &str, reps: usize, slack: f64, load: impl Fn(usize)) {
     let small = least_secs(reps, || load(1));
     let large = least_secs(reps, || load(4));
-    assert!(small.is_finite() && large.is_finite(), "{what}: {small} s, {large} s");
+    assert!(
+        small.is_finite() && large.is_finite(),
+        "{what}: {small} s, {large} s"
+    );
     assert!(
         large < 8.0 * small + slack,
         "{what}: 4× the elements took {large:.3} s against {small:.3} s (quadratic work?)"
