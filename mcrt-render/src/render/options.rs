@@ -33,7 +33,7 @@ pub struct RenderOptions {
     /// direct integrators (`render --light-candidates M`; `docs/renderer.md`, "Choosing among
     /// many lights"): `M` BVH samples, one kept in proportion to its unshadowed contribution,
     /// where every light is an untextured rectangle or emitting mesh; 1 for one BVH sample.
-    /// `None`: [`DEFAULT_LIGHT_CANDIDATES`].
+    /// `None`: one candidate (no resampling).
     pub light_candidates: Option<u32>,
     /// Sample generator (else the file's `sampler` type).
     pub sampler: Option<SamplerKind>,
