@@ -74,11 +74,13 @@ impl Params {
     /// `name`, and marks the name as declared either way.
     pub fn declare(&mut self, name: &str, value: &str) {
         self.add(name, value);
+        // `add` left `name` known; its first declaration records it (a lookup in the trie,
+        // not a scan of the names, so that n defaults load in linear time).
         if let Some(i) = self.find(name) {
-            self.declared[i] = true;
-        }
-        if !self.default_names.iter().any(|n| n == name) {
-            self.default_names.push(name.to_string());
+            if !self.declared[i] {
+                self.declared[i] = true;
+                self.default_names.push(name.to_string());
+            }
         }
     }
 
