@@ -7,7 +7,7 @@ use crate::sampling::guiding::{
     sphere_to_square, DQuadTree, GuidingRecord, GuidingRecords, PathVertex, SdTree,
     SelectionRecord, StoredRecord, SQUARE_TO_SPHERE_JACOBIAN,
 };
-use crate::sampling::Frame;
+use crate::sampling::{Frame, ONE_MINUS_EPSILON};
 use glam::{Vec2, Vec3};
 
 /// The largest selection probability of the guide, so that BSDF sampling (the only way to
@@ -127,8 +127,10 @@ impl GuidedPathTracer {
 
     /// Samples the direction that continues a path at a vertex with BSDF `bsdf`, shading
     /// frame `frame` and local outgoing direction `wo`, from the guide `guide` (the tree's
-    /// distribution at the vertex) with probability α, else from the BSDF: one value from
-    /// `samples` for the choice, then two for the guide or the BSDF's own. `None` when the
+    /// distribution at the vertex) with probability α, else from the BSDF: one 2D value
+    /// from `samples` makes the choice with its first coordinate and, rescaled to the
+    /// chosen part, samples the guide or the BSDF (a BSDF with components draws its
+    /// component choice after it). `None` when the
     /// BSDF gives no sample or the density is not positive and finite.
     pub fn sample_direction<B: Bsdf, R: SampleSource>(
         &self,
@@ -161,8 +163,13 @@ impl GuidedPathTracer {
         samples: &mut R,
         guide_density: bool,
     ) -> Option<(GuidedSample, [f32; 2], Vec2)> {
-        if samples.next_1d() < alpha {
-            let (wi, p_guide, square) = guide.sample_on_square(samples.next_2d());
+        // One 2D value both chooses (its first coordinate against α) and, rescaled to the
+        // chosen part, samples: a dimension fewer per vertex than a separate choice (the
+        // rescaled value is uniform on the chosen part, independent of the choice).
+        let u = samples.next_2d();
+        if u.x < alpha {
+            let v = Vec2::new((u.x / alpha).min(ONE_MINUS_EPSILON), u.y);
+            let (wi, p_guide, square) = guide.sample_on_square(v);
             let (f, p_bsdf) = bsdf.eval_pdf(wo, frame.to_local(wi));
             let pdf = mixture(alpha, p_guide, p_bsdf);
             let s = GuidedSample {
@@ -174,7 +181,13 @@ impl GuidedPathTracer {
             };
             return (is_positive(pdf) && pdf.is_finite()).then_some((s, [p_guide, p_bsdf], square));
         }
-        let bs = super::sample_bsdf(bsdf, wo, samples)?;
+        let v = Vec2::new(((u.x - alpha) / (1.0 - alpha)).min(ONE_MINUS_EPSILON), u.y);
+        let u1 = if bsdf.samples_component() {
+            samples.next_1d()
+        } else {
+            0.5
+        };
+        let bs = bsdf.sample(wo, u1, v)?;
         let wi = frame.to_world(bs.wi);
         let mut densities = [0.0, bs.pdf];
         let mut square = Vec2::ZERO;

@@ -32,6 +32,9 @@ struct Shares {
     /// The node's children, as in [`Node`] (so that a lookup reads this array alone).
     child: [u32; 4],
     quadrant: [f32; 4],
+    /// What a descent through each quadrant multiplies the density by: `4·quadrant` in a
+    /// node with energy, 1 in a uniform one (so that the density's walk needs no branch).
+    factor: [f32; 4],
     left: f32,
     lower: [f32; 2],
     /// Whether the node holds any energy (a node without is uniform).
@@ -44,6 +47,7 @@ impl Shares {
         if total.is_nan() || total <= 0.0 {
             return Self {
                 child: n.child,
+                factor: [1.0; 4],
                 ..Self::default()
             };
         }
@@ -56,9 +60,11 @@ impl Shares {
                 0.5
             }
         };
+        let quadrant = s.map(|e| (e / total) as f32);
         Self {
             child: n.child,
-            quadrant: s.map(|e| (e / total) as f32),
+            quadrant,
+            factor: quadrant.map(|q| 4.0 * q),
             left: (col(0) / total) as f32,
             lower: [lower(0), lower(1)],
             any: true,
@@ -81,6 +87,31 @@ fn quadrant(x: [f64; 2]) -> (usize, [f64; 2]) {
         y[k] = y[k].clamp(0.0, ONE_MINUS_EPS_F64);
     }
     (q, y)
+}
+
+/// The point `u` of the unit square as fixed-point coordinates `⌊u·2⁶⁴⌋` per axis, clamped
+/// into the square (a NaN coordinate puts the point at the centre), whose bits from the
+/// highest are the halves a descent takes: the same halves as halving the coordinates in
+/// `f64` ([`quadrant`]), which is exact for the `f32` coordinates down to 64 levels.
+#[inline]
+fn fixed_point(u: Vec2) -> [u64; 2] {
+    if u.is_nan() {
+        return [1 << 63; 2];
+    }
+    // `as` saturates: below 0 gives 0, 1 and above all ones (the last cell, as the clamp to
+    // just below 1 of the `f64` descent).
+    let fix = |v: f32| (f64::from(v) * 18_446_744_073_709_551_616.0) as u64;
+    [fix(u.x), fix(u.y)]
+}
+
+/// The quadrant of the fixed-point point `c` ([`fixed_point`]) in its current node, and `c`
+/// rescaled to that quadrant: the top bit of each coordinate, shifted out.
+#[inline(always)]
+fn next_quadrant(c: &mut [u64; 2]) -> usize {
+    let q = (c[0] >> 63) | ((c[1] >> 63) << 1);
+    c[0] <<= 1;
+    c[1] <<= 1;
+    q as usize
 }
 
 /// A directional quadtree (Müller, Gross & Novák 2017, "Practical Path Guiding for Efficient
@@ -275,11 +306,10 @@ impl DQuadTree {
             return;
         }
         self.derived.take();
-        let mut x = [f64::from(u.x), f64::from(u.y)];
+        let mut c = fixed_point(u);
         let mut n = 0usize;
         loop {
-            let (q, y) = quadrant(x);
-            x = y;
+            let q = next_quadrant(&mut c);
             let node = &mut self.nodes[n];
             node.sum[q] += value;
             match node.child[q] {
@@ -292,26 +322,17 @@ impl DQuadTree {
     /// The density of [`DQuadTree::sample_square`] at the point `u` of the unit square, per
     /// unit area (1 for the uniform tree); 0 in cells without energy.
     pub fn pdf_square(&self, u: Vec2) -> f32 {
-        let mut x = [
-            f64::from(u.x).clamp(0.0, ONE_MINUS_EPS_F64),
-            f64::from(u.y).clamp(0.0, ONE_MINUS_EPS_F64),
-        ];
-        if x.iter().any(|v| v.is_nan()) {
-            x = [0.5, 0.5];
-        }
+        // Without branches on the point (its quadrants are bits, a uniform node's factor is
+        // 1): the walk's branches are taken at random, and mispredicted ones cost more than
+        // its arithmetic. The factors are finite and non-negative, so a zero stays zero.
+        let mut c = fixed_point(u);
         let shares = self.shares();
         let mut pdf = 1.0f32;
         let mut n = 0usize;
         loop {
-            let (q, y) = quadrant(x);
-            x = y;
+            let q = next_quadrant(&mut c);
             let sh = &shares[n];
-            if sh.any {
-                pdf *= 4.0 * sh.quadrant[q];
-                if pdf.is_nan() || pdf <= 0.0 {
-                    return 0.0;
-                }
-            }
+            pdf *= sh.factor[q];
             match sh.child[q] {
                 0 => break,
                 c => n = c as usize,
