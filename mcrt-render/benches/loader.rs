@@ -34,6 +34,10 @@ use mcrt_render::loader::parse_scene;
 use mcrt_render::mesh_file::ply::read_ply;
 use std::path::PathBuf;
 
+#[path = "../tests/common/large_scenes.rs"]
+mod large_scenes;
+use large_scenes::{bsdfs, defaults, spheres};
+
 /// Writes (once) a binary little-endian PLY torus of `2 nu nv` triangles with vertex
 /// normals, and returns its path.
 fn torus_ply(nu: usize, nv: usize) -> PathBuf {
@@ -80,52 +84,15 @@ fn torus_ply(nu: usize, nv: usize) -> PathBuf {
     path
 }
 
-/// `n` spheres, one per line.
-fn spheres(n: usize) -> String {
-    let mut xml = String::from("<scene version=\"3.0.0\">\n");
-    for i in 0..n {
-        xml.push_str(&format!(
-            "<shape type=\"sphere\"><float name=\"radius\" value=\"0.01\"/>\
-             <transform name=\"to_world\"><translate x=\"{i}\"/></transform>\
-             <bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.5\"/></bsdf></shape>\n"
-        ));
-    }
-    xml.push_str("</scene>");
-    xml
-}
-
-/// `n` defaults, each used once.
-fn defaults(n: usize) -> String {
-    let mut xml = String::from("<scene version=\"3.0.0\">\n");
-    for i in 0..n {
-        xml.push_str(&format!("<default name=\"r{i}\" value=\"0.{i}1\"/>\n"));
-    }
-    for i in 0..n {
-        xml.push_str(&format!(
-            "<shape type=\"sphere\"><float name=\"radius\" value=\"$r{i}\"/></shape>\n"
-        ));
-    }
-    xml.push_str("</scene>");
-    xml
-}
-
-/// `n` top-level BSDFs.
-fn bsdfs(n: usize) -> String {
-    let mut xml = String::from("<scene version=\"3.0.0\">\n");
-    xml.push_str(&"<bsdf type=\"diffuse\"/>\n".repeat(n));
-    xml.push_str("</scene>");
-    xml
-}
-
 fn bench_loader(c: &mut Criterion) {
     let mut g = c.benchmark_group("loader");
     g.warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(3))
         .sample_size(10);
     for (name, xml) in [
-        ("spheres_20k", spheres(20_000)),
+        ("spheres_20k", spheres(20_000, false)),
         ("defaults_20k", defaults(20_000)),
-        ("spheres_80k", spheres(80_000)),
+        ("spheres_80k", spheres(80_000, false)),
         ("bsdfs_1m", bsdfs(1_000_000)),
     ] {
         g.throughput(Throughput::Bytes(xml.len() as u64));

@@ -9,6 +9,10 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+#[path = "common/large_scenes.rs"]
+mod large_scenes;
+use large_scenes::{bsdfs, defaults, spheres};
+
 const FILE: &str = "hostile.xml";
 
 fn parse(xml: &str) -> Result<mcrt_render::description::SceneDescription, SceneError> {
@@ -95,23 +99,6 @@ fn error_messages_quote_little_user_text() {
     }
 }
 
-/// `n` spheres, one per line, each with a BSDF and a transform.
-fn spheres(n: usize, one_line: bool) -> String {
-    let sep = if one_line { " " } else { "\n" };
-    let mut xml = String::from("<scene version=\"3.0.0\">");
-    for i in 0..n {
-        xml.push_str(sep);
-        xml.push_str(&format!(
-            "<shape type=\"sphere\"><float name=\"radius\" value=\"0.01\"/>\
-             <transform name=\"to_world\"><translate x=\"{i}\"/></transform>\
-             <bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.5\"/></bsdf></shape>"
-        ));
-    }
-    xml.push_str(sep);
-    xml.push_str("</scene>");
-    xml
-}
-
 /// The least wall time of `reps` runs of `f`, in seconds (the least is the run the machine's
 /// load disturbed least).
 fn least_secs(reps: usize, f: impl Fn()) -> f64 {
@@ -153,31 +140,12 @@ fn loading_is_linear() {
             assert_eq!(d.shapes.len(), 5_000 * k);
         });
     }
-    let defaults = |n: usize| {
-        let mut xml = String::from("<scene version=\"3.0.0\">\n");
-        for i in 0..n {
-            xml.push_str(&format!("<default name=\"r{i}\" value=\"0.{i}1\"/>\n"));
-        }
-        for i in 0..n {
-            xml.push_str(&format!(
-                "<shape type=\"sphere\"><float name=\"radius\" value=\"$r{i}\"/></shape>\n"
-            ));
-        }
-        xml.push_str("</scene>");
-        xml
-    };
     let xmls = [defaults(5_000), defaults(20_000)];
     assert_linear("defaults", 3, 0.02, |k| {
         let d = parse(&xmls[k / 4]).expect("defaults load");
         assert_eq!(d.shapes.len(), 5_000 * k);
     });
     // Half a million top-level BSDFs (the old loader took over a minute for a million).
-    let bsdfs = |n: usize| {
-        format!(
-            "<scene version=\"3.0.0\">\n{}</scene>",
-            "<bsdf type=\"diffuse\"/>\n".repeat(n)
-        )
-    };
     let xmls = [bsdfs(125_000), bsdfs(500_000)];
     assert_linear("BSDFs", 2, 0.05, |k| {
         parse(&xmls[k / 4]).expect("half a million BSDFs load");

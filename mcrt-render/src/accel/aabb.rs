@@ -101,7 +101,8 @@ pub(crate) struct RayBoxTest {
 
 /// `1 + 2γ₃` with γₙ = nε/(1 − nε): scales the far slab distance so that rounding cannot
 /// make a box that the ray touches look missed (Ize 2013, "Robust BVH Ray Traversal", JCGT 2(2)).
-const SLAB_GROW: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+pub(super) const SLAB_GROW: f32 =
+    1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
 impl RayBoxTest {
     /// Prepares a ray with the given origin and direction.

@@ -42,6 +42,7 @@ mod leaf_queries;
 mod stack;
 mod traverse;
 mod traverse8;
+mod wide_bvh;
 
 pub use aabb::Aabb;
 

@@ -1,7 +1,7 @@
 //! The traversal stack of the wide BVHs (`traverse.rs`, `traverse8.rs`): entries pack a
 //! child code and its entry distance's bits into one `u64`, so zeroing a fresh array is a
 //! few vector stores; a fixed array on the call stack sized for the tree, or a per-thread
-//! buffer for trees too deep for the largest array.
+//! buffer for trees too deep for the largest array ([`with_stack`]).
 
 /// A stack entry: child code in the low half, entry distance's bits in the high half.
 #[inline(always)]
@@ -70,3 +70,34 @@ pub(super) fn pop_within(stack: &mut impl Stack, t_max: f32) -> Option<u32> {
         }
     }
 }
+
+/// `with_stack!(levels, [TINY, SMALL, LARGE], |stack| walk)`: evaluates `walk` with `stack`
+/// a fresh traversal stack for a tree that pushes at most `levels` entries: the smallest of
+/// the [`ArrayStack`] sizes `TINY`, `SMALL` and `LARGE` (constants) that holds them, else a
+/// per-thread buffer (one per place the macro is used, cleared first). A macro rather than a
+/// function taking a closure, so that the walk is inlined for each stack type.
+macro_rules! with_stack {
+    ($levels:expr, [$tiny:ident, $small:ident, $large:ident], |$stack:ident| $walk:expr) => {{
+        thread_local! {
+            static HEAP: std::cell::RefCell<Vec<u64>> =
+                std::cell::RefCell::new(Vec::with_capacity(256));
+        }
+        let levels = $levels;
+        if levels <= $tiny {
+            let $stack = &mut $crate::accel::stack::ArrayStack::<$tiny>::new();
+            $walk
+        } else if levels <= $small {
+            let $stack = &mut $crate::accel::stack::ArrayStack::<$small>::new();
+            $walk
+        } else if levels <= $large {
+            let $stack = &mut $crate::accel::stack::ArrayStack::<$large>::new();
+            $walk
+        } else {
+            HEAP.with_borrow_mut(|$stack| {
+                $stack.clear();
+                $walk
+            })
+        }
+    }};
+}
+pub(super) use with_stack;

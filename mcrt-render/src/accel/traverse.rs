@@ -11,24 +11,16 @@
 //! allocation per ray either way. Entries pack the code and the entry distance's bits into
 //! one `u64`, so zeroing a fresh array is a few vector stores.
 
-use super::aabb::RayBoxTest;
+use super::aabb::{RayBoxTest, SLAB_GROW};
 use super::bvh4::{Bvh4, Node4, EMPTY, LEAF};
-use super::stack::{entry, pop_within, ArrayStack, Stack};
+use super::stack::{entry, pop_within, with_stack, Stack};
 use glam::{Vec3, Vec4};
-use std::cell::RefCell;
-
-/// `1 + 2γ₃` (see [`RayBoxTest`]).
-const SLAB_GROW: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
 /// Array stack sizes: tiny trees (up to 2 levels of 4-wide nodes), small ones (up to 5)
 /// and the rest.
 const TINY: usize = 8;
 const SMALL: usize = 16;
 const LARGE: usize = 48;
-
-thread_local! {
-    static STACK: RefCell<Vec<u64>> = RefCell::new(Vec::with_capacity(256));
-}
 
 impl Bvh4 {
     /// Walks the tree for the ray, calling `visit(leaf, &mut t_max)` on each leaf reached;
@@ -50,21 +42,8 @@ impl Bvh4 {
             inv: [0, 1, 2].map(|a| Vec4::splat(rb.inv_dir[a])),
         };
         let levels = 3 * self.depth;
-        if levels <= TINY {
-            let mut stack = ArrayStack::<TINY>::new();
-            self.traverse::<ORDERED>(&mut stack, &ray, t_max, visit)
-        } else if levels <= SMALL {
-            let mut stack = ArrayStack::<SMALL>::new();
-            self.traverse::<ORDERED>(&mut stack, &ray, t_max, visit)
-        } else if levels <= LARGE {
-            let mut stack = ArrayStack::<LARGE>::new();
-            self.traverse::<ORDERED>(&mut stack, &ray, t_max, visit)
-        } else {
-            STACK.with_borrow_mut(|stack| {
-                stack.clear();
-                self.traverse::<ORDERED>(stack, &ray, t_max, visit)
-            })
-        }
+        with_stack!(levels, [TINY, SMALL, LARGE], |stack| self
+            .traverse::<ORDERED>(stack, &ray, t_max, visit))
     }
 
     #[inline(always)]

@@ -11,25 +11,17 @@
 //! The stack is a fixed array on the call stack sized for the tree (each level pushes at
 //! most seven entries), or a per-thread buffer for trees too deep for the largest array.
 
-use super::aabb::RayBoxTest;
+use super::aabb::{RayBoxTest, SLAB_GROW};
 use super::bvh8::{Bvh8, Node8, EMPTY, LEAF};
 use super::lanes8::{Lanes8, WithLanes8};
-use super::stack::{entry, pop_within, ArrayStack, Stack};
+use super::stack::{entry, pop_within, with_stack, Stack};
 use glam::Vec3;
-use std::cell::RefCell;
-
-/// `1 + 2γ₃` (see [`RayBoxTest`]).
-const SLAB_GROW: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
 /// Array stack sizes: tiny trees (up to 2 levels of 8-wide nodes), small ones (up to 4)
 /// and the rest (up to 9).
 const TINY: usize = 14;
 const SMALL: usize = 28;
 const LARGE: usize = 63;
-
-thread_local! {
-    static STACK: RefCell<Vec<u64>> = RefCell::new(Vec::with_capacity(256));
-}
 
 impl Bvh8 {
     /// Walks the tree for the ray, calling `visit(leaf, &mut t_max)` on each leaf reached;
@@ -100,21 +92,11 @@ impl Bvh8 {
             l,
         };
         let levels = 7 * self.depth;
-        if levels <= TINY {
-            let mut stack = ArrayStack::<TINY>::new();
-            traverse::<L, ORDERED>(self, &mut stack, &ray, t_max, visit)
-        } else if levels <= SMALL {
-            let mut stack = ArrayStack::<SMALL>::new();
-            traverse::<L, ORDERED>(self, &mut stack, &ray, t_max, visit)
-        } else if levels <= LARGE {
-            let mut stack = ArrayStack::<LARGE>::new();
-            traverse::<L, ORDERED>(self, &mut stack, &ray, t_max, visit)
-        } else {
-            STACK.with_borrow_mut(|stack| {
-                stack.clear();
-                traverse::<L, ORDERED>(self, stack, &ray, t_max, visit)
-            })
-        }
+        with_stack!(
+            levels,
+            [TINY, SMALL, LARGE],
+            |stack| traverse::<L, ORDERED>(self, stack, &ray, t_max, visit)
+        )
     }
 }
 

@@ -108,28 +108,33 @@ impl<const N: usize> QuadSlots<N> {
     }
 }
 
-/// Packed leaves with at most `N` quads and `N` triangles each (before the packets, which
-/// the caller makes from each leaf's quads and triangles).
-pub(super) struct Packing<const N: usize> {
-    /// The slots' input primitive indices.
-    pub(super) slots: Vec<u32>,
+/// A BVH (`B`: 4-wide or 8-wide) and its packed leaves: quad packets `Q` and triangle
+/// packets `T` of `N` lanes each ([`PackedBvh`]: 4, [`super::packed_bvh8::PackedBvh8`]: 8).
+#[derive(Debug, Clone)]
+pub(crate) struct PackedLeaves<B, Q, T, const N: usize> {
+    pub(super) bvh: B,
     /// By leaf number.
     pub(super) leaves: Vec<Leaf>,
+    pub(super) quads: Vec<Q>,
     pub(super) quad_slots: Vec<QuadSlots<N>>,
+    pub(super) tris: Vec<T>,
 }
 
-impl<const N: usize> Packing<N> {
+/// A BVH (4-wide or 8-wide) with 4-lane packets.
+pub(crate) type PackedBvh<B = Bvh4> = PackedLeaves<B, QuadPacket, TriPacket, 4>;
+
+impl<B: LeafTree, Q, T, const N: usize> PackedLeaves<B, Q, T, N> {
     /// Orders the units of each leaf of `bvh` (built over `units`; `prims` in input order)
-    /// quads first, then triangles, then the rest, and calls `quads_packet` and
-    /// `tris_packet` with each leaf's quads and triangles (when it has any) to make its
-    /// packets.
-    pub(super) fn new(
-        bvh: &impl LeafTree,
+    /// quads first, then triangles, then the rest, and makes each leaf's packets from its
+    /// quads and triangles (when it has any) with `quad_packet` and `tri_packet`; returns
+    /// the slots' input primitive indices and the packed BVH.
+    pub(super) fn pack_with(
+        bvh: B,
         units: &[Unit],
         prims: &[Prim],
-        mut quads_packet: impl FnMut(&[Quad]),
-        mut tris_packet: impl FnMut(&[[glam::Vec3; 3]]),
-    ) -> Self {
+        quad_packet: impl Fn(&[Quad]) -> Q,
+        tri_packet: impl Fn(&[[glam::Vec3; 3]]) -> T,
+    ) -> (Vec<u32>, Self) {
         let kind = |u: &Unit| match u {
             Unit::Pair { .. } => 0,
             Unit::One(i) if matches!(prims[*i as usize], Prim::Tri(_)) => 1,
@@ -140,7 +145,7 @@ impl<const N: usize> Packing<N> {
         ranges.sort_unstable_by_key(|(r, _)| r.start); // the starts differ
         let mut slots = Vec::with_capacity(prims.len());
         let mut quad_slots = Vec::new();
-        let (mut quad_packets, mut tri_packets) = (0, 0);
+        let (mut quad_packets, mut tri_packets) = (Vec::new(), Vec::new());
         let mut leaves = vec![None; ranges.len()];
         // Each leaf's quads and triangles, cleared per leaf (allocated once).
         let (mut quads, mut tris) = (Vec::with_capacity(N), Vec::with_capacity(N));
@@ -178,37 +183,49 @@ impl<const N: usize> Packing<N> {
             leaves[k] = Some(Leaf {
                 first,
                 end: slots.len() as u32,
-                quad: quad_packets,
-                tri: tri_packets,
+                quad: quad_packets.len() as u32,
+                tri: tri_packets.len() as u32,
                 quads: quads.len() as u8,
                 tris: tris.len() as u8,
             });
             if !quads.is_empty() {
-                quads_packet(&quads);
+                quad_packets.push(quad_packet(&quads));
                 quad_slots.push(q_slots);
-                quad_packets += 1;
             }
             if !tris.is_empty() {
-                tris_packet(&tris);
-                tri_packets += 1;
+                tri_packets.push(tri_packet(&tris));
             }
         }
-        Self {
-            slots,
+        let packed = Self {
+            bvh,
             leaves: leaves.into_iter().flatten().collect(),
+            quads: quad_packets,
             quad_slots,
+            tris: tri_packets,
+        };
+        (slots, packed)
+    }
+
+    /// Heap bytes held (the BVH and the packed leaves).
+    pub(super) fn heap_bytes(&self) -> usize {
+        use crate::accel::vec_bytes;
+        self.bvh.heap_bytes()
+            + vec_bytes(&self.leaves)
+            + vec_bytes(&self.quads)
+            + vec_bytes(&self.quad_slots)
+            + vec_bytes(&self.tris)
+    }
+
+    /// The triangle slot and barycentrics of what a closest-hit search found.
+    #[inline(always)]
+    pub(super) fn record(&self, found: LeafHit) -> HitRecord {
+        match found {
+            LeafHit::Prim(r) => r,
+            LeafHit::Quad { packet, lane, u, v } => {
+                self.quad_slots[packet as usize].record(lane, u, v)
+            }
         }
     }
-}
-
-/// A BVH (4-wide or 8-wide) and its packed leaves.
-#[derive(Debug, Clone)]
-pub(crate) struct PackedBvh<T: LeafTree = Bvh4> {
-    bvh: T,
-    leaves: Vec<Leaf>,
-    quads: Vec<QuadPacket>,
-    quad_slots: Vec<QuadSlots<4>>,
-    tris: Vec<TriPacket>,
 }
 
 /// What a closest-hit search found in a leaf: a primitive, or a quad lane and its
@@ -224,36 +241,11 @@ pub(super) enum LeafHit {
     },
 }
 
-impl<T: LeafTree> PackedBvh<T> {
-    /// Heap bytes held (the BVH and the packed leaves).
-    pub(super) fn heap_bytes(&self) -> usize {
-        use crate::accel::vec_bytes;
-        self.bvh.heap_bytes()
-            + vec_bytes(&self.leaves)
-            + vec_bytes(&self.quads)
-            + vec_bytes(&self.quad_slots)
-            + vec_bytes(&self.tris)
-    }
-
+impl<B: LeafTree> PackedBvh<B> {
     /// Packs the leaves of `bvh` (built over `units`); returns the slots' input primitive
     /// indices and the packed BVH. `prims` is in input order.
-    pub(super) fn pack(bvh: T, units: &[Unit], prims: &[Prim]) -> (Vec<u32>, Self) {
-        let (mut quads, mut tris) = (Vec::new(), Vec::new());
-        let p = Packing::<4>::new(
-            &bvh,
-            units,
-            prims,
-            |q| quads.push(QuadPacket::new(q)),
-            |t| tris.push(TriPacket::new(t)),
-        );
-        let packed = Self {
-            bvh,
-            leaves: p.leaves,
-            quads,
-            quad_slots: p.quad_slots,
-            tris,
-        };
-        (p.slots, packed)
+    pub(super) fn pack(bvh: B, units: &[Unit], prims: &[Prim]) -> (Vec<u32>, Self) {
+        Self::pack_with(bvh, units, prims, QuadPacket::new, TriPacket::new)
     }
 
     /// The nearest hit with `0 < t < t_max`.
@@ -287,13 +279,7 @@ impl<T: LeafTree> PackedBvh<T> {
                     self.closest_past_quads(stored, leaf, ray, tri.as_ref(), bound, &mut found);
                 }
             });
-        let rec = match found? {
-            LeafHit::Prim(r) => r,
-            LeafHit::Quad { packet, lane, u, v } => {
-                self.quad_slots[packet as usize].record(lane, u, v)
-            }
-        };
-        Some((t, rec))
+        Some((t, self.record(found?)))
     }
 
     /// The nearest hit among a leaf's triangles, spheres and disks (out of line, so that

@@ -10,7 +10,7 @@
 //! primitives at exactly the same distance wins may differ (here the lower lane of a leaf).
 
 use super::super::data::Prim;
-use super::packed_bvh::{Leaf, LeafHit, Packing, QuadSlots};
+use super::packed_bvh::{Leaf, LeafHit, PackedLeaves};
 use super::pairing::Unit;
 use super::quad8::{QuadPacket8, QuadRay8};
 use super::tri8::{TriPacket8, TriRay8};
@@ -25,15 +25,8 @@ use crate::accel::{Bvh8, Lanes8, WithLanes8};
 /// (a few pixels of a 4-spp render differ); `docs/geometry.md`, "The 8-wide BVH".
 pub(super) const MERGE_UNITS: u32 = 0;
 
-/// The 8-wide BVH and its packed leaves.
-#[derive(Debug, Clone)]
-pub(crate) struct PackedBvh8 {
-    bvh: Bvh8,
-    leaves: Vec<Leaf>,
-    quads: Vec<QuadPacket8>,
-    quad_slots: Vec<QuadSlots<8>>,
-    tris: Vec<TriPacket8>,
-}
+/// The 8-wide BVH and its 8-lane packed leaves.
+pub(crate) type PackedBvh8 = PackedLeaves<Bvh8, QuadPacket8, TriPacket8, 8>;
 
 impl PackedBvh8 {
     /// Builds the tree over the units' boxes and packs its leaves; returns the slots' input
@@ -44,22 +37,7 @@ impl PackedBvh8 {
         prims: &[Prim],
     ) -> (Vec<u32>, Self) {
         let bvh = Bvh8::build_merging(boxes, MERGE_UNITS);
-        let (mut quads, mut tris) = (Vec::new(), Vec::new());
-        let p = Packing::<8>::new(
-            &bvh,
-            units,
-            prims,
-            |q| quads.push(QuadPacket8::new(q)),
-            |t| tris.push(TriPacket8::new(t)),
-        );
-        let packed = Self {
-            bvh,
-            leaves: p.leaves,
-            quads,
-            quad_slots: p.quad_slots,
-            tris,
-        };
-        (p.slots, packed)
+        Self::pack_with(bvh, units, prims, QuadPacket8::new, TriPacket8::new)
     }
 
     /// This BVH with its walk and leaf tests run on `simd` (tests compare both paths).
@@ -67,16 +45,6 @@ impl PackedBvh8 {
     pub(super) fn with_simd(mut self, simd: crate::accel::Simd8) -> Self {
         self.bvh = self.bvh.with_simd(simd);
         self
-    }
-
-    /// Heap bytes held (the BVH and the packed leaves).
-    pub(super) fn heap_bytes(&self) -> usize {
-        use crate::accel::vec_bytes;
-        self.bvh.heap_bytes()
-            + vec_bytes(&self.leaves)
-            + vec_bytes(&self.quads)
-            + vec_bytes(&self.quad_slots)
-            + vec_bytes(&self.tris)
     }
 
     /// The nearest hit with `0 < t < t_max`.
@@ -87,25 +55,19 @@ impl PackedBvh8 {
         ray: &Ray,
         t_max: f32,
     ) -> Option<(f32, HitRecord)> {
-        let (t, found) = self.bvh.simd().dispatch(Closest {
+        let (t, found) = self.bvh.simd().dispatch(Query::<true> {
             p: self,
             stored,
             ray,
             t_max,
         });
-        let rec = match found? {
-            LeafHit::Prim(r) => r,
-            LeafHit::Quad { packet, lane, u, v } => {
-                self.quad_slots[packet as usize].record(lane, u, v)
-            }
-        };
-        Some((t, rec))
+        Some((t, self.record(found?)))
     }
 
     /// True when anything is hit with `0 < t < t_max`.
     #[inline(always)]
     pub(super) fn any(&self, stored: Stored, ray: &Ray, t_max: f32) -> bool {
-        self.bvh.simd().dispatch(Any {
+        self.bvh.simd().dispatch(Query::<false> {
             p: self,
             stored,
             ray,
@@ -137,25 +99,21 @@ impl PackedBvh8 {
     }
 }
 
-/// A closest-hit query to run on some lanes: the bound reached and what lies there.
-struct Closest<'a> {
+/// A query to run on some lanes: the closest hit (`CLOSEST`: the bound reached and what lies
+/// there) or any hit.
+struct Query<'a, const CLOSEST: bool> {
     p: &'a PackedBvh8,
     stored: Stored<'a>,
     ray: &'a Ray,
     t_max: f32,
 }
 
-impl WithLanes8 for Closest<'_> {
+impl WithLanes8 for Query<'_, true> {
     type Output = (f32, Option<LeafHit>);
 
     #[inline(always)]
     fn run<L: Lanes8>(self, l: L) -> Self::Output {
-        let Closest {
-            p,
-            stored,
-            ray,
-            mut t_max,
-        } = self;
+        let (p, stored, ray, mut t_max) = (self.p, self.stored, self.ray, self.t_max);
         let quad = QuadRay8::new(l, ray.origin, ray.dir);
         // The triangle test's per-ray set-up only where there are triangle packets.
         let tri = (!p.tris.is_empty()).then(|| TriRay8::new(l, ray.origin, ray.dir));
@@ -199,26 +157,14 @@ impl WithLanes8 for Closest<'_> {
     }
 }
 
-/// An any-hit query to run on some lanes.
-struct Any<'a> {
-    p: &'a PackedBvh8,
-    stored: Stored<'a>,
-    ray: &'a Ray,
-    t_max: f32,
-}
-
-impl WithLanes8 for Any<'_> {
+impl WithLanes8 for Query<'_, false> {
     type Output = bool;
 
     #[inline(always)]
     fn run<L: Lanes8>(self, l: L) -> bool {
-        let Any {
-            p,
-            stored,
-            ray,
-            mut t_max,
-        } = self;
+        let (p, stored, ray, mut t_max) = (self.p, self.stored, self.ray, self.t_max);
         let quad = QuadRay8::new(l, ray.origin, ray.dir);
+        // The triangle test's per-ray set-up only where there are triangle packets.
         let tri = (!p.tris.is_empty()).then(|| TriRay8::new(l, ray.origin, ray.dir));
         p.bvh.walk_on::<L, false>(
             l,
