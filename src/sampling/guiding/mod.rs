@@ -9,6 +9,7 @@
 //! of the energy has the density `p□ = E_C / (E |C|)` on the square and
 //! `p□ / (4π)` per steradian on the sphere (the map has the constant Jacobian `4π`).
 
+mod filter;
 mod map;
 mod quadtree;
 mod records;
@@ -17,6 +18,7 @@ mod spatial;
 #[cfg(test)]
 mod tests;
 
+pub use filter::GuidingFilter;
 pub use map::{sphere_to_square, square_to_sphere, EqualAreaSphere, SQUARE_TO_SPHERE_JACOBIAN};
 pub use quadtree::DQuadTree;
 pub use records::{GuidingRecord, GuidingRecords};

@@ -1,6 +1,7 @@
 //! The spatial half of the SD-tree: a binary tree over a cube around the scene, splitting at
 //! the midpoint along x, y, z in turn, with a [`DQuadTree`] in every leaf.
 
+use super::filter::{jitter, record_key, GuidingFilter};
 use super::quadtree::DQuadTree;
 use super::records::GuidingRecords;
 use crate::sampling::unit::clamp_unit;
@@ -15,11 +16,13 @@ enum SNode {
     Leaf(u32),
 }
 
-/// A spatial leaf's directional tree and the number of records it took.
+/// A spatial leaf's directional tree, the number of records it took, and its depth in the
+/// spatial tree (which gives the size of its box, for the spatial filter).
 #[derive(Debug, Clone, PartialEq)]
 struct Leaf {
     tree: DQuadTree,
     samples: u64,
+    depth: u32,
 }
 
 /// The deepest spatial subdivision (a leaf's cube is then `2^-(DEPTH/3)` of the whole).
@@ -71,6 +74,10 @@ pub struct SdTree {
     leaves: Vec<Leaf>,
     /// Whether the leaves learn the guided path tracer's selection probability.
     learn_selection: bool,
+    /// The filters applied to the records ([`SdTree::set_filter`]).
+    filter: GuidingFilter,
+    /// The scene's bounds, inside the cube: where the spatial filter clamps its points.
+    scene: [Vec3; 2],
     /// Per cell of a grid of `2^TOP_BITS` cells per axis, the node that the descent of
     /// [`SdTree::leaf_index`] reaches after `3·TOP_BITS` levels (or the leaf it reaches
     /// before), so that a lookup skips those levels. Derived from `nodes`
@@ -83,13 +90,15 @@ impl SdTree {
     /// every point's distribution is the uniform sphere. A box that is empty or not finite
     /// becomes the unit cube at the origin.
     pub fn new(min: Vec3, max: Vec3) -> Self {
-        let (min, size) = if min.is_finite() && max.is_finite() && (max - min).max_element() > 0.0 {
-            let size = (max - min).max_element();
-            // A margin, so that points on the box's faces are inside.
-            (min - Vec3::splat(size * 1e-3), size * 1.002)
-        } else {
-            (Vec3::ZERO, 1.0)
-        };
+        let (min, size, scene) =
+            if min.is_finite() && max.is_finite() && (max - min).max_element() > 0.0 {
+                let size = (max - min).max_element();
+                // A margin, so that points on the box's faces are inside.
+                let lo = min - Vec3::splat(size * 1e-3);
+                (lo, size * 1.002, [min.min(max), max.max(min)])
+            } else {
+                (Vec3::ZERO, 1.0, [Vec3::ZERO, Vec3::ONE])
+            };
         let mut t = Self {
             min,
             size,
@@ -97,8 +106,11 @@ impl SdTree {
             leaves: vec![Leaf {
                 tree: DQuadTree::new(),
                 samples: 0,
+                depth: 0,
             }],
             learn_selection: false,
+            filter: GuidingFilter::NONE,
+            scene,
             top: Vec::new(),
         };
         t.index_top();
@@ -150,6 +162,18 @@ impl SdTree {
         self.learn_selection
     }
 
+    /// Sets the filters through which this tree, and those [`SdTree::refined`] makes from
+    /// it, take their records ([`GuidingFilter`]; none by default). They change what the
+    /// tree learns from the records, not the densities it gives for what it learned.
+    pub fn set_filter(&mut self, filter: GuidingFilter) {
+        self.filter = filter;
+    }
+
+    /// The filters through which the tree takes its records ([`SdTree::set_filter`]).
+    pub fn filter(&self) -> GuidingFilter {
+        self.filter
+    }
+
     /// The lower corner and the side of the tree's cube.
     pub fn bounds(&self) -> (Vec3, f32) {
         (self.min, self.size)
@@ -194,34 +218,82 @@ impl SdTree {
 
     /// Records radiance (a scalar, such as the mean of the RGB channels) arriving at `p`
     /// along the unit direction `dir`, sampled with density `pdf` per steradian: adds
-    /// `radiance / pdf` to the directional tree of `p`'s leaf and counts one record there. A
-    /// record whose `pdf` is not positive and finite is ignored; a radiance that is negative
-    /// or not finite counts as a record of zero energy.
+    /// `radiance / pdf` to the directional tree of `p`'s leaf and counts one record there
+    /// (through the tree's filters, [`SdTree::set_filter`]). A record whose `pdf` is not
+    /// positive and finite is ignored; a radiance that is negative or not finite counts as a
+    /// record of zero energy.
     pub fn record(&mut self, p: Vec3, dir: Vec3, radiance: f32, pdf: f32) {
-        self.record_at(p, super::sphere_to_square(dir), radiance, pdf);
+        let square = super::sphere_to_square(dir);
+        let i = self.leaf_index(p);
+        self.record_at(i, p, square, radiance, pdf, 0);
     }
 
-    /// [`SdTree::record`] of the direction whose point of the square is `square`, returning
-    /// the index of `p`'s leaf.
-    fn record_at(&mut self, p: Vec3, square: Vec2, radiance: f32, pdf: f32) -> usize {
-        let i = self.leaf_index(p);
+    /// The size along x, y and z of leaf `i`'s box: the cube's side halved once per split
+    /// along the axis above it (the split at depth `d` is along axis `d mod 3`).
+    fn leaf_extent(&self, i: usize) -> Vec3 {
+        let d = self.leaves[i].depth;
+        let halvings = |axis: u32| ((d + 2 - axis) / 3) as i32;
+        Vec3::new(
+            self.size * 0.5f32.powi(halvings(0)),
+            self.size * 0.5f32.powi(halvings(1)),
+            self.size * 0.5f32.powi(halvings(2)),
+        )
+    }
+
+    /// The leaf that takes a record at `p` whose own leaf is `i`: `i`, or with the spatial
+    /// filter the leaf of a point drawn uniformly in the box of `i`'s size centred on `p`
+    /// (clamped to the scene's bounds), drawn by the hash `key` of the record (Müller 2019,
+    /// "Practical Path Guiding in Production", its stochastic box filter).
+    fn filtered_leaf(&self, i: usize, p: Vec3, key: u64) -> usize {
+        if !self.filter.spatial {
+            return i;
+        }
+        let q = p + (jitter(key) - Vec3::splat(0.5)) * self.leaf_extent(i);
+        if !q.is_finite() {
+            return i;
+        }
+        self.leaf_index(q.clamp(self.scene[0], self.scene[1]))
+    }
+
+    /// [`SdTree::record`] of the direction whose point of the square is `square`, for the
+    /// record at `p` whose own leaf is `i` and whose jitter key is `index` (hashed with the
+    /// record); returns the index of the leaf that took it.
+    fn record_at(
+        &mut self,
+        i: usize,
+        p: Vec3,
+        square: Vec2,
+        radiance: f32,
+        pdf: f32,
+        index: u64,
+    ) -> usize {
         if !(pdf > 0.0 && pdf.is_finite()) {
             return i;
         }
+        let j = self.filtered_leaf(i, p, record_key(p, square, index));
         let value = f64::from(radiance) / f64::from(pdf);
-        let leaf = &mut self.leaves[i];
+        let directional = self.filter.directional;
+        let leaf = &mut self.leaves[j];
         leaf.samples += 1;
-        leaf.tree.record_square(square, value);
-        i
+        if directional {
+            leaf.tree.record_square_filtered(square, value);
+        } else {
+            leaf.tree.record_square(square, value);
+        }
+        j
     }
 
     /// Records every entry of `records`, in order (and, if the tree learns the selection
-    /// probability, what the tracer recorded of its choices).
+    /// probability, what the tracer recorded of its choices, in the leaf of the record's
+    /// own position: the spatial filter moves the radiance only). The spatial filter's
+    /// jitter is a hash of each record and its index in `records`, so the tree does not
+    /// depend on which thread filled or merged the buffer.
     pub fn merge(&mut self, records: &GuidingRecords) {
         let learn = self.learn_selection;
-        for s in records.stored() {
+        for (k, s) in records.stored().iter().enumerate() {
             let r = &s.record;
-            let i = self.record_at(r.p, s.square, r.radiance, r.pdf);
+            let i = self.leaf_index(r.p);
+            self.record_at(i, r.p, s.square, r.radiance, r.pdf, k as u64);
             if let (true, Some(sel)) = (learn, s.selection) {
                 let t = &mut self.leaves[i].tree;
                 t.record_selection(sel.integrand, sel.p_guide, sel.p_bsdf, r.pdf);
@@ -242,6 +314,8 @@ impl SdTree {
             nodes: Vec::with_capacity(self.nodes.len()),
             leaves: Vec::with_capacity(self.leaves.len()),
             learn_selection: self.learn_selection,
+            filter: self.filter,
+            scene: self.scene,
             top: Vec::new(),
         };
         // (old node, new node, depth)
@@ -257,7 +331,7 @@ impl SdTree {
                     stack.push((c[1] as usize, b, depth + 1));
                 }
                 SNode::Leaf(l) => {
-                    let Leaf { tree, samples } = &self.leaves[l as usize];
+                    let Leaf { tree, samples, .. } = &self.leaves[l as usize];
                     let fresh = tree.refined(rho, max_depth);
                     out.split_leaf(ni, fresh, *samples as f64, spatial_threshold, depth);
                 }
@@ -288,6 +362,7 @@ impl SdTree {
                 self.leaves.push(Leaf {
                     tree: tree.clone(),
                     samples: 0,
+                    depth: d,
                 });
             }
         }
