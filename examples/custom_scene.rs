@@ -21,7 +21,7 @@
 //! cargo run --release --example custom_scene
 //! ```
 //!
-//! `tests/integrator_custom_scene.rs` runs this file's scene as a statistical test.
+//! `tests/it/integrator_custom_scene.rs` runs this file's scene as a statistical test.
 
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::integrator::{

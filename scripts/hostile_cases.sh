@@ -55,7 +55,7 @@ def png(path, w, h, value=100):
 
 def obj_soup(path, n, shared):
     """n copies of one triangle: on three shared vertices, or each on its own three
-    (tests/common/degenerate.rs: identical, stacked)."""
+    (tests/it/common/degenerate.rs: identical, stacked)."""
     tri = ["v -0.5 -0.5 0", "v 0.5 -0.5 0", "v 0 0.5 0"]
     with open(path, "w") as f:
         if shared:
@@ -68,7 +68,7 @@ def obj_soup(path, n, shared):
 
 def obj_shifted(path, n):
     """n copies of one triangle, copy i moved by i · 10⁻⁵ along x: coplanar and overlapping
-    (tests/common/degenerate.rs: shifted)."""
+    (tests/it/common/degenerate.rs: shifted)."""
     with open(path, "w") as f:
         for i in range(n):
             dx = i * 1e-5

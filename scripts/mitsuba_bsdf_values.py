@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Write mcrt-render/tests/data/mitsuba-bsdf-values.txt: Mitsuba 3's own values of the BSDFs the
-loader reads, for mcrt-render/tests/bsdf_mitsuba_values.rs to compare ours against.
+loader reads, for mcrt-render/tests/it/bsdf_mitsuba_values.rs to compare ours against.
 
 For each case (a <bsdf> element, loaded by Mitsuba from the same text our test loads) and
 each pair of directions it records Mitsuba's `eval` (BSDF times the cosine of the sampled

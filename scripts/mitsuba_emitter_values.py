@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Write mcrt-render/tests/data/mitsuba-emitter-values.txt: Mitsuba 3's own values of the emitters and
-the sensor that issue 16 added, for mcrt-render/tests/emitter_mitsuba_values.rs to compare ours against.
+the sensor that issue 16 added, for mcrt-render/tests/it/emitter_mitsuba_values.rs to compare ours against.
 
 Each case is a scene fragment (an <emitter> or a <sensor>), loaded by Mitsuba from the same
 text our test loads, inside `<scene version="3.0.0"> ... </scene>` with the scene file's

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Mitsuba 3's white-furnace values for mcrt-render/tests/furnace.rs: a unit sphere of each material
+"""Mitsuba 3's white-furnace values for mcrt-render/tests/it/furnace.rs: a unit sphere of each material
 under a constant environment of radiance 1, seen by a narrow camera (fov 8 degrees from
 z = 5, 32x32 pixels, box filter) so that every pixel sees the sphere; prints the image mean
 and its standard error (from the spread of independent passes).

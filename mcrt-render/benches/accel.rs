@@ -11,11 +11,11 @@
 //!   hundreds of triangles: a hard case) and a closed 130 560-triangle tessellated sphere (256 × 256),
 //!   random rays from inside. Build throughput is reported in triangles per second.
 //! - `accel/degenerate_20k`: build time of the BVH, the grid and the kd-tree on the
-//!   degenerate 20 000-triangle soups of issue 26 (`tests/common/degenerate.rs`: copies of
+//!   degenerate 20 000-triangle soups of issue 26 (`tests/it/common/degenerate.rs`: copies of
 //!   one triangle on shared or separate vertices, shifted overlapping copies in one plane, a
 //!   fan on one edge, zero-area triangles) beside a random soup of the same size.
 //!
-//! Correctness of the same structures is checked in `tests/accel.rs`.
+//! Correctness of the same structures is checked in `tests/it/accel.rs`.
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -25,9 +25,9 @@ use mcrt_render::geometry::{AccelKind, Geometry, Ray};
 use rand::SeedableRng;
 use rand_pcg::Pcg64;
 
-#[path = "../tests/common/degenerate.rs"]
+#[path = "../tests/it/common/degenerate.rs"]
 mod degenerate;
-#[path = "../tests/common/scenes.rs"]
+#[path = "../tests/it/common/scenes.rs"]
 mod scenes;
 use scenes::{cornell_box, random_rays, soup, tessellated_sphere};
 

@@ -20,7 +20,7 @@ use rand_pcg::Pcg64;
 use std::hint::black_box;
 use std::process::ExitCode;
 
-#[path = "../tests/common/scenes.rs"]
+#[path = "../tests/it/common/scenes.rs"]
 mod scenes;
 use scenes::{cornell_box, random_rays, soup, tessellated_sphere};
 

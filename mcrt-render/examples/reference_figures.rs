@@ -9,7 +9,7 @@
 //! Scenes: `cornell-box.xml` vs `cornell-box.exr`, `cornell-box.xml` with `max_depth=2` vs
 //! `cornell-box-direct.exr`, and `veach-mis.xml` vs `veach-mis.exr`. Lights are sampled as
 //! Mitsuba samples them (rectangles by area, spheres by cone), fixed seed 2024, as in
-//! `tests/reference_match.rs`, so the reference's per-pixel variance is taken as ours ×
+//! `tests/it/reference_match.rs`, so the reference's per-pixel variance is taken as ours ×
 //! (our spp / its spp).
 //!
 //! Prints a Markdown table: worst block relative error (blocks brighter than 5% of the image

@@ -73,7 +73,7 @@ pub struct CameraConnection {
 /// estimators' multiple-importance weights divide one by another, and a mismatch biases
 /// the image silently. [`Bdpt::check_mis_weights`](super::Bdpt::check_mis_weights) tests a
 /// scene's densities against its sampling routines through the weights; the renderer's
-/// `mcrt-render/tests/chi2_bidirectional.rs` and `bdpt_weights.rs` check the built-in scene's.
+/// `mcrt-render/tests/it/chi2_bidirectional.rs` and `bdpt_weights.rs` check the built-in scene's.
 pub trait BidirectionalScene: Scene {
     /// Samples an emitted ray: `u_pick.x` chooses a light (by power, independent of any
     /// shading point), `u_pick.y` a part of it such as a triangle, `u_pos` a point on it,

@@ -1,4 +1,4 @@
-//! Helpers shared by `tests/distributed.rs` and `tests/distributed_processes.rs`.
+//! Helpers shared by `tests/it/distributed.rs` and `tests/distributed_processes.rs`.
 #![allow(dead_code)] // each test file uses a different subset
 
 use std::path::PathBuf;

@@ -26,7 +26,7 @@ use std::fmt;
 const KEPT_FAILURES: usize = 10;
 
 /// Settings of [`Bdpt::check_mis_weights`]. The defaults are those of the renderer's own
-/// check (`mcrt-render/tests/bdpt_weights.rs`), for scenes of about unit size.
+/// check (`mcrt-render/tests/it/bdpt_weights.rs`), for scenes of about unit size.
 ///
 /// ```
 /// use mcrt::integrator::MisWeightCheck;

@@ -29,7 +29,7 @@
 //!   non-finite point or a point off the support; so `pdf(sample(u))` is never NaN, and an
 //!   estimator that checks `pdf > 0` drops such a sample.
 //!
-//! `tests/warp_edge_inputs.rs` checks this for every warp.
+//! `tests/it/warp_edge_inputs.rs` checks this for every warp.
 //!
 //! ```
 //! use mcrt::glam::Vec2;
