@@ -25,15 +25,16 @@ impl Node {
 }
 
 /// A node's energy as the probabilities that sampling and densities use, derived from its
-/// sums once per trained tree (no division per lookup): the share of each quadrant, of the
-/// left column (quadrants 0 and 2), and of the lower quadrant within each column.
+/// sums once per trained tree (no division per lookup): the factor of each quadrant's
+/// density, the share of the left column (quadrants 0 and 2), and of the lower quadrant
+/// within each column.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 struct Shares {
     /// The node's children, as in [`Node`] (so that a lookup reads this array alone).
     child: [u32; 4],
-    quadrant: [f32; 4],
-    /// What a descent through each quadrant multiplies the density by: `4·quadrant` in a
-    /// node with energy, 1 in a uniform one (so that the density's walk needs no branch).
+    /// What a descent through each quadrant multiplies the density by: 4 × the quadrant's
+    /// share of the node's energy, or 1 in a uniform node (so that the density's walk needs
+    /// no branch).
     factor: [f32; 4],
     left: f32,
     lower: [f32; 2],
@@ -60,11 +61,9 @@ impl Shares {
                 0.5
             }
         };
-        let quadrant = s.map(|e| (e / total) as f32);
         Self {
             child: n.child,
-            quadrant,
-            factor: quadrant.map(|q| 4.0 * q),
+            factor: s.map(|e| 4.0 * (e / total) as f32),
             left: (col(0) / total) as f32,
             lower: [lower(0), lower(1)],
             any: true,
