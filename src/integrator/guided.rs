@@ -182,12 +182,7 @@ impl GuidedPathTracer {
             return (is_positive(pdf) && pdf.is_finite()).then_some((s, [p_guide, p_bsdf], square));
         }
         let v = Vec2::new(((u.x - alpha) / (1.0 - alpha)).min(ONE_MINUS_EPSILON), u.y);
-        let u1 = if bsdf.samples_component() {
-            samples.next_1d()
-        } else {
-            0.5
-        };
-        let bs = bsdf.sample(wo, u1, v)?;
+        let bs = bsdf.sample(wo, super::component_value(bsdf, samples), v)?;
         let wi = frame.to_world(bs.wi);
         let mut densities = [0.0, bs.pdf];
         let mut square = Vec2::ZERO;

@@ -133,13 +133,20 @@ pub(crate) fn sample_bsdf<B: Bsdf, R: SampleSource>(
     wo: glam::Vec3,
     samples: &mut R,
 ) -> Option<BsdfSample> {
-    let u1 = if bsdf.samples_component() {
+    let u1 = component_value(bsdf, samples);
+    let u2 = samples.next_2d();
+    bsdf.sample(wo, u1, u2)
+}
+
+/// The value with which `bsdf` chooses its component: drawn from `samples` if it has
+/// components to choose from, else ½ (no dimension spent).
+#[inline]
+pub(crate) fn component_value<B: Bsdf, R: SampleSource>(bsdf: &B, samples: &mut R) -> f32 {
+    if bsdf.samples_component() {
         samples.next_1d()
     } else {
         0.5
-    };
-    let u2 = samples.next_2d();
-    bsdf.sample(wo, u1, u2)
+    }
 }
 
 /// An estimator, chosen at run time from the scene's `integrator` element.
