@@ -320,11 +320,10 @@ impl DQuadTree {
 
     /// The side of the leaf cell of the square containing `u` (`2^-depth`).
     fn leaf_side(&self, u: Vec2) -> f64 {
-        let mut x = [f64::from(u.x), f64::from(u.y)];
+        let mut c = fixed_point(u);
         let (mut n, mut side) = (0usize, 0.5f64);
         loop {
-            let (q, y) = quadrant(x);
-            x = y;
+            let q = next_quadrant(&mut c);
             match self.nodes[n].child[q] {
                 0 => return side,
                 c => (n, side) = (c as usize, side * 0.5),
