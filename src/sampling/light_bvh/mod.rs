@@ -21,8 +21,8 @@ use build::Builder;
 use cone::Bound;
 use wide::{Query, Wide, WIDTH};
 
-/// The largest `f64` below 1: the remapped sample value stays in `[0, 1)`.
-const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
+/// The largest `f32` below 1: the remapped sample value stays in `[0, 1)`.
+const ONE_BELOW: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// A bounding volume hierarchy over lights that picks one light at a shading point with
 /// probability in proportion to its importance there (after Conty Estevez & Kulla 2018,
@@ -107,25 +107,25 @@ fn binary_nodes(lights: &[LightBounds]) -> Vec<node::Node> {
     builder.nodes
 }
 
-/// A node's children's weights as `f64` and their sum.
-#[inline]
-fn with_sum(w: [f32; WIDTH]) -> ([f64; WIDTH], f64) {
-    let w = w.map(f64::from);
+/// A node's children's weights and their sum (finite: each weight is at most
+/// `wide::MAX_WEIGHT`).
+#[inline(always)]
+fn with_sum(w: [f32; WIDTH]) -> ([f32; WIDTH], f32) {
     (w, (w[0] + w[1]) + (w[2] + w[3]))
 }
 
 /// The probability of a child of weight `w > 0` among children of summed weight `sum`:
 /// never 0.
-#[inline]
-fn share(w: f64, sum: f64) -> f64 {
-    (w / sum).max(f64::MIN_POSITIVE)
+#[inline(always)]
+fn share(w: f32, sum: f32) -> f64 {
+    f64::from((w / sum).max(f32::MIN_POSITIVE))
 }
 
 /// The lane chosen by `t ∈ [0, Σw)` among the weights `w` (some positive): the first
 /// positive lane whose running sum exceeds `t`, else the last positive lane; and the sum of
 /// the weights before it.
-#[inline]
-fn pick_lane(w: &[f64; WIDTH], t: f64) -> (usize, f64) {
+#[inline(always)]
+fn pick_lane(w: &[f32; WIDTH], t: f32) -> (usize, f32) {
     let mut acc = 0.0;
     let mut pick = (0, 0.0);
     for (s, &ws) in w.iter().enumerate() {
@@ -258,7 +258,7 @@ impl LightBvh {
     /// The children's weights at node `at` and their sum: importances, or powers when every
     /// importance is 0 (below the root; all 0 at the root when no light reaches `p`).
     #[inline(always)]
-    fn step(&self, at: usize, q: &Query) -> ([f64; WIDTH], f64) {
+    fn step(&self, at: usize, q: &Query) -> ([f32; WIDTH], f32) {
         let node = &self.nodes[at];
         let (w, sum) = with_sum(node.importances(q).to_array());
         if at == 0 || sum > 0.0 {
@@ -278,14 +278,14 @@ impl LightBvh {
         if self.nodes.is_empty() {
             return None;
         }
-        let mut u = f64::from(crate::sampling::unit::clamp_unit(u));
+        let mut u = crate::sampling::unit::clamp_unit(u);
         let mut prob = 1.0f64;
         let mut at = 0;
         loop {
             let node = &self.nodes[at];
             // The root is never cut: its importances say whether any light reaches p.
             if at != 0 && node.cut_at(q.p) {
-                let k = self.pick_by_power(node, u);
+                let k = self.pick_by_power(node, f64::from(u));
                 prob *= self.power_share(node, k);
                 return Some((self.leaf_light[k], to_probability(prob)));
             }

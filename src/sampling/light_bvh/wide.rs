@@ -227,32 +227,35 @@ impl Wide {
         let inside = dist2.cmple(self.radius2);
         let inv = one / sqrt4(dist2);
         let (wx, wy, wz) = (vx * inv, vy * inv, vz * inv);
-        // θ_w: between the axis and the direction from the centre to p.
-        let cos_w = (self.ax * wx + self.ay * wy + self.az * wz)
-            .max(-one)
-            .min(one);
+        // θ_w: between the axis and the direction from the centre to p. (Cosines a few ulps
+        // outside [−1, 1] are harmless: the sines below are of `max(0, 1 − c²)`, and a bound
+        // that comes out at most a few ulps high stays a bound.)
+        let cos_w = self.ax * wx + self.ay * wy + self.az * wz;
         let cos_w = cos_w.max(cos_w * self.flip);
         let sin_w = sqrt4((one - cos_w * cos_w).max(zero));
-        // θ_b: the half-angle of the bounding sphere seen from p.
-        let sin2_b = (self.radius2 / dist2).min(one);
+        // θ_b: the half-angle of the bounding sphere seen from p (outside it, `r² < d²`; the
+        // lanes inside get `near` below).
+        let sin2_b = self.radius2 / dist2;
         let sin_b = sqrt4(sin2_b);
         let cos_b = sqrt4(one - sin2_b);
-        // θ' = max(0, θ_w − θ_o − θ_b).
-        let within_o = cos_w.cmpgt(self.cos_o);
-        let cos_x = f32x4::select(within_o, one, cos_w * self.cos_o + sin_w * self.sin_o);
-        let sin_x = f32x4::select(within_o, zero, sin_w * self.cos_o - cos_w * self.sin_o);
-        let cos_p = f32x4::select(cos_x.cmpgt(cos_b), one, cos_x * cos_b + sin_x * sin_b);
+        // θ_x = θ_w − θ_o, and θ' = max(0, θ_x − θ_b): 0 where θ_x ≤ 0 (`sin θ_x ≤ 0`) or
+        // θ_x ≤ θ_b.
+        let cos_x = cos_w * self.cos_o + sin_w * self.sin_o;
+        let sin_x = sin_w * self.cos_o - cos_w * self.sin_o;
+        let flat = sin_x.cmple(zero) | cos_x.cmpgt(cos_b);
+        let cos_p = f32x4::select(flat, one, cos_x * cos_b + sin_x * sin_b);
         let outside_e = cos_p.cmplt(self.cos_e_margin);
         let floor = f32x4::splat(COS_FLOOR);
-        let mut imp = self.phi * cos_p.max(floor) / dist2.max(f32x4::splat(D2_FLOOR));
+        let mut imp = self.phi * cos_p.max(floor) / dist2;
         if let Some([nx, ny, nz]) = q.n {
             // θ_i: between ±n and the direction to the centre, less θ_b.
-            let cos_i = (wx * nx + wy * ny + wz * nz).abs().min(one);
+            let cos_i = (wx * nx + wy * ny + wz * nz).abs();
             let sin_i = sqrt4((one - cos_i * cos_i).max(zero));
             let cos_pi = f32x4::select(cos_i.cmpgt(cos_b), one, cos_i * cos_b + sin_i * sin_b);
             imp *= cos_pi.max(floor);
         }
         let imp = f32x4::select(inside, self.near, f32x4::select(outside_e, zero, imp));
+        // The half-space test holds inside the bounding sphere too.
         let imp = f32x4::select(behind, zero, imp);
         // NaN (an overflowing query) → 0; large → MAX_WEIGHT.
         f32x4::select(imp.cmpgt(zero), imp.min(f32x4::splat(MAX_WEIGHT)), zero)
