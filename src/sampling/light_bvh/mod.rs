@@ -311,8 +311,7 @@ impl LightBvh {
     /// is not finite; 0 for a light that cannot reach `p`, except below a cut, where the
     /// lights of a node are chosen by power (a light that can reach `p` is never 0).
     pub fn pmf(&self, p: Vec3, n: Vec3, light: usize) -> f32 {
-        let (Some(q), Some(&Some((mut trail, leaf)))) =
-            (Self::query(p, n), self.trails.get(light))
+        let (Some(q), Some(&Some((mut trail, leaf)))) = (Self::query(p, n), self.trails.get(light))
         else {
             return 0.0;
         };

@@ -248,11 +248,11 @@ impl Wide {
         let floor = f32x4::splat(COS_FLOOR);
         let mut imp = self.phi * cos_p.max(floor) / dist2;
         if let Some([nx, ny, nz]) = q.n {
-            // θ_i: between ±n and the direction to the centre, less θ_b.
+            // θ_i: between ±n and the direction to the centre, less θ_b, bounded as
+            // `cos(θ_i − θ_b) ≤ cos θ_i + sin θ_b` (this factor is a weight, not part of the
+            // zero test, so it only needs to stay positive).
             let cos_i = (wx * nx + wy * ny + wz * nz).abs();
-            let sin_i = sqrt4((one - cos_i * cos_i).max(zero));
-            let cos_pi = f32x4::select(cos_i.cmpgt(cos_b), one, cos_i * cos_b + sin_i * sin_b);
-            imp *= cos_pi.max(floor);
+            imp *= (cos_i + sin_b).min(one).max(floor);
         }
         let imp = f32x4::select(inside, self.near, f32x4::select(outside_e, zero, imp));
         // The half-space test holds inside the bounding sphere too.
