@@ -19,10 +19,10 @@ use glam::Vec3;
 pub use bounds::{LightBounds, LightBvhError};
 use build::Builder;
 use cone::Bound;
-use wide::{Wide, WIDTH};
+use wide::{Query, Wide, WIDTH};
 
-/// The largest `f64` below 1: the remapped sample value stays in `[0, 1)`.
-const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
+/// The largest `f32` below 1: the remapped sample value stays in `[0, 1)`.
+const ONE_BELOW: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// A bounding volume hierarchy over lights that picks one light at a shading point with
 /// probability in proportion to its importance there (after Conty Estevez & Kulla 2018,
@@ -107,25 +107,25 @@ fn binary_nodes(lights: &[LightBounds]) -> Vec<node::Node> {
     builder.nodes
 }
 
-/// A node's children's weights as `f64` and their sum.
-#[inline]
-fn with_sum(w: [f32; WIDTH]) -> ([f64; WIDTH], f64) {
-    let w = w.map(f64::from);
+/// A node's children's weights and their sum (finite: each weight is at most
+/// `wide::MAX_WEIGHT`).
+#[inline(always)]
+fn with_sum(w: [f32; WIDTH]) -> ([f32; WIDTH], f32) {
     (w, (w[0] + w[1]) + (w[2] + w[3]))
 }
 
 /// The probability of a child of weight `w > 0` among children of summed weight `sum`:
 /// never 0.
-#[inline]
-fn share(w: f64, sum: f64) -> f64 {
-    (w / sum).max(f64::MIN_POSITIVE)
+#[inline(always)]
+fn share(w: f32, sum: f32) -> f64 {
+    f64::from((w / sum).max(f32::MIN_POSITIVE))
 }
 
 /// The lane chosen by `t ∈ [0, Σw)` among the weights `w` (some positive): the first
 /// positive lane whose running sum exceeds `t`, else the last positive lane; and the sum of
 /// the weights before it.
-#[inline]
-fn pick_lane(w: &[f64; WIDTH], t: f64) -> (usize, f64) {
+#[inline(always)]
+fn pick_lane(w: &[f32; WIDTH], t: f32) -> (usize, f32) {
     let mut acc = 0.0;
     let mut pick = (0, 0.0);
     for (s, &ws) in w.iter().enumerate() {
@@ -243,24 +243,24 @@ impl LightBvh {
         self.depth
     }
 
-    /// The point, `|p|₁` and the unit normal (`None` when `n` is zero or not finite), or
-    /// `None` when `p` is not finite.
-    #[inline]
-    fn query(p: Vec3, n: Vec3) -> Option<(Vec3, f32, Option<Vec3>)> {
+    /// The query at `p` with the unit normal of `n` (none when `n` is zero or not finite),
+    /// or `None` when `p` is not finite.
+    #[inline(always)]
+    fn query(p: Vec3, n: Vec3) -> Option<Query> {
         if !p.is_finite() {
             return None;
         }
         let len = n.length();
         let n = (n.is_finite() && len > 0.0).then(|| n / len);
-        Some((p, p.abs().element_sum(), n))
+        Some(Query::new(p, p.abs().element_sum(), n))
     }
 
     /// The children's weights at node `at` and their sum: importances, or powers when every
     /// importance is 0 (below the root; all 0 at the root when no light reaches `p`).
-    #[inline]
-    fn step(&self, at: usize, p: Vec3, p_l1: f32, n: Option<Vec3>) -> ([f64; WIDTH], f64) {
+    #[inline(always)]
+    fn step(&self, at: usize, q: &Query) -> ([f32; WIDTH], f32) {
         let node = &self.nodes[at];
-        let (w, sum) = with_sum(node.importances(p, p_l1, n).to_array());
+        let (w, sum) = with_sum(node.importances(q).to_array());
         if at == 0 || sum > 0.0 {
             (w, sum)
         } else {
@@ -274,22 +274,22 @@ impl LightBvh {
     /// [`LightBvh::pmf`]), or `None` when there is no light of power > 0, when no light can
     /// reach `p`, or when `p` is not finite. A NaN `u` counts as 0.
     pub fn sample(&self, p: Vec3, n: Vec3, u: f32) -> Option<(usize, f32)> {
-        let (p, p_l1, n) = Self::query(p, n)?;
+        let q = Self::query(p, n)?;
         if self.nodes.is_empty() {
             return None;
         }
-        let mut u = f64::from(crate::sampling::unit::clamp_unit(u));
+        let mut u = crate::sampling::unit::clamp_unit(u);
         let mut prob = 1.0f64;
         let mut at = 0;
         loop {
             let node = &self.nodes[at];
             // The root is never cut: its importances say whether any light reaches p.
-            if at != 0 && node.cut_at(p) {
-                let k = self.pick_by_power(node, u);
+            if at != 0 && node.cut_at(q.p) {
+                let k = self.pick_by_power(node, f64::from(u));
                 prob *= self.power_share(node, k);
                 return Some((self.leaf_light[k], to_probability(prob)));
             }
-            let (w, sum) = self.step(at, p, p_l1, n);
+            let (w, sum) = self.step(at, &q);
             if sum <= 0.0 {
                 return None;
             }
@@ -311,8 +311,7 @@ impl LightBvh {
     /// is not finite; 0 for a light that cannot reach `p`, except below a cut, where the
     /// lights of a node are chosen by power (a light that can reach `p` is never 0).
     pub fn pmf(&self, p: Vec3, n: Vec3, light: usize) -> f32 {
-        let (Some((p, p_l1, n)), Some(&Some((mut trail, leaf)))) =
-            (Self::query(p, n), self.trails.get(light))
+        let (Some(q), Some(&Some((mut trail, leaf)))) = (Self::query(p, n), self.trails.get(light))
         else {
             return 0.0;
         };
@@ -320,11 +319,11 @@ impl LightBvh {
         let mut at = 0;
         loop {
             let node = &self.nodes[at];
-            if at != 0 && node.cut_at(p) {
+            if at != 0 && node.cut_at(q.p) {
                 prob *= self.power_share(node, leaf as usize);
                 return to_probability(prob);
             }
-            let (w, sum) = self.step(at, p, p_l1, n);
+            let (w, sum) = self.step(at, &q);
             let s = (trail & 3) as usize;
             if w[s] <= 0.0 {
                 return 0.0;

@@ -234,10 +234,10 @@ impl Node {
         }
         let mut importance = self.phi * cos_p.max(COS_FLOOR) / dist2.max(D2_FLOOR);
         if let Some(n) = n {
-            // θ_i: the angle between ±n and the direction to the centre, less θ_b.
+            // θ_i: the angle between ±n and the direction to the centre, less θ_b, bounded
+            // as `cos(θ_i − θ_b) ≤ cos θ_i + sin θ_b` (a weight only: not part of the zero).
             let cos_i = wi.dot(n).abs().min(1.0);
-            let cos_pi = cos_sub_clamped(sin_of(cos_i), cos_i, sin_b, cos_b);
-            importance *= cos_pi.max(COS_FLOOR);
+            importance *= (cos_i + sin_b).clamp(COS_FLOOR, 1.0);
         }
         importance
     }

@@ -232,7 +232,9 @@ fn f32_lanes_never_rule_out_what_the_f64_bound_admits() {
             for node in &nodes {
                 let lane = super::wide::Wide::single(node);
                 let i64 = node.importance(p.as_dvec3(), n64);
-                let i32 = lane.importances(p, p.abs().element_sum(), n32).to_array()[0];
+                let i32 = lane
+                    .importances(&super::wide::Query::new(p, p.abs().element_sum(), n32))
+                    .to_array()[0];
                 assert!(i32.is_finite() && i32 >= 0.0);
                 if i64 > 0.0 {
                     assert!(i32 > 0.0, "f64 {i64} > 0 but f32 0 at {p}, n = {n}");

@@ -31,6 +31,37 @@ fn sqrt4(v: f32x4) -> f32x4 {
     f32x4::from_array(v.to_array().map(f32::sqrt))
 }
 
+/// The query of a descent, splatted once for all its nodes: the point, its coordinates in
+/// four lanes, `PLANE_MARGIN·|p|₁` (the point's share of the half-space test's margin) and
+/// the unit normal's coordinates (or `None`).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Query {
+    pub p: Vec3,
+    px: f32x4,
+    py: f32x4,
+    pz: f32x4,
+    margin: f32x4,
+    n: Option<[f32x4; 3]>,
+}
+
+impl Query {
+    /// The query at `p` (finite) with `|p|₁ = p_l1` and unit normal `n` (or `None`).
+    #[inline(always)]
+    pub fn new(p: Vec3, p_l1: f32, n: Option<Vec3>) -> Self {
+        Self {
+            p,
+            px: f32x4::splat(p.x),
+            py: f32x4::splat(p.y),
+            pz: f32x4::splat(p.z),
+            margin: f32x4::splat(PLANE_MARGIN * p_l1),
+            n: n.map(|n| [f32x4::splat(n.x), f32x4::splat(n.y), f32x4::splat(n.z)]),
+        }
+    }
+}
+
+/// The largest importance of a lane: four of them sum to a finite `f32`.
+pub(super) const MAX_WEIGHT: f32 = f32::MAX / 8.0;
+
 /// One node of the collapsed tree: its children's bounds lane by lane (an unused lane has
 /// power 0 and gets importance 0), what each child is, and the node's own cut.
 #[derive(Clone, Debug)]
@@ -39,22 +70,24 @@ pub(super) struct Wide {
     cy: f32x4,
     cz: f32x4,
     radius2: f32x4,
-    radius: f32x4,
     ax: f32x4,
     ay: f32x4,
     az: f32x4,
     cos_o: f32x4,
     sin_o: f32x4,
-    cos_e: f32x4,
-    /// The children's powers (clamped to `f32::MAX`): the choice where every importance is 0.
+    /// `cos θ_e − COS_MARGIN`: the zero test's threshold.
+    cos_e_margin: f32x4,
+    /// The children's powers (clamped to [`MAX_WEIGHT`]): the choice where every importance
+    /// is 0.
     pub phi: f32x4,
+    /// `Φ / max(r², D2_FLOOR)`: the importance at a point inside the bounding sphere.
+    near: f32x4,
     /// `−1` for a two-sided child (its `cos θ_w` is taken in absolute value), else `1`.
     flip: f32x4,
-    /// `0` where the half-space test applies, `+∞` where it does not.
-    front_off: f32x4,
     slack: f32x4,
-    support: f32x4,
-    scale: f32x4,
+    /// The half-space test's terms that do not depend on the point, rounded up:
+    /// `support + σ·r + PLANE_MARGIN·scale` where the test applies, `+∞` where it does not.
+    plane_base: f32x4,
     /// Per lane: the child's node in the wide tree, or its leaf (depth-first) when a leaf.
     pub child: [u32; WIDTH],
     /// Bit `s`: lane `s` is a leaf.
@@ -66,6 +99,16 @@ pub(super) struct Wide {
     /// The node's lights: leaves `first_leaf..end_leaf` in depth-first order.
     pub first_leaf: u32,
     pub end_leaf: u32,
+}
+
+/// `x ≥ 0` (or `+∞`) rounded up to `f32`.
+fn round_up(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) >= x {
+        y
+    } else {
+        y.next_up()
+    }
 }
 
 /// What one lane of a [`Wide`] holds for an unused slot: power 0 and harmless bounds.
@@ -102,24 +145,38 @@ impl Wide {
             }
         }
         let (center, cut_r2) = own.cut_f32();
+        let plane_base = |l: &Lane| {
+            if l.front_only {
+                round_up(
+                    f64::from(l.support)
+                        + f64::from(l.slack) * f64::from(l.radius)
+                        + f64::from(PLANE_MARGIN) * f64::from(l.scale),
+                )
+            } else {
+                f32::INFINITY
+            }
+        };
         Self {
             cx: f(|l| l.center[0]),
             cy: f(|l| l.center[1]),
             cz: f(|l| l.center[2]),
             radius2: f(|l| l.radius2),
-            radius: f(|l| l.radius),
             ax: f(|l| l.axis[0]),
             ay: f(|l| l.axis[1]),
             az: f(|l| l.axis[2]),
             cos_o: f(|l| l.cos_o),
             sin_o: f(|l| l.sin_o),
-            cos_e: f(|l| l.cos_e),
-            phi: f(|l| l.phi),
+            cos_e_margin: f(|l| l.cos_e - COS_MARGIN),
+            phi: f(|l| l.phi.min(MAX_WEIGHT)),
+            near: f(|l| l.phi / l.radius2.max(D2_FLOOR)),
             flip: f(|l| if l.two_sided { -1.0 } else { 1.0 }),
-            front_off: f(|l| if l.front_only { 0.0 } else { f32::INFINITY }),
             slack: f(|l| l.slack),
-            support: f(|l| l.support),
-            scale: f(|l| l.scale),
+            plane_base: f32x4::from_array([
+                plane_base(&lanes[0]),
+                plane_base(&lanes[1]),
+                plane_base(&lanes[2]),
+                plane_base(&lanes[3]),
+            ]),
             child,
             leaf_bits,
             center,
@@ -147,62 +204,61 @@ impl Wide {
         (p - self.center).length_squared() >= self.cut_r2
     }
 
-    /// The four children's importances at `p` (`p_l1 = |p|₁`; unit normal `n`, or `None`):
-    /// `Φ · cos θ' · cos θ'_i / d²` as in `Node::importance`, in `f32`, 0 only where no light
-    /// of the child can reach `p` (and for unused lanes), never NaN, at most `f32::MAX`.
-    #[inline]
-    pub fn importances(&self, p: Vec3, p_l1: f32, n: Option<Vec3>) -> f32x4 {
+    /// The four children's importances at the query `q`: `Φ · cos θ' · cos θ'_i / d²` as in
+    /// `Node::importance`, in `f32`, 0 only where no light of the child can reach `q.p` (and
+    /// for unused lanes), never NaN, at most [`MAX_WEIGHT`].
+    #[inline(always)]
+    pub fn importances(&self, q: &Query) -> f32x4 {
         let zero = f32x4::ZERO;
         let one = f32x4::ONE;
-        let vx = f32x4::splat(p.x) - self.cx;
-        let vy = f32x4::splat(p.y) - self.cy;
-        let vz = f32x4::splat(p.z) - self.cz;
+        let vx = q.px - self.cx;
+        let vy = q.py - self.cy;
+        let vz = q.pz - self.cz;
         // Behind the plane of the box's rearmost corner (derivations, Part V §2).
         let l1 = vx.abs() + vy.abs() + vz.abs();
         let plane = self.ax * vx
             + self.ay * vy
             + self.az * vz
-            + self.support
-            + self.slack * (l1 + self.radius)
-            + f32x4::splat(PLANE_MARGIN) * (self.scale + f32x4::splat(p_l1))
-            + self.front_off;
+            + self.slack * l1
+            + self.plane_base
+            + q.margin;
         let behind = plane.cmplt(zero);
         let dist2 = vx * vx + vy * vy + vz * vz;
         let inside = dist2.cmple(self.radius2);
         let inv = one / sqrt4(dist2);
         let (wx, wy, wz) = (vx * inv, vy * inv, vz * inv);
-        // θ_w: between the axis and the direction from the centre to p.
-        let cos_w = (self.ax * wx + self.ay * wy + self.az * wz)
-            .max(-one)
-            .min(one);
+        // θ_w: between the axis and the direction from the centre to p. (Cosines a few ulps
+        // outside [−1, 1] are harmless: the sines below are of `max(0, 1 − c²)`, and a bound
+        // that comes out at most a few ulps high stays a bound.)
+        let cos_w = self.ax * wx + self.ay * wy + self.az * wz;
         let cos_w = cos_w.max(cos_w * self.flip);
         let sin_w = sqrt4((one - cos_w * cos_w).max(zero));
-        // θ_b: the half-angle of the bounding sphere seen from p.
-        let sin2_b = (self.radius2 / dist2).min(one);
+        // θ_b: the half-angle of the bounding sphere seen from p (outside it, `r² < d²`; the
+        // lanes inside get `near` below).
+        let sin2_b = self.radius2 / dist2;
         let sin_b = sqrt4(sin2_b);
         let cos_b = sqrt4(one - sin2_b);
-        // θ' = max(0, θ_w − θ_o − θ_b).
-        let within_o = cos_w.cmpgt(self.cos_o);
-        let cos_x = f32x4::select(within_o, one, cos_w * self.cos_o + sin_w * self.sin_o);
-        let sin_x = f32x4::select(within_o, zero, sin_w * self.cos_o - cos_w * self.sin_o);
-        let cos_p = f32x4::select(cos_x.cmpgt(cos_b), one, cos_x * cos_b + sin_x * sin_b);
-        let outside_e = cos_p.cmplt(self.cos_e - f32x4::splat(COS_MARGIN));
+        // θ_x = θ_w − θ_o, and θ' = max(0, θ_x − θ_b): 0 where θ_x ≤ 0 (`sin θ_x ≤ 0`) or
+        // θ_x ≤ θ_b.
+        let cos_x = cos_w * self.cos_o + sin_w * self.sin_o;
+        let sin_x = sin_w * self.cos_o - cos_w * self.sin_o;
+        let flat = sin_x.cmple(zero) | cos_x.cmpgt(cos_b);
+        let cos_p = f32x4::select(flat, one, cos_x * cos_b + sin_x * sin_b);
+        let outside_e = cos_p.cmplt(self.cos_e_margin);
         let floor = f32x4::splat(COS_FLOOR);
-        let mut imp = self.phi * cos_p.max(floor) / dist2.max(f32x4::splat(D2_FLOOR));
-        if let Some(n) = n {
-            // θ_i: between ±n and the direction to the centre, less θ_b.
-            let cos_i = (wx * f32x4::splat(n.x) + wy * f32x4::splat(n.y) + wz * f32x4::splat(n.z))
-                .abs()
-                .min(one);
-            let sin_i = sqrt4((one - cos_i * cos_i).max(zero));
-            let cos_pi = f32x4::select(cos_i.cmpgt(cos_b), one, cos_i * cos_b + sin_i * sin_b);
-            imp *= cos_pi.max(floor);
+        let mut imp = self.phi * cos_p.max(floor) / dist2;
+        if let Some([nx, ny, nz]) = q.n {
+            // θ_i: between ±n and the direction to the centre, less θ_b, bounded as
+            // `cos(θ_i − θ_b) ≤ cos θ_i + sin θ_b` (this factor is a weight, not part of the
+            // zero test, so it only needs to stay positive).
+            let cos_i = (wx * nx + wy * ny + wz * nz).abs();
+            imp *= (cos_i + sin_b).min(one).max(floor);
         }
-        let near = self.phi / self.radius2.max(f32x4::splat(D2_FLOOR));
-        let imp = f32x4::select(inside, near, f32x4::select(outside_e, zero, imp));
+        let imp = f32x4::select(inside, self.near, f32x4::select(outside_e, zero, imp));
+        // The half-space test holds inside the bounding sphere too.
         let imp = f32x4::select(behind, zero, imp);
-        // NaN (an overflowing query) → 0; ∞ → f32::MAX.
-        f32x4::select(imp.cmpgt(zero), imp.min(f32x4::splat(f32::MAX)), zero)
+        // NaN (an overflowing query) → 0; large → MAX_WEIGHT.
+        f32x4::select(imp.cmpgt(zero), imp.min(f32x4::splat(MAX_WEIGHT)), zero)
     }
 }
 
