@@ -10,10 +10,8 @@ const ONE_MINUS_EPS_F64: f64 = 1.0 - f64::EPSILON / 2.0;
 
 /// One node: four quadrants (index `x + 2y` with `x, y ∈ {0, 1}` the halves of the node's
 /// square), each with the energy recorded in it and its child node (0: a leaf quadrant; the
-/// root, node 0, is nobody's child). Aligned to a cache line (48 bytes padded to 64), so that
-/// the walk of [`DQuadTree::record_square`] touches one line per level.
+/// root, node 0, is nobody's child).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[repr(C, align(64))]
 struct Node {
     sum: [f64; 4],
     child: [u32; 4],
