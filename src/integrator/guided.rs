@@ -152,7 +152,7 @@ impl GuidedPathTracer {
     /// ([`sphere_to_square`](crate::sampling::guiding::sphere_to_square)) where its guide
     /// density was read (zero where it was not), which recording it reuses.
     #[allow(clippy::too_many_arguments)]
-    #[inline]
+    #[inline(always)]
     fn sample_with_densities<B: Bsdf, R: SampleSource>(
         &self,
         alpha: f32,

@@ -24,11 +24,12 @@ impl Node {
     }
 }
 
-/// A node's energy as the probabilities that sampling and densities use, derived from its
-/// sums once per trained tree (no division per lookup): the factor of each quadrant's
-/// density, the share of the left column (quadrants 0 and 2), and of the lower quadrant
-/// within each column.
+/// What the density's walk reads of a node ([`DQuadTree::pdf_square`]), derived from its
+/// sums once per trained tree (no division per lookup): 32 bytes, aligned, so that a node is
+/// half a cache line and never straddles two (the walk's loads are dependent, and each miss
+/// waits for the last).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[repr(C, align(32))]
 struct Shares {
     /// The node's children, as in [`Node`] (so that a lookup reads this array alone).
     child: [u32; 4],
@@ -36,39 +37,49 @@ struct Shares {
     /// share of the node's energy, or 1 in a uniform node (so that the density's walk needs
     /// no branch).
     factor: [f32; 4],
+}
+
+/// What sampling reads beyond [`Shares`] ([`DQuadTree::sample_square`]): the share of the
+/// left column (quadrants 0 and 2) and of the lower quadrant within each column, kept apart
+/// so that the density's walk, far more frequent, reads 32 bytes per node.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[repr(C, align(16))]
+struct Split {
     left: f32,
     lower: [f32; 2],
     /// Whether the node holds any energy (a node without is uniform).
     any: bool,
 }
 
-impl Shares {
-    fn of(n: &Node) -> Self {
-        let total = n.total();
-        if total.is_nan() || total <= 0.0 {
-            return Self {
-                child: n.child,
-                factor: [1.0; 4],
-                ..Self::default()
-            };
-        }
-        let s = n.sum;
-        let col = |x: usize| s[x] + s[x + 2];
-        let lower = |x: usize| {
-            if col(x) > 0.0 {
-                (s[x] / col(x)) as f32
-            } else {
-                0.5
-            }
-        };
-        Self {
+/// A node's [`Shares`] and [`Split`].
+fn shares_of(n: &Node) -> (Shares, Split) {
+    let total = n.total();
+    if total.is_nan() || total <= 0.0 {
+        let sh = Shares {
             child: n.child,
-            factor: s.map(|e| 4.0 * (e / total) as f32),
-            left: (col(0) / total) as f32,
-            lower: [lower(0), lower(1)],
-            any: true,
-        }
+            factor: [1.0; 4],
+        };
+        return (sh, Split::default());
     }
+    let s = n.sum;
+    let col = |x: usize| s[x] + s[x + 2];
+    let lower = |x: usize| {
+        if col(x) > 0.0 {
+            (s[x] / col(x)) as f32
+        } else {
+            0.5
+        }
+    };
+    let sh = Shares {
+        child: n.child,
+        factor: s.map(|e| 4.0 * (e / total) as f32),
+    };
+    let split = Split {
+        left: (col(0) / total) as f32,
+        lower: [lower(0), lower(1)],
+        any: true,
+    };
+    (sh, split)
 }
 
 /// Where the quadrant's node, and in it the point `x` (rescaled to the quadrant), lies.
@@ -88,18 +99,20 @@ fn quadrant(x: [f64; 2]) -> (usize, [f64; 2]) {
     (q, y)
 }
 
-/// The point `u` of the unit square as fixed-point coordinates `⌊u·2⁶⁴⌋` per axis, clamped
-/// into the square (a NaN coordinate puts the point at the centre), whose bits from the
-/// highest are the halves a descent takes: the same halves as halving the coordinates in
-/// `f64` ([`quadrant`]), which is exact for the `f32` coordinates down to 64 levels.
+/// The point `u` of the unit square as fixed-point coordinates per axis, clamped into the
+/// square (a NaN coordinate puts the point at the centre), whose bits from the highest are
+/// the halves a descent takes: the same halves as halving the coordinates in `f64`
+/// ([`quadrant`]), which is exact for the `f32` coordinates down to 63 levels. (`⌊u·2⁶³⌋`,
+/// shifted up by one: the conversion to a signed integer is a few instructions fewer than to
+/// an unsigned one; the lowest bit, a 64th level, is 0.)
 #[inline]
 fn fixed_point(u: Vec2) -> [u64; 2] {
     if u.is_nan() {
         return [1 << 63; 2];
     }
-    // `as` saturates: below 0 gives 0, 1 and above all ones (the last cell, as the clamp to
-    // just below 1 of the `f64` descent).
-    let fix = |v: f32| (f64::from(v) * 18_446_744_073_709_551_616.0) as u64;
+    // `as` saturates: below 0 gives 0, 1 and above all ones but the lowest bit (the last
+    // cell, as the clamp to just below 1 of the `f64` descent).
+    let fix = |v: f32| ((f64::from(v) * 9_223_372_036_854_775_808.0) as i64 as u64) << 1;
     [fix(u.x), fix(u.y)]
 }
 
@@ -158,6 +171,7 @@ const MIN_SELECTION_RECORDS: u64 = 64;
 #[derive(Debug, Clone)]
 struct Derived {
     shares: Vec<Shares>,
+    splits: Vec<Split>,
     selection: Option<f32>,
 }
 
@@ -199,9 +213,13 @@ impl DQuadTree {
     /// change.
     #[inline]
     fn derived(&self) -> &Derived {
-        self.derived.get_or_init(|| Derived {
-            shares: self.nodes.iter().map(Shares::of).collect(),
-            selection: self.best_selection(),
+        self.derived.get_or_init(|| {
+            let (shares, splits) = self.nodes.iter().map(shares_of).unzip();
+            Derived {
+                shares,
+                splits,
+                selection: self.best_selection(),
+            }
         })
     }
 
@@ -251,6 +269,17 @@ impl DQuadTree {
         }
         self.derived.take();
         let f2 = f64::from(integrand) * f64::from(integrand);
+        if p_bsdf > 0.0 {
+            // Every candidate's density is positive (`1 − α ≥ 0.1`): the same sums without a
+            // branch per candidate, which the compiler vectorises.
+            let (pg, pb, pdf) = (f64::from(p_guide), f64::from(p_bsdf), f64::from(pdf));
+            for (m, a) in self.selection.iter_mut().zip(SELECTION_CANDIDATES) {
+                let q = f64::from(a) * pg + f64::from(1.0 - a) * pb;
+                *m += f2 / (pdf * q);
+            }
+            self.selection_records += 1;
+            return;
+        }
         for (m, a) in self.selection.iter_mut().zip(SELECTION_CANDIDATES) {
             let q = f64::from(a) * f64::from(p_guide) + f64::from(1.0 - a) * f64::from(p_bsdf);
             if q > 0.0 {
@@ -425,6 +454,13 @@ impl DQuadTree {
     /// column by its energy with `u.x`, a quadrant in it with `u.y`, and passes the rescaled
     /// values on; a leaf quadrant is uniform). A node without energy is uniform.
     pub fn sample_square(&self, u: Vec2) -> Vec2 {
+        self.sample_cell(u).0
+    }
+
+    /// [`DQuadTree::sample_square`], with the leaf cell the point was drawn in: its
+    /// quadrants' bits per axis ([`fixed_point`]'s highest `depth` bits), its depth, and its
+    /// density, multiplied along the walk exactly as [`DQuadTree::pdf_square`] does.
+    fn sample_cell(&self, u: Vec2) -> (Vec2, Cell) {
         let mut x = [
             f64::from(u.x).clamp(0.0, ONE_MINUS_EPS_F64),
             f64::from(u.y).clamp(0.0, ONE_MINUS_EPS_F64),
@@ -433,13 +469,18 @@ impl DQuadTree {
             x = [0.5, 0.5];
         }
         let (mut origin, mut size) = ([0.0f64; 2], 1.0f64);
-        let shares = self.shares();
+        let d = self.derived();
+        let mut cell = Cell {
+            bits: [0; 2],
+            depth: 0,
+            pdf: 1.0,
+        };
         let mut n = 0usize;
         loop {
-            let sh = &shares[n];
-            let q = if sh.any {
-                let bx = pick(&mut x[0], f64::from(sh.left));
-                let by = pick(&mut x[1], f64::from(sh.lower[bx]));
+            let (sh, sp) = (&d.shares[n], &d.splits[n]);
+            let q = if sp.any {
+                let bx = pick(&mut x[0], f64::from(sp.left));
+                let by = pick(&mut x[1], f64::from(sp.lower[bx]));
                 bx + 2 * by
             } else {
                 let (q, y) = quadrant(x);
@@ -449,6 +490,12 @@ impl DQuadTree {
             size *= 0.5;
             origin[0] += (q & 1) as f64 * size;
             origin[1] += (q >> 1) as f64 * size;
+            cell.bits = [
+                cell.bits[0] << 1 | (q & 1) as u64,
+                cell.bits[1] << 1 | (q >> 1) as u64,
+            ];
+            cell.depth += 1;
+            cell.pdf *= sh.factor[q];
             match sh.child[q] {
                 0 => break,
                 c => n = c as usize,
@@ -456,7 +503,9 @@ impl DQuadTree {
         }
         let px = (origin[0] + x[0] * size).clamp(0.0, ONE_MINUS_EPS_F64);
         let py = (origin[1] + x[1] * size).clamp(0.0, ONE_MINUS_EPS_F64);
-        Vec2::new(px as f32, py as f32).min(Vec2::splat(crate::sampling::ONE_MINUS_EPSILON))
+        let p =
+            Vec2::new(px as f32, py as f32).min(Vec2::splat(crate::sampling::ONE_MINUS_EPSILON));
+        (p, cell)
     }
 
     /// A direction drawn from the tree with `u ∈ [0, 1)²`, and its density per steradian,
@@ -471,9 +520,18 @@ impl DQuadTree {
     /// so that recording the direction need not map it again.
     #[inline]
     pub(crate) fn sample_on_square(&self, u: Vec2) -> (Vec3, f32, Vec2) {
-        let d = square_to_sphere(self.sample_square(u));
+        let (p, cell) = self.sample_cell(u);
+        let d = square_to_sphere(p);
         let s = sphere_to_square(d);
-        (d, self.pdf_square(s) / SQUARE_TO_SPHERE_JACOBIAN, s)
+        // The point mapped back to the square is nearly always in the cell it was drawn in,
+        // whose density the walk multiplied as `pdf_square` would (the same factors in the
+        // same order); only one that rounding moved to another cell walks again.
+        let pdf = if cell.contains(s) {
+            cell.pdf
+        } else {
+            self.pdf_square(s)
+        };
+        (d, pdf / SQUARE_TO_SPHERE_JACOBIAN, s)
     }
 
     /// The tree for the next training iteration, with no energy: every quadrant holding more
@@ -512,6 +570,31 @@ impl DQuadTree {
             }
         }
         out
+    }
+}
+
+/// The leaf cell a sample was drawn in ([`DQuadTree::sample_cell`]).
+#[derive(Debug, Clone, Copy)]
+struct Cell {
+    /// Per axis, the halves the walk took, the first in the highest of `depth` bits.
+    bits: [u64; 2],
+    depth: u32,
+    /// The density of [`DQuadTree::pdf_square`] in the cell.
+    pdf: f32,
+}
+
+impl Cell {
+    /// Whether the point `u` of the square is in the cell: the highest `depth` bits of its
+    /// fixed-point coordinates ([`fixed_point`]), the quadrants `pdf_square` would walk,
+    /// are the cell's.
+    #[inline]
+    fn contains(&self, u: Vec2) -> bool {
+        if self.depth == 0 || self.depth > 63 {
+            return false;
+        }
+        let c = fixed_point(u);
+        let shift = 64 - self.depth;
+        (c[0] >> shift) == self.bits[0] && (c[1] >> shift) == self.bits[1]
     }
 }
 

@@ -4,7 +4,6 @@
 use super::filter::{jitter, record_key, GuidingFilter};
 use super::quadtree::DQuadTree;
 use super::records::GuidingRecords;
-use crate::sampling::unit::clamp_unit;
 use glam::{Vec2, Vec3};
 
 /// A node of the spatial tree: an inner node (the children's indices, the split axis is the
@@ -35,6 +34,9 @@ const AXIS_BITS: u32 = MAX_SPATIAL_DEPTH / 3;
 /// The levels per axis that [`SdTree::top`] resolves at once: a grid of `2^(3·TOP_BITS)`
 /// cells, each with the node the descent reaches after `3·TOP_BITS` levels.
 const TOP_BITS: u32 = 4;
+
+/// The flag of an entry of [`SdTree::top`] that is a leaf's index rather than a node's.
+const TOP_LEAF: u32 = 1 << 31;
 
 /// An SD-tree (Müller, Gross & Novák 2017, "Practical Path Guiding for Efficient
 /// Light-Transport Simulation", CGF 36(4)): a binary tree over space whose leaves hold
@@ -79,9 +81,10 @@ pub struct SdTree {
     /// The scene's bounds, inside the cube: where the spatial filter clamps its points.
     scene: [Vec3; 2],
     /// Per cell of a grid of `2^TOP_BITS` cells per axis, the node that the descent of
-    /// [`SdTree::leaf_index`] reaches after `3·TOP_BITS` levels (or the leaf it reaches
-    /// before), so that a lookup skips those levels. Derived from `nodes`
-    /// ([`SdTree::index_top`]) whenever their structure changes.
+    /// [`SdTree::leaf_index`] reaches after `3·TOP_BITS` levels, or the index of the leaf it
+    /// reaches before (or there) with [`TOP_LEAF`] set, so that a lookup skips those levels
+    /// (and, most often, the nodes). Derived from `nodes` ([`SdTree::index_top`]) whenever
+    /// their structure changes.
     top: Vec<u32>,
 }
 
@@ -126,7 +129,11 @@ impl SdTree {
         self.top = (0..n * n * n)
             .map(|i| {
                 let c = [i / (n * n), (i / n) % n, i % n].map(|v| v << shift);
-                self.descend(c, 0, 0, 3 * TOP_BITS).0 as u32
+                let node = self.descend(c, 0, 0, 3 * TOP_BITS).0;
+                match self.nodes[node] {
+                    SNode::Leaf(l) => l | TOP_LEAF,
+                    SNode::Inner(_) => node as u32,
+                }
             })
             .collect();
     }
@@ -197,13 +204,18 @@ impl SdTree {
     #[inline]
     fn leaf_index(&self, p: Vec3) -> usize {
         let scale = (1u32 << AXIS_BITS) as f32;
-        let cell = |v: f32| (clamp_unit(v) * scale).min(scale - 1.0) as u32;
+        // As `(clamp_unit(v) * scale).min(scale - 1.0)` (the scaling is exact, and `max`
+        // takes a NaN to 0), with a conversion that needs no saturation.
+        let cell = |v: f32| (v * scale).max(0.0).min(scale - 1.0) as i32 as u32;
         let x = (p - self.min) / self.size;
         let c = [cell(x.x), cell(x.y), cell(x.z)];
         let shift = AXIS_BITS - TOP_BITS;
         let g = (((c[0] >> shift) << TOP_BITS | (c[1] >> shift)) << TOP_BITS) | (c[2] >> shift);
-        let n = self.top[g as usize] as usize;
-        let (n, _) = self.descend(c, n, 3 * TOP_BITS, MAX_SPATIAL_DEPTH);
+        let t = self.top[g as usize];
+        if t & TOP_LEAF != 0 {
+            return (t & !TOP_LEAF) as usize;
+        }
+        let (n, _) = self.descend(c, t as usize, 3 * TOP_BITS, MAX_SPATIAL_DEPTH);
         match self.nodes[n] {
             SNode::Leaf(l) => l as usize,
             // Unreachable: `refined` splits no deeper than `MAX_SPATIAL_DEPTH`.
@@ -372,6 +384,7 @@ impl SdTree {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::unit::clamp_unit;
 
     /// The grid of the first levels gives the leaf of the full descent from the root, for
     /// a tree split unevenly (deep around a cluster of records, shallow elsewhere).
