@@ -5,6 +5,14 @@ use super::map::{sphere_to_square, square_to_sphere, SQUARE_TO_SPHERE_JACOBIAN};
 use glam::{Vec2, Vec3};
 use std::sync::OnceLock;
 
+mod selection;
+mod splat;
+mod walk;
+
+use walk::{fixed_point, next_quadrant, pick, quadrant, Cell};
+
+use selection::SELECTION_CANDIDATES;
+
 /// The largest `f64` below 1: where the rescaled sample values are clamped.
 const ONE_MINUS_EPS_F64: f64 = 1.0 - f64::EPSILON / 2.0;
 
@@ -82,50 +90,6 @@ fn shares_of(n: &Node) -> (Shares, Split) {
     (sh, split)
 }
 
-/// Where the quadrant's node, and in it the point `x` (rescaled to the quadrant), lies.
-#[inline]
-fn quadrant(x: [f64; 2]) -> (usize, [f64; 2]) {
-    let mut q = 0;
-    let mut y = [0.0; 2];
-    for k in 0..2 {
-        if x[k] < 0.5 {
-            y[k] = x[k] * 2.0;
-        } else {
-            y[k] = x[k] * 2.0 - 1.0;
-            q |= 1 << k;
-        }
-        y[k] = y[k].clamp(0.0, ONE_MINUS_EPS_F64);
-    }
-    (q, y)
-}
-
-/// The point `u` of the unit square as fixed-point coordinates per axis, clamped into the
-/// square (a NaN coordinate puts the point at the centre), whose bits from the highest are
-/// the halves a descent takes: the same halves as halving the coordinates in `f64`
-/// ([`quadrant`]), which is exact for the `f32` coordinates down to 63 levels. (`⌊u·2⁶³⌋`,
-/// shifted up by one: the conversion to a signed integer is a few instructions fewer than to
-/// an unsigned one; the lowest bit, a 64th level, is 0.)
-#[inline]
-fn fixed_point(u: Vec2) -> [u64; 2] {
-    if u.is_nan() {
-        return [1 << 63; 2];
-    }
-    // `as` saturates: below 0 gives 0, 1 and above all ones but the lowest bit (the last
-    // cell, as the clamp to just below 1 of the `f64` descent).
-    let fix = |v: f32| ((f64::from(v) * 9_223_372_036_854_775_808.0) as i64 as u64) << 1;
-    [fix(u.x), fix(u.y)]
-}
-
-/// The quadrant of the fixed-point point `c` ([`fixed_point`]) in its current node, and `c`
-/// rescaled to that quadrant: the top bit of each coordinate, shifted out.
-#[inline(always)]
-fn next_quadrant(c: &mut [u64; 2]) -> usize {
-    let q = (c[0] >> 63) | ((c[1] >> 63) << 1);
-    c[0] <<= 1;
-    c[1] <<= 1;
-    q as usize
-}
-
 /// A directional quadtree (Müller, Gross & Novák 2017, "Practical Path Guiding for Efficient
 /// Light-Transport Simulation", CGF 36(4)): a density on the sphere, piecewise constant over
 /// the cells of an adaptive quadtree on the equal-area square
@@ -158,14 +122,6 @@ pub struct DQuadTree {
     /// What lookups derive from the above, made at the first lookup after the last record.
     derived: OnceLock<Derived>,
 }
-
-/// The candidates for the probability of sampling the guide that a tree judges
-/// ([`DQuadTree::selection_probability`]).
-pub(crate) const SELECTION_CANDIDATES: [f32; 10] =
-    [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9];
-
-/// The fewest selection records from which a tree gives a selection probability.
-const MIN_SELECTION_RECORDS: u64 = 64;
 
 /// See [`DQuadTree::derived`].
 #[derive(Debug, Clone)]
@@ -228,69 +184,6 @@ impl DQuadTree {
         &self.derived().shares
     }
 
-    /// The probability with which the guided path tracer should sample this tree rather
-    /// than the BSDF, learned from what it saw while the tree trained: the candidate of
-    /// 0, 0.1, …, 0.9 with the least estimated second moment of the one-sample estimator
-    /// `F/q_α`, `q_α = α·p_guide + (1 − α)·p_bsdf` (the smallest on ties). The estimate is
-    /// `Σ F²/(q·q_α)` over the records, each sampled with the mixture `q` in use then
-    /// (importance sampling of `∫F²/q_α`). `None` before 64 records, or where the tree
-    /// did not learn ([`SdTree::learn_selection`](super::SdTree::learn_selection)).
-    ///
-    /// The estimate judges the candidates with the density of the guide that sampled the
-    /// records, older than this tree; the guide improves as it trains, so the choice errs
-    /// towards the BSDF.
-    pub fn selection_probability(&self) -> Option<f32> {
-        self.derived().selection
-    }
-
-    fn best_selection(&self) -> Option<f32> {
-        if self.selection_records < MIN_SELECTION_RECORDS {
-            return None;
-        }
-        let mut best: Option<(f64, f32)> = None;
-        for (m, a) in self.selection.iter().zip(SELECTION_CANDIDATES) {
-            if m.is_finite() && best.is_none_or(|(b, _)| *m < b) {
-                best = Some((*m, a));
-            }
-        }
-        best.map(|(_, a)| a)
-    }
-
-    /// Adds one selection record: a direction sampled with the mixture density `pdf`, where
-    /// the guide's density is `p_guide`, the BSDF's `p_bsdf` and the integrand
-    /// `F = f·|cos θ|·L` is `integrand`. A candidate under which the direction has zero
-    /// density while `F > 0` gets an infinite second moment. Records with a density that
-    /// is not positive and finite, or an integrand that is negative or not finite, are
-    /// ignored.
-    pub(crate) fn record_selection(&mut self, integrand: f32, p_guide: f32, p_bsdf: f32, pdf: f32) {
-        let ok = |x: f32| x >= 0.0 && x.is_finite();
-        if !(pdf > 0.0 && pdf.is_finite() && ok(integrand) && ok(p_guide) && ok(p_bsdf)) {
-            return;
-        }
-        self.derived.take();
-        let f2 = f64::from(integrand) * f64::from(integrand);
-        if p_bsdf > 0.0 {
-            // Every candidate's density is positive (`1 − α ≥ 0.1`): the same sums without a
-            // branch per candidate, which the compiler vectorises.
-            let (pg, pb, pdf) = (f64::from(p_guide), f64::from(p_bsdf), f64::from(pdf));
-            for (m, a) in self.selection.iter_mut().zip(SELECTION_CANDIDATES) {
-                let q = f64::from(a) * pg + f64::from(1.0 - a) * pb;
-                *m += f2 / (pdf * q);
-            }
-            self.selection_records += 1;
-            return;
-        }
-        for (m, a) in self.selection.iter_mut().zip(SELECTION_CANDIDATES) {
-            let q = f64::from(a) * f64::from(p_guide) + f64::from(1.0 - a) * f64::from(p_bsdf);
-            if q > 0.0 {
-                *m += f2 / (f64::from(pdf) * q);
-            } else if f2 > 0.0 {
-                *m = f64::INFINITY;
-            }
-        }
-        self.selection_records += 1;
-    }
-
     /// The number of nodes (each has four quadrants).
     pub fn node_count(&self) -> usize {
         self.nodes.len()
@@ -343,81 +236,6 @@ impl DQuadTree {
             match node.child[q] {
                 0 => break,
                 c => n = c as usize,
-            }
-        }
-    }
-
-    /// The side of the leaf cell of the square containing `u` (`2^-depth`).
-    fn leaf_side(&self, u: Vec2) -> f64 {
-        let mut c = fixed_point(u);
-        let (mut n, mut side) = (0usize, 0.5f64);
-        loop {
-            let q = next_quadrant(&mut c);
-            match self.nodes[n].child[q] {
-                0 => return side,
-                c => (n, side) = (c as usize, side * 0.5),
-            }
-        }
-    }
-
-    /// [`DQuadTree::record_square`] through the directional box filter (Müller 2019,
-    /// "Practical Path Guiding in Production"): `value` is spread over the
-    /// square of the side of the leaf cell containing `u`, centred on `u`, each cell taking
-    /// the share of it that it overlaps. The box is shifted inside the square along
-    /// `cos θ` (x; the poles are its edges) and wraps around along `φ` (y, periodic), so
-    /// the whole `value` is recorded. A value that is negative, NaN or infinite is ignored.
-    pub(crate) fn record_square_filtered(&mut self, u: Vec2, value: f64) {
-        if !(value >= 0.0 && value.is_finite()) {
-            return;
-        }
-        let u = [
-            f64::from(u.x).clamp(0.0, ONE_MINUS_EPS_F64),
-            f64::from(u.y).clamp(0.0, ONE_MINUS_EPS_F64),
-        ];
-        if u.iter().any(|v| v.is_nan()) {
-            return;
-        }
-        let side = self.leaf_side(Vec2::new(u[0] as f32, u[1] as f32));
-        let density = value / (side * side);
-        let x0 = (u[0] - 0.5 * side).clamp(0.0, 1.0 - side);
-        let y0 = u[1] - 0.5 * side;
-        let x = [x0, x0 + side];
-        if y0 < 0.0 {
-            self.splat([x, [y0 + 1.0, 1.0]], density);
-            self.splat([x, [0.0, y0 + side]], density);
-        } else if y0 + side > 1.0 {
-            self.splat([x, [y0, 1.0]], density);
-            self.splat([x, [0.0, y0 + side - 1.0]], density);
-        } else {
-            self.splat([x, [y0, y0 + side]], density);
-        }
-    }
-
-    /// Adds `density` times the area of overlap with the box `[x0, x1] × [y0, y1]` (inside
-    /// the unit square) to every quadrant that overlaps it, at every level.
-    fn splat(&mut self, b: [[f64; 2]; 2], density: f64) {
-        self.derived.take();
-        self.splat_node(0, [0.0; 2], 1.0, &b, density);
-    }
-
-    /// [`DQuadTree::splat`] below node `n`, whose square has the lower corner `origin` and
-    /// the side `side` (recursive: at most 20 levels).
-    fn splat_node(&mut self, n: usize, origin: [f64; 2], side: f64, b: &[[f64; 2]; 2], d: f64) {
-        let h = 0.5 * side;
-        for q in 0..4 {
-            let o = [
-                origin[0] + (q & 1) as f64 * h,
-                origin[1] + (q >> 1) as f64 * h,
-            ];
-            let w = |k: usize| (b[k][1].min(o[k] + h) - b[k][0].max(o[k])).max(0.0);
-            let area = w(0) * w(1);
-            if area > 0.0 {
-                let node = &mut self.nodes[n];
-                node.sum[q] += d * area;
-                let c = node.child[q];
-                if c != 0 {
-                    self.splat_node(c as usize, o, h, b, d);
-                }
             }
         }
     }
@@ -571,49 +389,6 @@ impl DQuadTree {
         }
         out
     }
-}
-
-/// The leaf cell a sample was drawn in ([`DQuadTree::sample_cell`]).
-#[derive(Debug, Clone, Copy)]
-struct Cell {
-    /// Per axis, the halves the walk took, the first in the highest of `depth` bits.
-    bits: [u64; 2],
-    depth: u32,
-    /// The density of [`DQuadTree::pdf_square`] in the cell.
-    pdf: f32,
-}
-
-impl Cell {
-    /// Whether the point `u` of the square is in the cell: the highest `depth` bits of its
-    /// fixed-point coordinates ([`fixed_point`]), the quadrants `pdf_square` would walk,
-    /// are the cell's.
-    #[inline]
-    fn contains(&self, u: Vec2) -> bool {
-        if self.depth == 0 || self.depth > 63 {
-            return false;
-        }
-        let c = fixed_point(u);
-        let shift = 64 - self.depth;
-        (c[0] >> shift) == self.bits[0] && (c[1] >> shift) == self.bits[1]
-    }
-}
-
-/// Chooses the lower half with probability `p` and rescales `x` to the chosen half: 0 when
-/// `x < p`, else 1.
-#[inline]
-fn pick(x: &mut f64, p: f64) -> usize {
-    let b = if *x < p {
-        *x /= p;
-        0
-    } else {
-        *x = (*x - p) / (1.0 - p);
-        1
-    };
-    *x = x.clamp(0.0, ONE_MINUS_EPS_F64);
-    if x.is_nan() {
-        *x = 0.5;
-    }
-    b
 }
 
 /// The tree as a [`Warp`](crate::sampling::warp::Warp) to the sphere (density per
