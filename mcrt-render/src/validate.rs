@@ -197,19 +197,83 @@ pub fn work(pixels: u64, spp: u32, i: &IntegratorDesc) -> Result<(), Invalid> {
     Ok(())
 }
 
-/// A material: what its types do not hold already (its colours are [`Colour`]s and its
-/// indices [`Ior`]s, checked when they were made): a plastic's internal scattering, a
-/// blend's weight, a mask's opacity, a principled material's parameters, and where textures
+/// A material that has passed its rules and those of every material nested in it: one
+/// the loader made ([`bsdf_element`]), which a shape takes without checking it again
+/// ([`shape_with`]).
+pub(crate) struct CheckedBsdf(BsdfDesc);
+
+impl CheckedBsdf {
+    /// The material, to nest it in another or to put it in a shape.
+    pub(crate) fn into_inner(self) -> BsdfDesc {
+        self.0
+    }
+}
+
+impl std::ops::Deref for CheckedBsdf {
+    type Target = BsdfDesc;
+    fn deref(&self) -> &BsdfDesc {
+        &self.0
+    }
+}
+
+/// The material of one element of a scene file: `b`'s own rules ([`bsdf_own`]) and, when
+/// `b` is a texture list, those of the material it wraps (both made from the one element),
+/// but not those of the materials nested in it: each of those must be a [`CheckedBsdf`]
+/// already (the loader reads them first, each at its own element), so every material is
+/// checked once.
+pub(crate) fn bsdf_element(b: BsdfDesc) -> Result<CheckedBsdf, Invalid> {
+    bsdf_own(&b)?;
+    if let BsdfDesc::Textured { inner, .. } = &b {
+        bsdf_own(inner)?;
+    }
+    Ok(CheckedBsdf(b))
+}
+
+/// A material and every material nested in it, each by [`bsdf_own`], outer before inner
+/// and in their written order (a description built in code; the loader checks each
+/// material at its element, [`bsdf_element`]).
+fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
+    bsdf_own(b)?;
+    nested(b).into_iter().flatten().try_for_each(bsdf)
+}
+
+/// The materials nested directly in `b`, in their written order (a material not listed
+/// nests none; [`bsdf_own`] lists every kind).
+fn nested(b: &BsdfDesc) -> [Option<&BsdfDesc>; 2] {
+    match b {
+        BsdfDesc::Blend { first, second, .. } => [Some(first), Some(second)],
+        BsdfDesc::Mask { inner, .. }
+        | BsdfDesc::TwoSided(inner)
+        | BsdfDesc::Perturbed { inner, .. }
+        | BsdfDesc::Textured { inner, .. } => [Some(inner), None],
+        _ => [None, None],
+    }
+}
+
+#[cfg(test)]
+thread_local! {
+    /// How many materials [`bsdf_own`] has checked on this thread: the test that loading
+    /// a scene checks each material once.
+    pub(crate) static BSDF_CHECKS_RUN: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// A material's own rules, not those of the materials nested in it: what its types do not
+/// hold already (its colours are [`Colour`]s and its indices [`Ior`]s, checked when they
+/// were made): a plastic's internal scattering, a blend's weight, a mask's opacity, a
+/// principled material's parameters, a normal or bump map's texture, and where textures
 /// are attached.
-pub(crate) fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
+fn bsdf_own(b: &BsdfDesc) -> Result<(), Invalid> {
     tally();
+    #[cfg(test)]
+    BSDF_CHECKS_RUN.with(|c| c.set(c.get() + 1));
     match b {
         BsdfDesc::Diffuse { .. }
         | BsdfDesc::Conductor { .. }
         | BsdfDesc::RoughConductor { .. }
         | BsdfDesc::Dielectric { .. }
         | BsdfDesc::ThinDielectric { .. }
-        | BsdfDesc::RoughDielectric { .. } => Ok(()),
+        | BsdfDesc::RoughDielectric { .. }
+        | BsdfDesc::TwoSided(_) => Ok(()),
         BsdfDesc::Plastic {
             int_ior,
             ext_ior,
@@ -225,27 +289,9 @@ pub(crate) fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
             ..
         } => plastic(*int_ior, *ext_ior, *diffuse_reflectance, *nonlinear),
         BsdfDesc::Principled(params) => principled(params),
-        BsdfDesc::Blend {
-            weight,
-            first,
-            second,
-        } => {
-            unit_interval("weight", *weight)?;
-            bsdf(first)?;
-            bsdf(second)
-        }
-        BsdfDesc::Mask { opacity, inner } => {
-            unit_interval("opacity", *opacity)?;
-            bsdf(inner)
-        }
-        BsdfDesc::TwoSided(inner) => bsdf(inner),
-        BsdfDesc::Perturbed {
-            perturbation,
-            inner,
-        } => {
-            perturbation_values(perturbation)?;
-            bsdf(inner)
-        }
+        BsdfDesc::Blend { weight, .. } => unit_interval("weight", *weight),
+        BsdfDesc::Mask { opacity, .. } => unit_interval("opacity", *opacity),
+        BsdfDesc::Perturbed { perturbation, .. } => perturbation_values(perturbation),
         BsdfDesc::Textured { inner, textures } => {
             if matches!(**inner, BsdfDesc::TwoSided(_) | BsdfDesc::Textured { .. }) {
                 return Err(invalid(
@@ -262,7 +308,7 @@ pub(crate) fn bsdf(b: &BsdfDesc) -> Result<(), Invalid> {
                 }
                 texture_values(param.name(), texture)?;
             }
-            bsdf(inner)
+            Ok(())
         }
     }
 }
@@ -467,8 +513,24 @@ pub(crate) fn is_similarity(m: &Mat4) -> bool {
             .all(|v| v.abs() < 1e-4 * s)
 }
 
-/// A shape: its geometry, transform, material and area emitter.
+/// A shape: its own rules ([`shape_own`]) and its material.
 fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
+    shape_own(s)?;
+    bsdf(&s.bsdf)
+}
+
+/// The shape `s` with the material `bsdf`, checked already (the loader's, at its element):
+/// the shape's own rules only, so the material is not checked twice.
+pub(crate) fn shape_with(
+    mut s: ShapeDesc,
+    bsdf: CheckedBsdf,
+) -> Result<crate::description::Checked<ShapeDesc>, Invalid> {
+    s.bsdf = bsdf.into_inner();
+    crate::description::Checked::assembled(s, shape_own)
+}
+
+/// A shape's geometry, transform and area emitter, not its material.
+fn shape_own(s: &ShapeDesc) -> Result<(), Invalid> {
     tally();
     if let ShapeKind::Sphere { center, radius } = s.kind {
         if !center.is_finite() {
@@ -506,7 +568,7 @@ fn shape(s: &ShapeDesc) -> Result<(), Invalid> {
     }
     // The area emitter's radiance is a [`Colour`]; its power was checked by the loader (a
     // description built in code meets `Lights::new`'s check).
-    bsdf(&s.bsdf)
+    Ok(())
 }
 
 /// The rules of a shape group for a shape in it (a checked shape, so its own checks have
@@ -621,5 +683,53 @@ mod tests {
             .unwrap_err()
             .message
             .contains("projective"));
+    }
+
+    /// The materials in `b`: it and every one nested in it.
+    fn materials(b: &BsdfDesc) -> usize {
+        1 + nested(b)
+            .into_iter()
+            .flatten()
+            .map(materials)
+            .sum::<usize>()
+    }
+
+    #[test]
+    fn loading_a_scene_checks_each_material_once() {
+        let xml = r#"<scene version="3.0.0">
+            <shape type="cube"><bsdf type="diffuse"/></shape>
+            <shape type="sphere"><bsdf type="blendbsdf"><float name="weight" value="0.3"/>
+                <bsdf type="roughplastic"/>
+                <bsdf type="twosided"><bsdf type="conductor"/></bsdf>
+            </bsdf></shape>
+            <shape type="rectangle"><bsdf type="mask"><bsdf type="dielectric"/></bsdf></shape>
+            <shape type="disk"><bsdf type="diffuse">
+                <texture type="checkerboard" name="reflectance"/>
+            </bsdf></shape>
+            <shape type="cube"/>
+        </scene>"#;
+        let count = || BSDF_CHECKS_RUN.with(|c| c.get());
+        let before = count();
+        let d = crate::loader::parse_scene(xml, None, &[]).unwrap();
+        let checks = count() - before;
+        let made: usize = d.shapes.iter().map(|s| materials(&s.bsdf)).sum();
+        // diffuse 1, blend of roughplastic and twosided conductor 4, mask of dielectric 2,
+        // textured diffuse 2, the default diffuse 1.
+        assert_eq!(made, 10);
+        assert_eq!(checks, made);
+    }
+
+    #[test]
+    fn a_shape_made_in_code_has_its_nested_materials_checked() {
+        let mut s = ShapeDesc::new(ShapeKind::Cube);
+        s.bsdf = BsdfDesc::Blend {
+            weight: 0.5,
+            first: Box::default(),
+            second: Box::new(BsdfDesc::Mask {
+                opacity: 2.0,
+                inner: Box::default(),
+            }),
+        };
+        assert_eq!(Checked::new(s).unwrap_err().param, "opacity");
     }
 }

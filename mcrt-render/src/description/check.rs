@@ -68,6 +68,18 @@ impl<T: Check> Checked<T> {
 }
 
 impl<T> Checked<T> {
+    /// `value` if it passes `check`, which stands for `T`'s [`Check`]: the caller's
+    /// promise, kept inside this crate, that `check` and the checks the parts of `value`
+    /// passed when they were made cover it (a shape and the material the loader checked
+    /// at its element, `validate::shape_with`).
+    pub(crate) fn assembled(
+        value: T,
+        check: impl FnOnce(&T) -> Result<(), Invalid>,
+    ) -> Result<Self, Invalid> {
+        check(&value)?;
+        Ok(Self(value))
+    }
+
     /// The value, to change it (it must be checked again to go back into a description).
     pub fn into_inner(self) -> T {
         self.0

@@ -19,11 +19,11 @@ use crate::param_defs::bsdf::{
 use crate::param_defs::bsdf_composite::{OPACITY, WEIGHT};
 use crate::param_defs::IorParam;
 use crate::scene_error::SceneErrorKind;
-use crate::validate;
+use crate::validate::{self, CheckedBsdf};
 use glam::Vec3;
 
 /// A `<bsdf>` element, or a `<ref>` whose id names one.
-pub(crate) fn read_bsdf_or_ref<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<BsdfDesc> {
+pub(crate) fn read_bsdf_or_ref<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<CheckedBsdf> {
     read_bsdf(ctx, resolve(ctx, e)?)
 }
 
@@ -55,13 +55,14 @@ fn resolve<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<&'a Elem> {
 /// so a cycle of references is an error, not endless recursion).
 const MAX_NESTING: u32 = 16;
 
-/// Reads a `<bsdf>` element.
-pub(crate) fn read_bsdf(ctx: &Ctx, e: &Elem) -> Res<BsdfDesc> {
+/// Reads a `<bsdf>` element, each material in it checked once, at its element
+/// ([`validate::bsdf_element`]).
+pub(crate) fn read_bsdf(ctx: &Ctx, e: &Elem) -> Res<CheckedBsdf> {
     read_nested(ctx, e, 0)
 }
 
 /// Reads a `<bsdf>` element nested `depth` levels deep in other BSDFs.
-fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
+fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<CheckedBsdf> {
     if depth > MAX_NESTING {
         return Err(ctx.err(
             e,
@@ -103,8 +104,8 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             let [first, second] = nested::<2>(ctx, e, p, depth)?;
             let desc = BsdfDesc::Blend {
                 weight,
-                first: Box::new(first),
-                second: Box::new(second),
+                first: Box::new(first.into_inner()),
+                second: Box::new(second.into_inner()),
             };
             return checked(ctx, e, texture::attach(ctx, e, ty, desc, textures)?);
         }
@@ -114,7 +115,7 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
             let [inner] = nested::<1>(ctx, e, p, depth)?;
             let desc = BsdfDesc::Mask {
                 opacity,
-                inner: Box::new(inner),
+                inner: Box::new(inner.into_inner()),
             };
             return checked(ctx, e, texture::attach(ctx, e, ty, desc, textures)?);
         }
@@ -172,15 +173,16 @@ fn read_nested(ctx: &Ctx, e: &Elem, depth: u32) -> Res<BsdfDesc> {
         other => return Err(unknown_plugin(ctx, e, other)),
     };
     let desc = texture::attach(ctx, e, ty, desc, textures)?;
-    validate::bsdf(&desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    let desc = validate::bsdf_element(desc).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(desc)
 }
 
-/// A blend or mask checked by [`validate::bsdf`], the error at the element.
-fn checked(ctx: &Ctx, e: &Elem, desc: BsdfDesc) -> Res<BsdfDesc> {
-    validate::bsdf(&desc).map_err(|i| ctx.err(e, SceneErrorKind::InvalidValue(i.to_string())))?;
-    Ok(desc)
+/// A blend, mask or twosided checked by [`validate::bsdf_element`], the error at the
+/// element.
+fn checked(ctx: &Ctx, e: &Elem, desc: BsdfDesc) -> Res<CheckedBsdf> {
+    validate::bsdf_element(desc)
+        .map_err(|i| ctx.err(e, SceneErrorKind::InvalidValue(i.to_string())))
 }
 
 /// Exactly `N` nested `<bsdf>` or `<ref>` elements of a plugin with parameters `p` (whose
@@ -190,7 +192,7 @@ pub(super) fn nested<'a, const N: usize>(
     e: &'a Elem,
     p: Props<'_, 'a>,
     depth: u32,
-) -> Res<[BsdfDesc; N]> {
+) -> Res<[CheckedBsdf; N]> {
     let objects: Vec<&Elem> = p.objects.clone();
     p.finish()?;
     let ty = e.attr("type").unwrap_or("");
@@ -225,7 +227,7 @@ pub(super) fn nested<'a, const N: usize>(
 
 /// `twosided`: exactly one nested BSDF, which must not itself be two-sided nor let light
 /// through (Mitsuba 3 refuses both).
-fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>, depth: u32) -> Res<BsdfDesc> {
+fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>, depth: u32) -> Res<CheckedBsdf> {
     if let Some(inner) = p.objects.iter().find(|o| o.tag == "bsdf" || o.tag == "ref") {
         let target = resolve(ctx, inner)?;
         if target.attr("type") == Some("twosided") {
@@ -246,7 +248,7 @@ fn twosided<'a>(ctx: &Ctx<'a>, e: &'a Elem, p: Props<'_, 'a>, depth: u32) -> Res
             ),
         ));
     }
-    Ok(BsdfDesc::TwoSided(Box::new(inner)))
+    checked(ctx, e, BsdfDesc::TwoSided(Box::new(inner.into_inner())))
 }
 
 /// `distribution` (beckmann, the default, or ggx), the roughness of [`roughness`] (or of

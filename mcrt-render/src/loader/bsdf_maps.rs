@@ -12,7 +12,7 @@ use crate::param_defs::bsdf_maps::{
     BUMP_SCALE, FLIP_INVALID_NORMALS, NORMALMAP_TEXTURE, USE_SHADOWING_FUNCTION,
 };
 use crate::scene_error::SceneErrorKind;
-use crate::validate;
+use crate::validate::{self, CheckedBsdf};
 
 /// Reads a `normalmap` or `bumpmap` element `e` (of type `ty`) with parameters `p`, nested
 /// `depth` levels deep in other BSDFs.
@@ -22,7 +22,7 @@ pub(super) fn read<'a>(
     ty: &str,
     mut p: Props<'_, 'a>,
     depth: u32,
-) -> Res<BsdfDesc> {
+) -> Res<CheckedBsdf> {
     // The nested textures (as written, and the `<texture>` each is or names); the rest must
     // be the one BSDF.
     let (textures, rest): (Vec<&Elem>, Vec<&Elem>) = p
@@ -65,9 +65,9 @@ pub(super) fn read<'a>(
             flip_invalid_normals,
             use_shadowing_function,
         },
-        inner: Box::new(inner),
+        inner: Box::new(inner.into_inner()),
     };
-    validate::bsdf(&desc).map_err(|i| {
+    validate::bsdf_element(desc).map_err(|i| {
         // The texture's own faults at the texture, the rest at the element.
         let at = if matches!(i.param, "normalmap" | "texture") {
             texture_elem
@@ -75,8 +75,7 @@ pub(super) fn read<'a>(
             e
         };
         ctx.err(at, SceneErrorKind::InvalidValue(i.to_string()))
-    })?;
-    Ok(desc)
+    })
 }
 
 /// The texture a nested object is or names.

@@ -10,6 +10,7 @@ use super::{plugin_type, unknown_plugin};
 use crate::description::{BsdfDesc, Checked, Colour, ShapeDesc, ShapeKind};
 use crate::param_defs::shape_plugins as defs;
 use crate::scene_error::SceneErrorKind;
+use crate::validate;
 use glam::Vec3;
 
 /// The parameters of a shape read from a mesh file; the file must exist and be readable
@@ -100,15 +101,20 @@ pub(crate) fn read_shape<'a>(ctx: &Ctx<'a>, e: &'a Elem) -> Res<Checked<ShapeDes
         }
     }
     // As in Mitsuba 3: a shape without a BSDF is diffuse 0.5, but an emitting one is black.
-    shape.bsdf = bsdf.unwrap_or_else(|| match emitter {
-        Some(_) => BsdfDesc::Diffuse {
-            reflectance: Colour::BLACK,
-        },
-        None => BsdfDesc::default(),
-    });
+    let bsdf = match bsdf {
+        Some(b) => b,
+        None => validate::bsdf_element(match emitter {
+            Some(_) => BsdfDesc::Diffuse {
+                reflectance: Colour::BLACK,
+            },
+            None => BsdfDesc::default(),
+        })
+        .map_err(|i| p.invalid(i.param, e, &i.message))?,
+    };
     shape.emitter = emitter;
     shape.emission_texture = emission_texture;
-    let shape = Checked::new(shape).map_err(|i| p.invalid(i.param, e, &i.message))?;
+    // The material was checked where it was read: the shape's own rules only.
+    let shape = validate::shape_with(shape, bsdf).map_err(|i| p.invalid(i.param, e, &i.message))?;
     p.finish()?;
     Ok(shape)
 }

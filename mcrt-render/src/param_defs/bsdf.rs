@@ -3,7 +3,8 @@
 //! `roughplastic`.
 
 use super::{
-    BoolParam, ChoiceParam, ColourParam, FloatParam, IorParam, OtherParam, ParamDef, PluginParams,
+    other, BoolParam, ChoiceParam, ColourParam, FloatParam, IorParam, OtherParam, ParamDef,
+    PluginParams,
 };
 use crate::description::Roughness;
 
@@ -65,10 +66,6 @@ pub(crate) const SAMPLE_VISIBLE: BoolParam = BoolParam {
     doc: "draw only the normals visible from the incident direction (less noise); \
           `false` draws from the whole distribution. The expected value is the same",
 };
-
-const fn other(name: &'static str, kind: &'static str, doc: &'static str) -> OtherParam {
-    OtherParam { name, kind, doc }
-}
 
 /// `material` of the conductors: a named conductor, or `none`.
 pub(crate) const MATERIAL: OtherParam = other("material", "string", "a named conductor, or `none`");

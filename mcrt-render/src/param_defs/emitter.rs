@@ -1,11 +1,7 @@
 //! The parameters of the emitters `area`, `point`, `spot`, `projector`, `directional`,
 //! `constant` and `envmap` (read by `loader/emitter.rs`).
 
-use super::{ChoiceParam, FloatParam, OtherParam, ParamDef, PluginParams};
-
-const fn other(name: &'static str, kind: &'static str, doc: &'static str) -> OtherParam {
-    OtherParam { name, kind, doc }
-}
+use super::{other, ChoiceParam, FloatParam, OtherParam, ParamDef, PluginParams};
 
 /// A finite, non-negative float (`message` otherwise).
 fn non_negative(v: f32, message: &str) -> Result<f32, String> {

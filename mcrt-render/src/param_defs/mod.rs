@@ -129,6 +129,11 @@ pub(crate) struct OtherParam {
     pub doc: &'static str,
 }
 
+/// An [`OtherParam`] of `name`, of type `kind` (as the docs write it), meaning `doc`.
+pub(crate) const fn other(name: &'static str, kind: &'static str, doc: &'static str) -> OtherParam {
+    OtherParam { name, kind, doc }
+}
+
 /// Any parameter definition, for a plugin's table.
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum ParamDef {

@@ -1,12 +1,8 @@
 //! The parameters of the sensors `perspective`, `thinlens` and `orthographic` (read by
 //! `loader/sensor.rs`).
 
-use super::{FloatParam, OtherParam, ParamDef, PluginParams};
+use super::{other, FloatParam, OtherParam, ParamDef, PluginParams};
 use crate::description::ThinLensDesc;
-
-const fn other(name: &'static str, kind: &'static str, doc: &'static str) -> OtherParam {
-    OtherParam { name, kind, doc }
-}
 
 /// `fov`, degrees.
 pub(crate) const FOV: FloatParam<f32> = FloatParam {

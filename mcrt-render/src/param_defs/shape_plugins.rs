@@ -2,11 +2,7 @@
 //! mesh files `obj`, `ply` and `serialized` (read by `loader/shape.rs`; `shapegroup` and
 //! `instance` are in `shape.rs`).
 
-use super::{BoolParam, FloatParam, IntParam, OtherParam, ParamDef, PluginParams};
-
-const fn other(name: &'static str, kind: &'static str, doc: &'static str) -> OtherParam {
-    OtherParam { name, kind, doc }
-}
+use super::{other, BoolParam, FloatParam, IntParam, OtherParam, ParamDef, PluginParams};
 
 /// `to_world` of every shape.
 pub(crate) const TO_WORLD: OtherParam = other(

@@ -1,11 +1,7 @@
 //! The parameters of the textures `bitmap` and `checkerboard` (read by
 //! `loader/texture.rs`).
 
-use super::{BoolParam, ColourParam, OtherParam, ParamDef, PluginParams};
-
-const fn other(name: &'static str, kind: &'static str, doc: &'static str) -> OtherParam {
-    OtherParam { name, kind, doc }
-}
+use super::{other, BoolParam, ColourParam, OtherParam, ParamDef, PluginParams};
 
 /// `to_uv` of every texture.
 pub(crate) const TO_UV: OtherParam = other(
