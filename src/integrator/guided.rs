@@ -302,6 +302,9 @@ impl GuidedPathTracer {
             else {
                 break;
             };
+            // What the direction's radiance is multiplied by on its way to the pixel, before
+            // the division by its density: the selection records weigh each vertex by it.
+            let path_f_cos = throughput * step.weight * step.pdf;
             throughput *= step.weight;
             eta *= step.eta;
             depth += 1;
@@ -322,7 +325,7 @@ impl GuidedPathTracer {
                     dir: step.wi,
                     pdf: step.pdf,
                     square,
-                    f_cos: step.weight * step.pdf,
+                    path_f_cos,
                     p_guide,
                     p_bsdf,
                     inv_throughput: Vec3::select(
@@ -355,7 +358,7 @@ impl GuidedPathTracer {
                     },
                     square: v.square,
                     selection: Some(SelectionRecord {
-                        integrand: (v.f_cos * v.radiance).element_sum() / 3.0,
+                        integrand: (v.path_f_cos * v.radiance).element_sum() / 3.0,
                         p_guide: v.p_guide,
                         p_bsdf: v.p_bsdf,
                     }),

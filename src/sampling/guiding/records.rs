@@ -54,8 +54,10 @@ pub(crate) struct StoredRecord {
 }
 
 /// One direction sampled from the mixture of guide and BSDF, as the learning of the
-/// selection probability needs it: the integrand `F = f·|cos θ|·L` (channels averaged) and
-/// the guide's and the BSDF's densities (the mixture's is the record's `pdf`).
+/// selection probability needs it: the integrand `F = T·f·|cos θ|·L` (channels averaged;
+/// `T` the path's throughput before the vertex, so that each vertex counts as much as its
+/// part of the pixel's variance) and the guide's and the BSDF's densities (the mixture's is
+/// the record's `pdf`).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct SelectionRecord {
     pub integrand: f32,
@@ -71,9 +73,9 @@ pub(crate) struct PathVertex {
     pub pdf: f32,
     /// The direction's point of the square ([`sphere_to_square`](super::sphere_to_square)).
     pub square: Vec2,
-    /// `f·|cos θ|` of the sampled direction per channel, and the guide's and the BSDF's
-    /// densities of it.
-    pub f_cos: Vec3,
+    /// The path throughput before the vertex times `f·|cos θ|` of the sampled direction,
+    /// per channel, and the guide's and the BSDF's densities of the direction.
+    pub path_f_cos: Vec3,
     pub p_guide: f32,
     pub p_bsdf: f32,
     /// The reciprocal of the path throughput after the vertex's sampling weight (and

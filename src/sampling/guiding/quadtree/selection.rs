@@ -44,7 +44,7 @@ impl DQuadTree {
 
     /// Adds one selection record: a direction sampled with the mixture density `pdf`, where
     /// the guide's density is `p_guide`, the BSDF's `p_bsdf` and the integrand
-    /// `F = f·|cos θ|·L` is `integrand`. A candidate under which the direction has zero
+    /// `F = T·f·|cos θ|·L` is `integrand` (`T` the path throughput before the vertex). A candidate under which the direction has zero
     /// density while `F > 0` gets an infinite second moment. Records with a density that
     /// is not positive and finite, or an integrand that is negative or not finite, are
     /// ignored.
