@@ -54,40 +54,25 @@ HEADER = """<scene version="3.0.0">
 
 {bsdfs}"""
 
+def bsdfs(**reflectances: str) -> str:
+    """Diffuse BSDFs named by the keywords, each with its reflectance ("r, g, b")."""
+    return "".join(
+        f'    <bsdf type="diffuse" id="{name}">\n'
+        f'        <rgb name="reflectance" value="{value}"/>\n'
+        "    </bsdf>\n"
+        for name, value in reflectances.items()
+    )
+
+
 # The materials of the many-lights room and the door scene: a Cornell-box room.
-ROOM_BSDFS = """    <bsdf type="diffuse" id="white">
-        <rgb name="reflectance" value="0.8, 0.8, 0.8"/>
-    </bsdf>
-    <bsdf type="diffuse" id="red">
-        <rgb name="reflectance" value="0.6, 0.1, 0.1"/>
-    </bsdf>
-    <bsdf type="diffuse" id="green">
-        <rgb name="reflectance" value="0.15, 0.5, 0.15"/>
-    </bsdf>
-    <bsdf type="diffuse" id="dark">
-        <rgb name="reflectance" value="0.1, 0.1, 0.1"/>
-    </bsdf>
-"""
+ROOM_BSDFS = bsdfs(white="0.8, 0.8, 0.8", red="0.6, 0.1, 0.1", green="0.15, 0.5, 0.15",
+                   dark="0.1, 0.1, 0.1")
 
 # The indirect room's: a white ceiling over walls and a floor a quarter as bright as the
 # Cornell box's (grey 0.2, red and green scaled by 1/4), so that the light that comes after
 # two or more bounces is a tenth of the image (with the Cornell box's walls it was 44%).
-INDIRECT_BSDFS = """    <bsdf type="diffuse" id="white">
-        <rgb name="reflectance" value="0.8, 0.8, 0.8"/>
-    </bsdf>
-    <bsdf type="diffuse" id="grey">
-        <rgb name="reflectance" value="0.2, 0.2, 0.2"/>
-    </bsdf>
-    <bsdf type="diffuse" id="red">
-        <rgb name="reflectance" value="0.15, 0.025, 0.025"/>
-    </bsdf>
-    <bsdf type="diffuse" id="green">
-        <rgb name="reflectance" value="0.0375, 0.125, 0.0375"/>
-    </bsdf>
-    <bsdf type="diffuse" id="dark">
-        <rgb name="reflectance" value="0.1, 0.1, 0.1"/>
-    </bsdf>
-"""
+INDIRECT_BSDFS = bsdfs(white="0.8, 0.8, 0.8", grey="0.2, 0.2, 0.2", red="0.15, 0.025, 0.025",
+                       green="0.0375, 0.125, 0.0375", dark="0.1, 0.1, 0.1")
 
 
 def fmt(v: float) -> str:
