@@ -381,3 +381,6 @@ fn add(radiance: &mut Vec3, records: &mut Option<&mut GuidingRecords>, c: Vec3) 
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -32,6 +32,8 @@ mod guided;
 mod mlt;
 mod path;
 mod strategy;
+#[cfg(test)]
+pub(crate) mod test_scene;
 mod traits;
 
 use crate::sampling::sampler::SampleSource;
