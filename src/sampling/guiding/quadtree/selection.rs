@@ -44,10 +44,10 @@ impl DQuadTree {
 
     /// Adds one selection record: a direction sampled with the mixture density `pdf`, where
     /// the guide's density is `p_guide`, the BSDF's `p_bsdf` and the integrand
-    /// `F = T·f·|cos θ|·L` is `integrand` (`T` the path throughput before the vertex). A candidate under which the direction has zero
-    /// density while `F > 0` gets an infinite second moment. Records with a density that
-    /// is not positive and finite, or an integrand that is negative or not finite, are
-    /// ignored.
+    /// `F = T·f·|cos θ|·L` is `integrand` (`T` the path throughput before the vertex). A
+    /// candidate under which the direction has zero density while `F > 0` gets an infinite
+    /// second moment. Records with a density that is not positive and finite, or an
+    /// integrand that is negative or not finite, are ignored.
     pub(crate) fn record_selection(&mut self, integrand: f32, p_guide: f32, p_bsdf: f32, pdf: f32) {
         let ok = |x: f32| x >= 0.0 && x.is_finite();
         if !(pdf > 0.0 && pdf.is_finite() && ok(integrand) && ok(p_guide) && ok(p_bsdf)) {
