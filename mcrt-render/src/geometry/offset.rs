@@ -36,6 +36,16 @@ const INT_SCALE: f32 = 256.0;
 #[must_use]
 pub fn offset_origin(p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
     let n = if ng.dot(dir) < 0.0 { -ng } else { ng };
+    #[cfg(target_arch = "x86_64")]
+    if let Some(o) = lanes::offset(p, n) {
+        return o;
+    }
+    offset_scalar(p, n)
+}
+
+/// [`offset_origin`] once the normal `n` points to the ray's side, one coordinate at a time.
+#[inline]
+fn offset_scalar(p: Vec3, n: Vec3) -> Vec3 {
     let f = |x: f32, nx: f32| {
         if x.abs() < ORIGIN {
             return x + FLOAT_SCALE * nx;
@@ -47,6 +57,45 @@ pub fn offset_origin(p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
         f32::from_bits((x.to_bits() as i32).wrapping_add(step) as u32)
     };
     Vec3::new(f(p.x, n.x), f(p.y, n.y), f(p.z, n.z))
+}
+
+/// [`offset_scalar`] on the three coordinates at once in SSE2 lanes (x86-64's baseline, so
+/// pulp's token for it is found at compile time): the same operations lane by lane, so the
+/// same bits.
+#[cfg(target_arch = "x86_64")]
+mod lanes {
+    use super::{FLOAT_SCALE, INT_SCALE, ORIGIN};
+    use glam::{Vec3, Vec3A};
+
+    /// Below this normal component the lane conversion to integer ulps cannot overflow, so
+    /// it agrees with Rust's saturating `as i32`.
+    const SAFE_COMPONENT: f32 = 1.0e6;
+
+    /// The offset origin, or `None` without SSE2 or for a normal component that is NaN or
+    /// huge (left to the scalar code, whose conversion saturates).
+    #[inline(always)]
+    pub(super) fn offset(p: Vec3, n: Vec3) -> Option<Vec3> {
+        let simd = pulp::x86::V1::try_new()?;
+        let (sse, sse2) = (simd.sse, simd.sse2);
+        let x = sse._mm_setr_ps(p.x, p.y, p.z, 0.0);
+        let nx = sse._mm_setr_ps(n.x, n.y, n.z, 0.0);
+        let abs_mask = sse2._mm_castsi128_ps(sse2._mm_set1_epi32(i32::MAX));
+        let abs = |v| sse._mm_and_ps(v, abs_mask);
+        let fits = sse._mm_cmplt_ps(abs(nx), sse._mm_set1_ps(SAFE_COMPONENT));
+        if sse._mm_movemask_ps(fits) & 0b111 != 0b111 {
+            return None;
+        }
+        // Near the origin: a fixed step along the normal.
+        let near = sse._mm_add_ps(x, sse._mm_mul_ps(sse._mm_set1_ps(FLOAT_SCALE), nx));
+        // Elsewhere: step the bit pattern, by the step negated where x < 0.
+        let step = sse2._mm_cvttps_epi32(sse._mm_mul_ps(sse._mm_set1_ps(INT_SCALE), nx));
+        let negative = sse2._mm_castps_si128(sse._mm_cmplt_ps(x, sse._mm_setzero_ps()));
+        let step = sse2._mm_sub_epi32(sse2._mm_xor_si128(step, negative), negative);
+        let far = sse2._mm_castsi128_ps(sse2._mm_add_epi32(sse2._mm_castps_si128(x), step));
+        let small = sse._mm_cmplt_ps(abs(x), sse._mm_set1_ps(ORIGIN));
+        let o = sse._mm_or_ps(sse._mm_and_ps(small, near), sse._mm_andnot_ps(small, far));
+        Some(Vec3::from(Vec3A::from(o)))
+    }
 }
 
 /// A ray leaving surface point `p` (geometric normal `ng`) in direction `dir` (passed
