@@ -260,9 +260,14 @@ impl<B: LeafTree> PackedBvh<B> {
         // The triangle test's per-ray set-up only where there are triangle packets.
         let tri = (!self.tris.is_empty()).then(|| TriRay4::new(ray.origin, ray.dir));
         let mut found = None;
-        let t = self
-            .bvh
-            .closest_leaf(ray.origin, ray.dir, t_max, |k, bound| {
+        // The visitor is inlined into the walk: called, it cost as much again as the quad
+        // test (the walk's ray spilled around each call), about 60 instructions per leaf.
+        let t = self.bvh.closest_leaf(
+            ray.origin,
+            ray.dir,
+            t_max,
+            #[inline(always)]
+            |k, bound| {
                 let leaf = &self.leaves[k as usize];
                 if leaf.quads > 0 {
                     if let Some(h) = quad.closest(&self.quads[leaf.quad as usize], *bound) {
@@ -278,7 +283,8 @@ impl<B: LeafTree> PackedBvh<B> {
                 if leaf.first_tri() < leaf.end {
                     self.closest_past_quads(stored, leaf, ray, tri.as_ref(), bound, &mut found);
                 }
-            });
+            },
+        );
         Some((t, self.record(found?)))
     }
 
@@ -325,6 +331,13 @@ impl<B: LeafTree> PackedBvh<B> {
         tri.is_some_and(|r| r.any(&self.tris[leaf.tri as usize], t_max))
     }
 
+    /// True when one of a leaf's spheres, disks or cylinders is hit with `0 < t < t_max`
+    /// (out of line, so that leaves of quads and triangles alone stay cheap).
+    #[inline(never)]
+    fn any_other(&self, stored: Stored, leaf: &Leaf, ray: &Ray, t_max: f32) -> bool {
+        (leaf.first_other()..leaf.end).any(|i| stored.hit(ray, None, i, t_max).is_some())
+    }
+
     /// True when anything is hit with `0 < t < t_max`.
     #[inline(always)]
     pub(super) fn any(&self, stored: Stored, ray: &Ray, t_max: f32) -> bool {
@@ -341,22 +354,29 @@ impl<B: LeafTree> PackedBvh<B> {
     fn any_in_leaves<const QUADS: bool>(&self, stored: Stored, ray: &Ray, t_max: f32) -> bool {
         let quad = QUADS.then(|| QuadRay4::new(ray.origin, ray.dir));
         let tri = (!self.tris.is_empty()).then(|| TriRay4::new(ray.origin, ray.dir));
-        self.bvh.any_leaf(ray.origin, ray.dir, t_max, |k, bound| {
-            let leaf = &self.leaves[k as usize];
-            let tris = || {
-                if QUADS {
-                    self.any_tri_packet_out_of_line(leaf, tri.as_ref(), bound)
-                } else {
-                    self.any_tri_packet(leaf, tri.as_ref(), bound)
-                }
-            };
-            (leaf.quads > 0
-                && quad
-                    .as_ref()
-                    .is_some_and(|q| q.any(&self.quads[leaf.quad as usize], bound)))
-                || (leaf.tris > 0 && tris())
-                || (leaf.first_other()..leaf.end).any(|i| stored.hit(ray, None, i, bound).is_some())
-        })
+        // Inlined into the walk, as in `closest`.
+        self.bvh.any_leaf(
+            ray.origin,
+            ray.dir,
+            t_max,
+            #[inline(always)]
+            |k, bound| {
+                let leaf = &self.leaves[k as usize];
+                let tris = || {
+                    if QUADS {
+                        self.any_tri_packet_out_of_line(leaf, tri.as_ref(), bound)
+                    } else {
+                        self.any_tri_packet(leaf, tri.as_ref(), bound)
+                    }
+                };
+                (leaf.quads > 0
+                    && quad
+                        .as_ref()
+                        .is_some_and(|q| q.any(&self.quads[leaf.quad as usize], bound)))
+                    || (leaf.tris > 0 && tris())
+                    || (leaf.first_other() < leaf.end && self.any_other(stored, leaf, ray, bound))
+            },
+        )
     }
 }
 

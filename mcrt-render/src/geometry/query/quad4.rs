@@ -133,14 +133,14 @@ impl QuadRay4 {
     /// The lanes hit with `0 < t < t_max`; `None` when there are none.
     #[inline(always)]
     fn lanes(&self, p: &QuadPacket, t_max: f32) -> Option<Lanes> {
-        let w = [0, 1, 2].map(|a| p.c[a] - self.o[a]);
+        let w = per_axis(|a| p.c[a] - self.o[a]);
         let t = Self::dot(&p.n, &w) / Self::dot(&p.n, &self.d);
         // NaN and infinite t (rays in the plane, or parallel to it) fail here.
         let ok = t.cmpgt(Vec4::ZERO) & t.cmplt(Vec4::splat(t_max));
         if !ok.any() {
             return None;
         }
-        let r = [0, 1, 2].map(|a| t * self.d[a] - w[a]);
+        let r = per_axis(|a| t * self.d[a] - w[a]);
         let (u, v) = (Self::dot(&p.a, &r), Self::dot(&p.b, &r));
         let (lo, hi) = (Vec4::splat(-SLACK), Vec4::splat(1.0 + SLACK));
         let ok = ok & u.cmpge(lo) & u.cmple(hi) & v.cmpge(lo) & v.cmple(hi);
@@ -170,6 +170,13 @@ impl QuadRay4 {
     pub(crate) fn any(&self, p: &QuadPacket, t_max: f32) -> bool {
         self.lanes(p, t_max).is_some()
     }
+}
+
+/// `[f(0), f(1), f(2)]`, written out: `[0, 1, 2].map(f)` is left as a call where the
+/// test is inlined into a large traversal.
+#[inline(always)]
+fn per_axis(f: impl Fn(usize) -> Vec4) -> [Vec4; 3] {
+    [f(0), f(1), f(2)]
 }
 
 #[cfg(test)]

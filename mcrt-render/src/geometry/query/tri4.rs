@@ -90,7 +90,7 @@ impl TriRay4 {
     /// The edge functions and the tests that need no division; `None` when no lane is left.
     #[inline(always)]
     fn edges(&self, p: &TriPacket, t_max: f32) -> Option<Edges> {
-        let [kx, ky, kz] = self.k.map(|k| k & 3);
+        let [kx, ky, kz] = [self.k[0] & 3, self.k[1] & 3, self.k[2] & 3];
         // Vertices relative to the origin, sheared: (x, y) per vertex; z kept unscaled.
         let rel = |j: usize| {
             let z = p.v[j][kz] - self.o[2];
