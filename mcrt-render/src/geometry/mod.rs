@@ -326,14 +326,16 @@ impl Geometry {
     fn make_hit(&self, level: &Level, ray: &Ray, t: f32, rec: HitRecord) -> SurfacePoint {
         let slot = level.slots[rec.slot as usize];
         let id = slot.id;
-        let mut p = ray.at(t);
         let mut uv = Vec2::new(rec.b1, rec.b2);
-        let (ng, ns) = match &self.shapes[id.shape as usize] {
+        // The point along the ray, computed only where it is used: a mesh hit takes the
+        // point from its triangle's vertices.
+        let (p, ng, ns) = match &self.shapes[id.shape as usize] {
             ShapeData::Mesh(m) => {
                 let b0 = 1.0 - rec.b1 - rec.b2;
-                if let Prim::Tri(tri) = &level.prims[rec.slot as usize] {
-                    p = tri.point(Vec3A::new(b0, rec.b1, rec.b2));
-                }
+                let p = match &level.prims[rec.slot as usize] {
+                    Prim::Tri(tri) => tri.point(Vec3A::new(b0, rec.b1, rec.b2)),
+                    _ => ray.at(t),
+                };
                 let ng = slot.ng;
                 let ns = if m.normals.is_empty() {
                     ng
@@ -343,32 +345,30 @@ impl Geometry {
                     let [na, nb, nc] = idx.map(|v| m.normals[v as usize]);
                     sign * (na * b0 + nb * rec.b1 + nc * rec.b2).normalize_or(ng * sign)
                 };
-                (ng, ns)
+                (p, ng, ns)
             }
             &ShapeData::Sphere {
                 center,
                 radius,
                 flip,
             } => {
-                let n = (p - center).normalize_or(Vec3::Z);
-                p = center + radius * n;
+                let n = (ray.at(t) - center).normalize_or(Vec3::Z);
                 let ng = if flip { -n } else { n };
                 uv = self.sphere_uv(id.shape, n);
-                (ng, ng)
+                (center + radius * n, ng, ng)
             }
             ShapeData::Disk(d) => {
-                let local = d.to_object.transform_point3(p);
+                let local = d.to_object.transform_point3(ray.at(t));
                 let local = Vec3::new(local.x, local.y, 0.0);
-                p = d.to_world.transform_point3(local);
                 uv = disk_uv(local);
-                (d.normal, d.normal)
+                (d.to_world.transform_point3(local), d.normal, d.normal)
             }
             // Never stored as a primitive.
-            ShapeData::Instance => (Vec3::Z, Vec3::Z),
+            ShapeData::Instance => (ray.at(t), Vec3::Z, Vec3::Z),
             ShapeData::Cylinder(c) => {
-                let (q, n, st) = c.surface(p);
-                (p, uv) = (q, st);
-                (n, n)
+                let (q, n, st) = c.surface(ray.at(t));
+                uv = st;
+                (q, n, n)
             }
         };
         SurfacePoint {

@@ -131,6 +131,41 @@ pub fn spawn_ray_to(p: Vec3, ng: Vec3, q: Vec3, nq: Vec3) -> (Ray, f32) {
 mod tests {
     use super::*;
 
+    /// The SSE2 lanes give the scalar code's bits, near the origin and far from it, for
+    /// either sign of each coordinate and of each normal component.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn lanes_match_the_scalar_offset_bit_for_bit() {
+        use rand_core::{RngCore, SeedableRng};
+        let mut rng = rand_pcg::Pcg32::seed_from_u64(37);
+        let mut unit = || (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0;
+        let mut checked = 0;
+        for k in 0..20_000 {
+            // Magnitudes from 2^-20 to 2^20, zeros and the 1/32 border among them.
+            let scale = 2f32.powi(k % 41 - 20);
+            let mut p = Vec3::new(unit(), unit(), unit()) * scale;
+            if k % 7 == 0 {
+                p.y = 0.0;
+            }
+            if k % 11 == 0 {
+                p.x = -ORIGIN;
+            }
+            let n = Vec3::new(unit(), unit(), unit()).normalize_or(Vec3::Z);
+            let o = lanes::offset(p, n).expect("SSE2 and a unit normal");
+            let s = offset_scalar(p, n);
+            assert!(o.is_finite() && s.is_finite());
+            assert_eq!(
+                o.to_array().map(f32::to_bits),
+                s.to_array().map(f32::to_bits)
+            );
+            checked += 1;
+        }
+        assert_eq!(checked, 20_000);
+        // A NaN or huge normal component is left to the scalar code.
+        assert!(lanes::offset(Vec3::ONE, Vec3::new(f32::NAN, 0.0, 1.0)).is_none());
+        assert!(lanes::offset(Vec3::ONE, Vec3::new(0.0, 1e9, 0.0)).is_none());
+    }
+
     #[test]
     fn offsets_move_to_the_ray_side_in_every_octant() {
         for &p in &[
