@@ -189,18 +189,21 @@ fn two_directions(t: &mut DQuadTree, n: usize, f: [f32; 2]) {
 
 #[test]
 fn the_selection_probability_follows_the_density_that_matches_the_integrand() {
-    // Light from the guide's direction alone: sample the guide as much as allowed.
+    // Light from the guide's direction alone: sample the guide as much as allowed (½, the
+    // largest candidate, though 0.9 would have a lower second moment).
     let mut t = DQuadTree::new();
     two_directions(&mut t, 40, [1.0, 0.0]);
-    assert_eq!(t.selection_probability(), Some(0.9));
+    assert_eq!(t.selection_probability(), Some(0.5));
     // From the BSDF's: never the guide.
     let mut t = DQuadTree::new();
     two_directions(&mut t, 40, [0.0, 1.0]);
     assert_eq!(t.selection_probability(), Some(0.0));
-    // Even: the even mixture, whose density is constant like the integrand.
+    // Twice as much light from the BSDF's direction: the mixture closest to the integrand,
+    // `(0.2 + 1.6α)/(1.8 − 1.6α) = ½` at α ≈ 0.29 (second moments 4.63, 4.50, 4.64 at 0.2,
+    // 0.3, 0.4).
     let mut t = DQuadTree::new();
-    two_directions(&mut t, 40, [1.0, 1.0]);
-    assert_eq!(t.selection_probability(), Some(0.5));
+    two_directions(&mut t, 40, [1.0, 2.0]);
+    assert_eq!(t.selection_probability(), Some(0.3));
     // Too few records (63 < 64): none.
     let mut t = DQuadTree::new();
     two_directions(&mut t, 31, [1.0, 0.0]);
@@ -213,10 +216,10 @@ fn the_selection_probability_follows_the_density_that_matches_the_integrand() {
         t.record_selection(f32::NAN, 1.0, 1.0, 1.0);
         t.record_selection(1.0, 1.0, 1.0, 0.0);
     }
-    assert_eq!(t.selection_probability(), Some(0.9));
+    assert_eq!(t.selection_probability(), Some(0.5));
     // A new record forgets the derived choice.
     two_directions(&mut t, 1000, [0.0, 1.0]);
-    assert_ne!(t.selection_probability(), Some(0.9));
+    assert_ne!(t.selection_probability(), Some(0.5));
 }
 
 #[test]
@@ -249,7 +252,7 @@ fn an_sd_tree_learns_the_selection_probability_only_when_asked() {
     on.merge(&records);
     assert_eq!(
         on.distribution(Vec3::ZERO).selection_probability(),
-        Some(0.9)
+        Some(0.5)
     );
     assert_eq!(on.sample_count(), 100);
     // The refined tree keeps learning, with nothing learned yet.
