@@ -520,6 +520,12 @@ fn run(args: Args) -> Result<bool, String> {
              image of {} spp (the final and last training passes), guide of {} spatial leaves",
             g.passes, g.training_spp, g.training_seconds, g.final_spp, g.image_spp, g.leaves
         );
+        if let Some(gain) = g.unguided_final {
+            println!(
+                "guided: the final pass was path traced without the guide (it promised a gain \
+                 of {gain:.2}, below the integrator's min_gain)"
+            );
+        }
     }
     if let Some(st) = &result.strategies {
         let lens: Vec<String> = st

@@ -168,6 +168,21 @@ pub(crate) const DIRECTIONAL_THRESHOLD: FloatParam<f32> = FloatParam {
     doc: "ρ: a directional quadrant holding more than this fraction of its leaf's energy is subdivided",
 };
 
+/// `min_gain` of `guided`.
+pub(crate) const MIN_GAIN: FloatParam<f32> = FloatParam {
+    name: "min_gain",
+    default: 1.6,
+    range: "≥ 0",
+    accept: |v| {
+        if v.is_finite() && v >= 0.0 {
+            Ok(v)
+        } else {
+            Err("must be finite and at least 0".into())
+        }
+    },
+    doc: "from the third training pass on, the least factor by which the guide must promise to lower the second moment of the directional choices (`SdTree::selection_gain`) for training to go on; below it the rest of the samples are path traced without the guide; 0 always guides",
+};
+
 plugin_params! {
     /// The parameters of Mitsuba 3's `path`: unidirectional path tracing with next-event
     /// estimation and MIS.
@@ -204,6 +219,10 @@ plugin_params! {
         /// The energy fraction above which a directional quadrant is subdivided (default
         /// 0.01).
         directional_threshold: f32 = Float(DIRECTIONAL_THRESHOLD),
+        /// The least promised gain (`SdTree::selection_gain`) for which training goes on
+        /// after the third pass; below it the rest is path traced (default 1.6, about the
+        /// guided tracer's cost per sample over the path tracer's; 0 always guides).
+        min_gain: f32 = Float(MIN_GAIN),
     }
 }
 

@@ -267,6 +267,7 @@ fn guided_setup(d: &IntegratorDesc, base: &Integrator) -> Option<GuidedSetup> {
             },
             spatial_threshold: p.spatial_threshold,
             directional_threshold: p.directional_threshold,
+            min_gain: p.min_gain,
         }),
         _ => None,
     }

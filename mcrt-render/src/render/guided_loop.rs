@@ -15,7 +15,7 @@ use super::tiles::{pass_size, tiles, LoopParams, LoopStats};
 use crate::camera::Camera;
 use crate::film::{Film, PixelAccum};
 use glam::{Vec2, Vec3};
-use mcrt::integrator::{GuidedPathTracer, Scene};
+use mcrt::integrator::{GuidedPathTracer, PathTracer, Scene};
 use mcrt::sampling::guiding::{GuidingPass, GuidingRecords, GuidingSchedule, SdTree};
 use mcrt::sampling::sampler::{AnySampler, Sampler};
 use rayon::prelude::*;
@@ -40,7 +40,15 @@ pub(crate) struct GuidedSetup {
     pub spatial_threshold: f32,
     /// ρ, the directional subdivision threshold.
     pub directional_threshold: f32,
+    /// The least [`SdTree::selection_gain`] for which training goes on after
+    /// [`DECIDING_PASS`] (0: always).
+    pub min_gain: f32,
 }
+
+/// The training pass (counted from 0) after which, and after every later one, the guide's
+/// promised gain is checked against [`GuidedSetup::min_gain`]: the third, of 4 samples per
+/// pixel, when 7 of the budget's samples per pixel have trained the guide.
+pub(crate) const DECIDING_PASS: u32 = 2;
 
 /// What training cost, for the render's report.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -56,8 +64,13 @@ pub struct GuidingReport {
     pub image_spp: u32,
     /// Wall-clock seconds of the training passes (part of the render's time).
     pub training_seconds: f64,
-    /// Spatial leaves of the tree that guided the final pass.
+    /// Spatial leaves of the tree that guided the final pass (where training stopped, the
+    /// last training pass).
     pub leaves: usize,
+    /// Where training stopped because the guide promised less than `min_gain`: the
+    /// promised gain ([`SdTree::selection_gain`]). The final pass was then path traced
+    /// without the guide (BSDF sampling alone).
+    pub unguided_final: Option<f64>,
 }
 
 /// The pixels for which `spatial_threshold` is meant: Müller et al.'s `c = 12000` is tuned for
@@ -116,11 +129,19 @@ pub(crate) fn render_guided<S: Scene + Sync>(
         image_spp: 0,
         training_seconds: 0.0,
         leaves: guide.leaf_count(),
+        unguided_final: None,
     };
     let done = AtomicU64::new(0);
-    for pass in schedule.passes() {
+    let mut trained_spp = 0u32;
+    for mut pass in schedule.passes() {
         if p.cancel.load(Ordering::Relaxed) {
             break;
+        }
+        if report.unguided_final.is_some() {
+            // The rest of the budget, unguided: the final pass after the passes so far.
+            pass.is_final = true;
+            pass.spp = p.samples.len().saturating_sub(trained_spp);
+            guide = SdTree::new(bounds.0, bounds.1);
         }
         let ranges = pass_indices(&pass, p.samples.start, p.samples.end);
         let mut setup = *g;
@@ -132,7 +153,9 @@ pub(crate) fn render_guided<S: Scene + Sync>(
         if pass.is_final {
             report.training_seconds = start.elapsed().as_secs_f64();
             report.final_spp = pass.spp;
-            report.leaves = guide.leaf_count();
+            if report.unguided_final.is_none() {
+                report.leaves = guide.leaf_count();
+            }
         }
         let record = !pass.is_final;
         run_pass(scene, p, &setup, &guide, &ranges, record, &done, |out| {
@@ -152,12 +175,23 @@ pub(crate) fn render_guided<S: Scene + Sync>(
             }
             images.push(film);
         }
-        if !pass.is_final {
-            report.passes += 1;
-            report.training_spp += pass.spp;
-            let next = schedule.next_tree(&training, &pass);
-            guide = std::mem::replace(&mut training, next);
+        if pass.is_final {
+            break;
         }
+        report.passes += 1;
+        report.training_spp += pass.spp;
+        trained_spp += pass.spp;
+        if pass.index >= DECIDING_PASS {
+            if let Some(gain) = training.selection_gain() {
+                if gain < f64::from(g.min_gain) {
+                    report.unguided_final = Some(gain);
+                    report.leaves = guide.leaf_count();
+                    continue;
+                }
+            }
+        }
+        let next = schedule.next_tree(&training, &pass);
+        guide = std::mem::replace(&mut training, next);
     }
     let film = combine(&images);
     for i in 0..(film.width() as usize * film.height() as usize) {
@@ -320,6 +354,16 @@ impl<S: Scene> Tile<'_, S> {
         record: bool,
         records: GuidingRecords,
     ) -> TileOut {
+        // A pass that neither records nor has a trained guide (the final pass after training
+        // stopped, or a budget of one sample) is plain path tracing: the path tracer's own
+        // loop, without the guided tracer's lookups of an empty guide.
+        let g = self.tracer;
+        let plain = (!record && self.guide.sample_count() == 0).then_some(PathTracer {
+            max_depth: g.max_depth,
+            rr_depth: g.rr_depth,
+            strategy: g.strategy,
+            hide_emitters: g.hide_emitters,
+        });
         let mut out = TileOut {
             pixels: Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize),
             records,
@@ -342,15 +386,13 @@ impl<S: Scene> Tile<'_, S> {
                         self.camera.generate_ray_with_tmax(film)
                     };
                     let records = record.then_some(&mut out.records);
-                    let r = self.tracer.li(
-                        self.scene,
-                        self.guide,
-                        ray.origin,
-                        ray.dir,
-                        t_max.min(self.t_max),
-                        &mut rng,
-                        records,
-                    );
+                    let t_max = t_max.min(self.t_max);
+                    let r = match &plain {
+                        Some(pt) => pt.li(self.scene, ray.origin, ray.dir, t_max, &mut rng),
+                        None => g.li(
+                            self.scene, self.guide, ray.origin, ray.dir, t_max, &mut rng, records,
+                        ),
+                    };
                     if self.cancel.load(Ordering::Relaxed) {
                         break;
                     }

@@ -15,7 +15,9 @@ use crate::common;
 use mcrt::glam::{Vec2, Vec3};
 use mcrt::integrator::SurfacePoint;
 use mcrt::sampling::Frame;
-use mcrt_render::description::{IntegratorDesc, IntegratorKind, SceneDescription};
+use mcrt_render::description::{
+    Checked, GuidedParams, IntegratorDesc, IntegratorKind, SceneDescription,
+};
 use mcrt_render::film::{compare_blocks, read_exr};
 use mcrt_render::geometry::{AccelKind, Geometry, Ray};
 use mcrt_render::light::{LightBvhUse, Lights};
@@ -93,6 +95,18 @@ fn check_against_mitsuba(
             r.mean_ratio
         );
     }
+}
+
+/// `desc` with its integrator made `guided` (its depths kept) that guides to the end
+/// (`min_gain` 0), so that the guided estimator, not the path tracer it falls back to, is
+/// what a test sees.
+fn always_guided(mut desc: SceneDescription) -> SceneDescription {
+    let guided = match desc.integrator.with_kind(IntegratorKind::Guided) {
+        IntegratorDesc::Guided(p) => IntegratorDesc::Guided(GuidedParams { min_gain: 0.0, ..p }),
+        other => other,
+    };
+    desc.integrator = Checked::new(guided).expect("min_gain 0 is valid");
+    desc
 }
 
 fn opts(spp: u32, seed: u64) -> RenderOptions {
@@ -187,7 +201,7 @@ fn many_lights_path_with_light_bvh_matches_mitsuba() {
 /// ceiling) against Mitsuba 3 (32×32 blocks).
 #[test]
 fn guided_matches_mitsuba_on_the_indirect_room() {
-    let desc = load("indirect.xml");
+    let desc = always_guided(load("indirect.xml"));
     let out = render(
         &desc,
         &RenderOptions {
@@ -196,7 +210,10 @@ fn guided_matches_mitsuba_on_the_indirect_room() {
         },
     );
     let g = out.guiding.expect("guided reports its training");
-    assert!(g.passes >= 3 && g.leaves > 1, "{g:?}");
+    assert!(
+        g.passes >= 3 && g.leaves > 1 && g.unguided_final.is_none(),
+        "{g:?}"
+    );
     check_against_mitsuba("indirect, guided, 32 spp", &out, "indirect.exr", 32, 12);
 }
 
@@ -204,7 +221,7 @@ fn guided_matches_mitsuba_on_the_indirect_room() {
 /// Mitsuba 3 (32×32 blocks).
 #[test]
 fn guided_matches_mitsuba_on_the_door_scene() {
-    let desc = load("door.xml");
+    let desc = always_guided(load("door.xml"));
     let out = render(
         &desc,
         &RenderOptions {
@@ -218,7 +235,7 @@ fn guided_matches_mitsuba_on_the_door_scene() {
 /// The guided render, training included, is the same at one and two threads.
 #[test]
 fn guided_render_is_the_same_at_any_thread_count() {
-    let mut desc = load("indirect.xml");
+    let mut desc = always_guided(load("indirect.xml"));
     desc.sensor = desc
         .sensor
         .clone()
@@ -250,6 +267,42 @@ fn guided_render_is_the_same_at_any_thread_count() {
     assert_eq!(a.rays, b.rays);
 }
 
+/// Where the guide promises less than `min_gain` after the third training pass, the rest
+/// of the budget is path traced without it (and the report says so); with `min_gain` 0 the
+/// same render guides to the end. The dark indirect room at 48×40 and 16 spp promises
+/// about 1.1–1.3, below the default 1.6.
+#[test]
+fn guided_stops_training_where_the_guide_promises_too_little() {
+    let mut desc = load("indirect.xml");
+    desc.sensor = desc
+        .sensor
+        .clone()
+        .changed(|s| s.film = s.film.changed(|f| f.width = 48).unwrap())
+        .unwrap();
+    desc.sensor = desc
+        .sensor
+        .clone()
+        .changed(|s| s.film = s.film.changed(|f| f.height = 40).unwrap())
+        .unwrap();
+    let o = RenderOptions {
+        integrator: Some(IntegratorKind::Guided),
+        ..opts(16, 7)
+    };
+    let stopped = render(&desc, &o);
+    let g = stopped.guiding.expect("a report");
+    let gain = g.unguided_final.expect("training stopped");
+    assert!(gain.is_finite() && (1.0..1.6).contains(&gain), "{g:?}");
+    // Passes of 1, 2 and 4 samples trained; the other 9 were path traced.
+    assert_eq!((g.passes, g.training_spp, g.final_spp), (3, 7, 9), "{g:?}");
+    let img = stopped.image();
+    assert!(img.iter().all(|v| v.is_finite()) && img.iter().any(|v| v.max_element() > 0.0));
+    let guided = render(&always_guided(desc), &o);
+    let g = guided.guiding.expect("a report");
+    assert_eq!(g.unguided_final, None, "{g:?}");
+    assert_eq!((g.passes, g.training_spp, g.final_spp), (3, 7, 9), "{g:?}");
+    assert!(g.leaves > 1, "{g:?}");
+}
+
 /// `<integrator type="guided">` reads its parameters through their definitions, refuses
 /// what it does not take, and `--integrator guided` keeps the file's depths.
 #[test]
@@ -262,7 +315,7 @@ fn the_guided_integrator_loads() {
         )
     };
     let d = mcrt_render::loader::parse_scene(
-        &scene(r#"<integer name="max_depth" value="7"/><float name="guide_probability" value="0.25"/><float name="spatial_threshold" value="4000"/>"#),
+        &scene(r#"<integer name="max_depth" value="7"/><float name="guide_probability" value="0.25"/><float name="spatial_threshold" value="4000"/><float name="min_gain" value="1.25"/>"#),
         None,
         &[],
     )
@@ -275,6 +328,7 @@ fn the_guided_integrator_loads() {
             guide_probability: 0.25,
             spatial_threshold: 4000.0,
             directional_threshold: 0.01,
+            min_gain: 1.25,
             ..Default::default()
         })
     );
@@ -287,6 +341,7 @@ fn the_guided_integrator_loads() {
             r#"<float name="directional_threshold" value="0"/>"#,
             "directional_threshold",
         ),
+        (r#"<float name="min_gain" value="-1"/>"#, "min_gain"),
     ] {
         let e = mcrt_render::loader::parse_scene(&scene(bad), None, &[]).unwrap_err();
         let msg = e.to_string();

@@ -54,9 +54,18 @@ fn guided_reads_hide_emitters() {
 
 #[test]
 fn guided_hides_emitters_as_mitsubas_path_does() {
-    let desc = with_integrator(
-        r#"<integrator type="guided"><boolean name="hide_emitters" value="true"/></integrator>"#,
-    );
+    // Guided to the end (`min_gain` 0), and with the default `min_gain`, under which this
+    // small image's guide promises too little after three passes and the rest is path
+    // traced: both images combine their passes into the reference's.
+    for (min_gain, stops) in [("0", false), ("1.6", true)] {
+        guided_hides_emitters_with(min_gain, stops);
+    }
+}
+
+fn guided_hides_emitters_with(min_gain: &str, stops: bool) {
+    let desc = with_integrator(&format!(
+        r#"<integrator type="guided"><boolean name="hide_emitters" value="true"/><float name="min_gain" value="{min_gain}"/></integrator>"#
+    ));
     // The options of the reference comparisons (64 spp, lights by area, seed 2024).
     let c = Comparison::new(
         "guided, hide_emitters",
@@ -70,6 +79,7 @@ fn guided_hides_emitters_as_mitsubas_path_does() {
         .render(&|_, _| {}, &AtomicBool::new(false));
     let g = out.guiding.expect("guided reports its training");
     assert!(g.passes >= 2 && g.final_spp >= 16, "{g:?}");
+    assert_eq!(g.unguided_final.is_some(), stops, "{g:?}");
     assert_eq!(out.nonfinite_samples, 0, "non-finite samples");
     let (rw, rh, reference) = read_exr(&c.reference).expect("reference reads");
     let (w, h) = (out.film.width(), out.film.height());

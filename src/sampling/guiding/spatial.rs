@@ -164,6 +164,34 @@ impl SdTree {
         self.learn_selection = on;
     }
 
+    /// What the learned selection probabilities promise: over the leaves that learned one
+    /// ([`DQuadTree::selection_probability`]), the sum of the estimated second moments of
+    /// the one-sample estimator with BSDF sampling alone over the sum with each leaf's best
+    /// probability, `Σ M_0 / Σ min_j M_j`, at least 1. The records weigh each vertex by the
+    /// path throughput before it, so this is the factor by which guiding would lower the
+    /// second moment of the paths' directional choices; a second moment includes the
+    /// squared mean, which guiding does not change, so their variance would fall by more.
+    /// `None` where no leaf learned a probability, or the sums are not finite.
+    ///
+    /// ```
+    /// use mcrt::glam::Vec3;
+    /// use mcrt::sampling::guiding::SdTree;
+    ///
+    /// let mut t = SdTree::new(Vec3::splat(-1.0), Vec3::ONE);
+    /// t.learn_selection(true);
+    /// assert_eq!(t.selection_gain(), None); // nothing recorded yet
+    /// ```
+    pub fn selection_gain(&self) -> Option<f64> {
+        let (mut m0, mut best) = (0.0f64, 0.0f64);
+        for l in &self.leaves {
+            if let Some((a, b)) = l.tree.selection_moments() {
+                m0 += a;
+                best += b;
+            }
+        }
+        (best > 0.0 && m0.is_finite()).then(|| (m0 / best).max(1.0))
+    }
+
     /// Whether the tree learns the selection probability ([`SdTree::learn_selection`]).
     pub fn learns_selection(&self) -> bool {
         self.learn_selection

@@ -247,6 +247,7 @@ fn an_sd_tree_learns_the_selection_probability_only_when_asked() {
     off.merge(&records);
     assert!(!off.learns_selection());
     assert_eq!(off.distribution(Vec3::ZERO).selection_probability(), None);
+    assert_eq!(off.selection_gain(), None);
     let mut on = SdTree::new(Vec3::splat(-1.0), Vec3::ONE);
     on.learn_selection(true);
     on.merge(&records);
@@ -255,6 +256,10 @@ fn an_sd_tree_learns_the_selection_probability_only_when_asked() {
         Some(0.5)
     );
     assert_eq!(on.sample_count(), 100);
+    // What it promises: 50 records of F = 1 at p_bsdf 0.2 give M_0 = 50/0.2 = 250, and at
+    // α = ½ (density 1) M = 50, a gain of 5.
+    let gain = on.selection_gain().expect("a leaf learned");
+    assert!(gain.is_finite() && (gain - 5.0).abs() < 1e-6, "{gain}");
     // The refined tree keeps learning, with nothing learned yet.
     let next = on.refined(1e9, 0.01, 20);
     assert!(next.learns_selection());

@@ -32,6 +32,20 @@ impl DQuadTree {
         self.derived().selection
     }
 
+    /// The estimated second moments `(M_0, min_j M_j)` of the one-sample estimator with BSDF
+    /// sampling alone and with the best candidate (sums over the selection records, see
+    /// [`DQuadTree::selection_probability`]); `None` where that gives no probability.
+    pub(crate) fn selection_moments(&self) -> Option<(f64, f64)> {
+        self.best_selection()?;
+        let best = self
+            .selection
+            .iter()
+            .copied()
+            .filter(|m| m.is_finite())
+            .fold(f64::INFINITY, f64::min);
+        Some((self.selection[0], best))
+    }
+
     pub(super) fn best_selection(&self) -> Option<f32> {
         if self.selection_records < MIN_SELECTION_RECORDS {
             return None;
