@@ -9,8 +9,10 @@
 //! matrices, and reverses the bits of both outputs with one 64-bit reversal. The values are
 //! bit-identical to `sobol_burley::sample(index, 0 | 1, seed)`; the tests below pin that for
 //! every index and several seeds. Dimensions 2 and 3 (for the 4D sampler) have no such closed
-//! form: their generator matrices are applied four index bits at a time from tables built at
-//! compile time from the crate's direction numbers, again bit-identical to the crate.
+//! form: their generator matrices are applied a byte of the index at a time from tables built
+//! at compile time from the crate's direction numbers, again bit-identical to the crate. The
+//! byte tables are indexed by the bytes of the bit-reversed shuffled index as they are (the
+//! tables hold the reversal), and dimension 1's tables hold its matrix product as well.
 //!
 //! The method is Burley's (2020, "Practical Hash-based Owen Scrambling", Journal of Computer
 //! Graphics Techniques 9(4)): shuffle the index with a nested-uniform scramble, evaluate the
@@ -38,50 +40,78 @@ const DIRECTIONS_3: [u32; 16] = [
     0x101e, 0x302d, 0x4041, 0xa0c3,
 ];
 
-/// `UPPER[j][v]`: the reversed points of dimensions 2 (low 16 bits) and 3 (high 16 bits) for
-/// the index whose only set bits are the nibble `v` at bits `4j..4j + 4`.
-const UPPER: [[u32; 16]; 4] = {
-    let mut table = [[0; 16]; 4];
-    let mut j = 0;
-    while j < 4 {
-        let mut v = 0;
-        while v < 16 {
-            let mut b = 0;
-            while b < 4 {
-                if v >> b & 1 == 1 {
-                    let k = 4 * j + b;
-                    table[j][v] ^= DIRECTIONS_3[k] << 16 | DIRECTIONS_2[k];
-                }
-                b += 1;
-            }
-            v += 1;
-        }
-        j += 1;
-    }
-    table
-};
-
-/// The shuffled 16-bit sample index, in natural bit order, for `index_rev`, the sample index
-/// (below 2¹⁶) with its 32 bits reversed.
-#[inline(always)]
-fn shuffled_index(index_rev: u32, seed: u32) -> u32 {
-    let shuffled_rev = owen_scramble_rev(index_rev, hash(seed ^ INDEX_SALT));
-    // Only the top 16 bits of the reversed index count (the sequence has 2¹⁶ points); two
-    // byte lookups reverse them in fewer instructions than the shift-and-mask reversal.
-    let [_, _, b2, b3] = shuffled_rev.to_le_bytes();
-    u32::from(REVERSED_BYTE[usize::from(b2)]) << 8 | u32::from(REVERSED_BYTE[usize::from(b3)])
-}
-
-/// `REVERSED_BYTE[b]` is `b` with its 8 bits reversed.
-const REVERSED_BYTE: [u8; 256] = {
-    let mut table = [0; 256];
+/// `UPPER_OF_BYTE[k][b]`: the reversed points of Sobol dimensions 2 (low 16 bits) and 3
+/// (high 16 bits) for the 16-bit index whose only set bits are the byte `b` reversed, at bits
+/// `8..16` for `k = 0` and `0..8` for `k = 1`: the shuffled index's bytes, as
+/// [`shuffled_index_bytes`] returns them, index it directly.
+const UPPER_OF_BYTE: [[u32; 256]; 2] = {
+    let mut table = [[0; 256]; 2];
     let mut b = 0;
     while b < 256 {
-        table[b] = (b as u8).reverse_bits();
+        let reversed = (b as u8).reverse_bits() as u32;
+        table[0][b] = upper_of_index(reversed << 8);
+        table[1][b] = upper_of_index(reversed);
         b += 1;
     }
     table
 };
+
+/// The reversed points of Sobol dimensions 2 (low 16 bits) and 3 (high 16 bits) of the
+/// 16-bit index `n`: the XOR of the direction numbers of its set bits.
+const fn upper_of_index(n: u32) -> u32 {
+    let mut both = 0;
+    let mut k = 0;
+    while k < 16 {
+        if n >> k & 1 == 1 {
+            both ^= DIRECTIONS_3[k] << 16 | DIRECTIONS_2[k];
+        }
+        k += 1;
+    }
+    both
+}
+
+/// `LOWER_OF_BYTE[k][b]`: the shuffled index's contribution (low 16 bits) and its image under
+/// the dimension-1 matrix, [`pascal_rev`] (high 16 bits), for the byte `b` of
+/// [`shuffled_index_bytes`], `k` as for [`UPPER_OF_BYTE`]. Both maps are linear over GF(2)
+/// and the two bytes' bits are disjoint, so the two entries' XOR is `n | pascal_rev(n) << 16`.
+const LOWER_OF_BYTE: [[u32; 256]; 2] = {
+    let mut table = [[0; 256]; 2];
+    let mut b = 0;
+    while b < 256 {
+        let reversed = (b as u8).reverse_bits() as u32;
+        let (high, low) = (reversed << 8, reversed);
+        table[0][b] = high | pascal_rev(high) << 16;
+        table[1][b] = low | pascal_rev(low) << 16;
+        b += 1;
+    }
+    table
+};
+
+/// The two bytes of the reversed shuffled index that hold the 16-bit shuffled index (bits
+/// 16..24 and 24..32), for `index_rev`, the sample index (below 2¹⁶) with its 32 bits
+/// reversed. Only those bits count (the sequence has 2¹⁶ points); the byte tables
+/// [`LOWER_OF_BYTE`] and [`UPPER_OF_BYTE`] take them as they are, which saves reversing them.
+#[inline(always)]
+fn shuffled_index_bytes(index_rev: u32, seed: u32) -> [usize; 2] {
+    let shuffled_rev = owen_scramble_rev(index_rev, hash(seed ^ INDEX_SALT));
+    let [_, _, b2, b3] = shuffled_rev.to_le_bytes();
+    [usize::from(b2), usize::from(b3)]
+}
+
+/// The shuffled 16-bit index `n` (low 16 bits) and `pascal_rev(n)` (high 16 bits).
+#[inline(always)]
+fn lower_inputs(index_rev: u32, seed: u32) -> u32 {
+    let [b2, b3] = shuffled_index_bytes(index_rev, seed);
+    LOWER_OF_BYTE[0][b2] ^ LOWER_OF_BYTE[1][b3]
+}
+
+/// The reversed points of Sobol dimensions 2 (low 16 bits) and 3 (high 16 bits) of the
+/// shuffled index.
+#[inline(always)]
+fn upper_points(index_rev: u32, seed: u32) -> u32 {
+    let [b2, b3] = shuffled_index_bytes(index_rev, seed);
+    UPPER_OF_BYTE[0][b2] ^ UPPER_OF_BYTE[1][b3]
+}
 
 /// Sobol dimension 1 of the 16-bit index `n`, with the result's bits reversed.
 ///
@@ -89,8 +119,7 @@ const REVERSED_BYTE: [u8; 256] = {
 /// of the point is the parity of the index bits `k` with `binomial(k, i)` odd, i.e. (Lucas'
 /// theorem) with `k ⊇ i` as bit sets. Bit `i` of the reversed result is that digit; the sum
 /// over supersets is four butterfly steps, one per bit of `i`.
-#[inline(always)]
-fn pascal_rev(n: u32) -> u32 {
+const fn pascal_rev(n: u32) -> u32 {
     let mut y = n;
     y ^= (y >> 1) & 0x5555;
     y ^= (y >> 2) & 0x3333;
@@ -109,10 +138,10 @@ fn dimension_key(seed: u32, dimension: usize) -> u32 {
 /// (below 2¹⁶) whose 32 bits reversed are `index_rev`.
 #[inline(always)]
 pub(super) fn sample_2d(index_rev: u32, seed: u32) -> [f32; 2] {
-    let n = shuffled_index(index_rev, seed);
     // Dimension 0's generator matrix is the identity: its reversed point is the index itself.
-    let x_rev = owen_scramble_rev(n, dimension_key(seed, 0));
-    let y_rev = owen_scramble_rev(pascal_rev(n), dimension_key(seed, 1));
+    let inputs = lower_inputs(index_rev, seed);
+    let x_rev = owen_scramble_rev(inputs & 0xffff, dimension_key(seed, 0));
+    let y_rev = owen_scramble_rev(inputs >> 16, dimension_key(seed, 1));
     // One 64-bit reversal un-reverses both: the low word lands reversed in the high word.
     let both = (u64::from(y_rev) << 32 | u64::from(x_rev)).reverse_bits();
     [
@@ -126,8 +155,7 @@ pub(super) fn sample_2d(index_rev: u32, seed: u32) -> [f32; 2] {
 /// first half [`sample_2d`] gives (same index shuffle, its own Owen scrambles).
 #[inline(always)]
 pub(super) fn sample_2d_upper(index_rev: u32, seed: u32) -> [f32; 2] {
-    let n = shuffled_index(index_rev, seed) as usize;
-    let both = UPPER[0][n & 15] ^ UPPER[1][n >> 4 & 15] ^ UPPER[2][n >> 8 & 15] ^ UPPER[3][n >> 12];
+    let both = upper_points(index_rev, seed);
     let x_rev = owen_scramble_rev(both & 0xffff, dimension_key(seed, 2));
     let y_rev = owen_scramble_rev(both >> 16, dimension_key(seed, 3));
     let both = (u64::from(y_rev) << 32 | u64::from(x_rev)).reverse_bits();
@@ -141,9 +169,10 @@ pub(super) fn sample_2d_upper(index_rev: u32, seed: u32) -> [f32; 2] {
 /// are `index_rev`.
 #[inline(always)]
 pub(super) fn sample_1d_upper(index_rev: u32, seed: u32) -> f32 {
-    let n = shuffled_index(index_rev, seed) as usize;
-    let both = UPPER[0][n & 15] ^ UPPER[1][n >> 4 & 15] ^ UPPER[2][n >> 8 & 15] ^ UPPER[3][n >> 12];
-    let x_rev = owen_scramble_rev(both & 0xffff, dimension_key(seed, 2));
+    let x_rev = owen_scramble_rev(
+        upper_points(index_rev, seed) & 0xffff,
+        dimension_key(seed, 2),
+    );
     u32_to_f32_norm(x_rev.reverse_bits())
 }
 
@@ -151,7 +180,8 @@ pub(super) fn sample_1d_upper(index_rev: u32, seed: u32) -> f32 {
 /// are `index_rev`.
 #[inline(always)]
 pub(super) fn sample_1d(index_rev: u32, seed: u32) -> f32 {
-    let x_rev = owen_scramble_rev(shuffled_index(index_rev, seed), dimension_key(seed, 0));
+    let n = lower_inputs(index_rev, seed) & 0xffff;
+    let x_rev = owen_scramble_rev(n, dimension_key(seed, 0));
     u32_to_f32_norm(x_rev.reverse_bits())
 }
 
@@ -214,6 +244,19 @@ mod tests {
                 DIRECTIONS_3[k],
                 sobol_burley::parts::sobol_rev(unit, 3),
                 "bit {k}"
+            );
+        }
+    }
+
+    #[test]
+    fn byte_tables_are_the_matrix_products_of_the_index() {
+        for n in 0..(1u32 << 16) {
+            let [b2, b3] = [(n >> 8) as u8, n as u8].map(|b| usize::from(b.reverse_bits()));
+            let lower = LOWER_OF_BYTE[0][b2] ^ LOWER_OF_BYTE[1][b3];
+            assert_eq!(lower, n | pascal_rev(n) << 16, "index {n}");
+            assert_eq!(
+                UPPER_OF_BYTE[0][b2] ^ UPPER_OF_BYTE[1][b3],
+                upper_of_index(n)
             );
         }
     }
