@@ -80,25 +80,32 @@ each other are a tie; `docs/peer-comparison.md` has the same estimators beside M
   (16 s), MLT about 3400 mutations per pixel (30 s), PT about 27 000 spp (5 minutes, if its \
   fireflies ever let it fall at 1/N).\n\n\
 **What the learned-sampling figures show** (issue 28's lines, one seed, one run on the \
-otherwise idle machine at 52b7d42; `docs/renderer.md` has the side-by-side with Mitsuba 3 \
-over three seeds).\n\n\
+otherwise idle machine: many-lights and the door's BDPT and MLT at 52b7d42, the PT and \
+guided lines of the Cornell box, the indirect room and the door at 7180e3a; \
+`docs/renderer.md` has the side-by-side with Mitsuba 3 over three seeds).\n\n\
 - *Many lights: the light BVH pays, by less than its error suggests.* At every budget its \
   relMSE is 1.6–1.9× below the power choice's (3.78·10⁻³ against 6.60·10⁻³ at 256 spp), \
   but a sample costs about 1.6× as much (10.5 s against 6.6 s at 256 spp): its efficiency \
   is 1.25× the power choice's at 64 spp and 1.10× at 256, and below it at 1–4 spp. Issue \
   28's target (3×) is not met.\n\
-- *Indirect room and Cornell box: guiding costs twice the time for the same error.* The \
-  guided tracer's relMSE equals the path tracer's within 5% from 16 spp on (indirect room \
-  at 256 spp: 5.38·10⁻³ against 5.24·10⁻³; Cornell box: 6.19·10⁻⁴ against 6.12·10⁻⁴), in \
-  about twice the time, training included (9.6 s against 4.7 s; 25.7 s against 11.0 s): \
-  0.46–0.57× the path tracer's efficiency on the indirect room and 0.42–0.57× on the Cornell \
-  box from 4 spp on. What it learns on the indirect room (where the light comes from a small bright patch \
-  of ceiling) does not yet beat cosine sampling with next-event estimation per sample.\n\
+- *Indirect room and Cornell box: guiding stops where it does not pay, and then costs \
+  about a tenth more than PT.* After its third training pass (7 spp) the guided integrator \
+  asks its guide what guiding promises (`min_gain`, docs/renderer.md); on both scenes the \
+  promise (1.21 and 1.07) is below the guided tracer's cost per sample, so the rest of the \
+  budget is path traced. From 64 spp on its relMSE is the path tracer's (indirect room at \
+  256 spp: 3.97·10⁻³ against 3.92·10⁻³; Cornell box 6.17·10⁻⁴ against 6.12·10⁻⁴) in \
+  1.08–1.15× the time (3.74 s against 3.46 s; 11.8 s against 10.3 s): 0.86–0.91× PT's \
+  efficiency at 64–256 spp, 0.64–0.73× at 4–16 spp, where the 7 guided samples of training \
+  are a large share. Guided to the end (`min_gain` 0, at 5973e25), it had 0.72× PT's \
+  relMSE on the indirect room at 256 spp (2.81·10⁻³) in twice the time: 0.70× PT's \
+  efficiency. What it learns there (the light comes from a small bright patch of ceiling) \
+  does not yet repay the cost of guiding.\n\
 - *Door: MLT wins, BDPT has the least error per sample.* Light reaches the camera's room \
   only through the gap; every estimator's error is dominated by rare bright paths. BDPT's \
   relMSE at 256 spp is 3.2× below the path tracer's (0.0665 against 0.212) but costs 4× the \
   time; MLT, once its chains have found the gap, is the most efficient from 64 mutations per \
-  pixel on (1.49 and 1.81 at 64 and 256, against PT's 0.72 and 0.81, BDPT's 0.71 and 0.66). \
-  The guided tracer is level with PT per sample (0.224 against 0.212) at twice the time: \
+  pixel on (1.49 and 1.81 at 64 and 256, against PT's 0.91 and 0.85, BDPT's 0.71 and 0.66). \
+  The guided integrator's guide promises almost nothing here (1.01 after its third pass: \
   its spatial tree learns from the paths that found the gap, which are too few at these \
-  budgets.\n";
+  budgets), so it stops training after 7 spp and is level with PT (0.213 against 0.212 at \
+  256 spp, in about the same time).\n";
