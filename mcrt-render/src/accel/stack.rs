@@ -28,14 +28,23 @@ impl Stack for Vec<u64> {
     }
 }
 
-/// A fixed-capacity stack on the call stack (capacity checked against the tree depth
-/// before use).
-pub(super) struct ArrayStack<const N: usize> {
-    items: [u64; N],
+/// A fixed-capacity stack over an array it owns (`[u64; N]`, on the call stack: an
+/// [`ArrayStack`]) or borrows (`&mut [u64; N]`, a per-thread array reused by every query: a
+/// [`BorrowedStack`]), capacity checked against the tree depth before use. The entries below
+/// `len` are the ones pushed; what lies above is never read, so a borrowed array is not
+/// zeroed per query.
+pub(super) struct FixedStack<A> {
+    items: A,
     len: usize,
 }
 
-impl<const N: usize> ArrayStack<N> {
+/// A [`FixedStack`] on the call stack.
+pub(super) type ArrayStack<const N: usize> = FixedStack<[u64; N]>;
+
+/// A [`FixedStack`] over a borrowed array.
+pub(super) type BorrowedStack<'a, const N: usize> = FixedStack<&'a mut [u64; N]>;
+
+impl<const N: usize> FixedStack<[u64; N]> {
     #[inline(always)]
     pub(super) fn new() -> Self {
         Self {
@@ -45,42 +54,19 @@ impl<const N: usize> ArrayStack<N> {
     }
 }
 
-impl<const N: usize> Stack for ArrayStack<N> {
-    #[inline(always)]
-    fn push(&mut self, e: u64) {
-        debug_assert!(self.len < N);
-        if let Some(slot) = self.items.get_mut(self.len) {
-            *slot = e;
-            self.len += 1;
-        }
-    }
-    #[inline(always)]
-    fn pop(&mut self) -> Option<u64> {
-        self.len = self.len.checked_sub(1)?;
-        Some(self.items[self.len])
-    }
-}
-
-/// A fixed-capacity stack over a borrowed array (a per-thread one, reused by every query),
-/// whose entries below `len` are the ones pushed (what lies above is left from earlier
-/// queries and never read): no zeroing per query.
-pub(super) struct BorrowedStack<'a, const N: usize> {
-    items: &'a mut [u64; N],
-    len: usize,
-}
-
-impl<'a, const N: usize> BorrowedStack<'a, N> {
+impl<'a, const N: usize> FixedStack<&'a mut [u64; N]> {
     #[inline(always)]
     pub(super) fn new(items: &'a mut [u64; N]) -> Self {
         Self { items, len: 0 }
     }
 }
 
-impl<const N: usize> Stack for BorrowedStack<'_, N> {
+impl<A: AsMut<[u64]>> Stack for FixedStack<A> {
     #[inline(always)]
     fn push(&mut self, e: u64) {
-        debug_assert!(self.len < N);
-        if let Some(slot) = self.items.get_mut(self.len) {
+        let items = self.items.as_mut();
+        debug_assert!(self.len < items.len());
+        if let Some(slot) = items.get_mut(self.len) {
             *slot = e;
             self.len += 1;
         }
@@ -88,7 +74,7 @@ impl<const N: usize> Stack for BorrowedStack<'_, N> {
     #[inline(always)]
     fn pop(&mut self) -> Option<u64> {
         self.len = self.len.checked_sub(1)?;
-        Some(self.items[self.len])
+        Some(self.items.as_mut()[self.len])
     }
 }
 

@@ -109,6 +109,25 @@ fn always_guided(mut desc: SceneDescription) -> SceneDescription {
     desc
 }
 
+/// The indirect room at 48×40 (a quick render), guided to the end if `always`.
+fn small_indirect_room(always: bool) -> SceneDescription {
+    let mut desc = load("indirect.xml");
+    if always {
+        desc = always_guided(desc);
+    }
+    desc.sensor = desc
+        .sensor
+        .clone()
+        .changed(|s| s.film = s.film.changed(|f| f.width = 48).unwrap())
+        .unwrap();
+    desc.sensor = desc
+        .sensor
+        .clone()
+        .changed(|s| s.film = s.film.changed(|f| f.height = 40).unwrap())
+        .unwrap();
+    desc
+}
+
 fn opts(spp: u32, seed: u64) -> RenderOptions {
     RenderOptions {
         spp: Some(spp),
@@ -235,17 +254,7 @@ fn guided_matches_mitsuba_on_the_door_scene() {
 /// The guided render, training included, is the same at one and two threads.
 #[test]
 fn guided_render_is_the_same_at_any_thread_count() {
-    let mut desc = always_guided(load("indirect.xml"));
-    desc.sensor = desc
-        .sensor
-        .clone()
-        .changed(|s| s.film = s.film.changed(|f| f.width = 48).unwrap())
-        .unwrap();
-    desc.sensor = desc
-        .sensor
-        .clone()
-        .changed(|s| s.film = s.film.changed(|f| f.height = 40).unwrap())
-        .unwrap();
+    let desc = small_indirect_room(true);
     let run = |threads| {
         let o = RenderOptions {
             threads,
@@ -273,17 +282,7 @@ fn guided_render_is_the_same_at_any_thread_count() {
 /// about 1.1–1.3, below the default 1.6.
 #[test]
 fn guided_stops_training_where_the_guide_promises_too_little() {
-    let mut desc = load("indirect.xml");
-    desc.sensor = desc
-        .sensor
-        .clone()
-        .changed(|s| s.film = s.film.changed(|f| f.width = 48).unwrap())
-        .unwrap();
-    desc.sensor = desc
-        .sensor
-        .clone()
-        .changed(|s| s.film = s.film.changed(|f| f.height = 40).unwrap())
-        .unwrap();
+    let desc = small_indirect_room(false);
     let o = RenderOptions {
         integrator: Some(IntegratorKind::Guided),
         ..opts(16, 7)
