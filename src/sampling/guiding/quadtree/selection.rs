@@ -36,17 +36,17 @@ impl DQuadTree {
     /// sampling alone and with the best candidate (sums over the selection records, see
     /// [`DQuadTree::selection_probability`]); `None` where that gives no probability.
     pub(crate) fn selection_moments(&self) -> Option<(f64, f64)> {
-        self.best_selection()?;
-        let best = self
-            .selection
-            .iter()
-            .copied()
-            .filter(|m| m.is_finite())
-            .fold(f64::INFINITY, f64::min);
-        Some((self.selection[0], best))
+        self.best_candidate().map(|(m, _)| (self.selection[0], m))
     }
 
     pub(super) fn best_selection(&self) -> Option<f32> {
+        self.best_candidate().map(|(_, a)| a)
+    }
+
+    /// The candidate of least estimated second moment, with that moment (the smallest
+    /// candidate on ties); `None` before [`MIN_SELECTION_RECORDS`] records or where no
+    /// moment is finite.
+    fn best_candidate(&self) -> Option<(f64, f32)> {
         if self.selection_records < MIN_SELECTION_RECORDS {
             return None;
         }
@@ -56,7 +56,7 @@ impl DQuadTree {
                 best = Some((*m, a));
             }
         }
-        best.map(|(_, a)| a)
+        best
     }
 
     /// Adds one selection record: a direction sampled with the mixture density `pdf`, where
