@@ -1,7 +1,7 @@
 //! The parameters of the materials `principled`, `blendbsdf`, `mask` and `twosided` (read
 //! by `loader/bsdf.rs` and `loader/principled.rs`).
 
-use super::{ColourParam, FloatParam, OtherParam, ParamDef, PluginParams};
+use super::{non_negative, ColourParam, FloatParam, OtherParam, ParamDef, PluginParams};
 
 /// A weight of the principled material: in [0, 1] (the defaults are
 /// [`PrincipledParams::default`](crate::description::PrincipledParams)'s, Mitsuba 3.9's).
@@ -27,13 +27,7 @@ const fn rate(name: &'static str, doc: &'static str) -> FloatParam<f32> {
         name,
         default: 1.0,
         range: "≥ 0",
-        accept: |v| {
-            if v.is_finite() && v >= 0.0 {
-                Ok(v)
-            } else {
-                Err("must be finite and >= 0".into())
-            }
-        },
+        accept: |v| non_negative(v, "must be finite and >= 0"),
         doc,
     }
 }

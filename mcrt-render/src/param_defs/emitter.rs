@@ -1,16 +1,7 @@
 //! The parameters of the emitters `area`, `point`, `spot`, `projector`, `directional`,
 //! `constant` and `envmap` (read by `loader/emitter.rs`).
 
-use super::{other, ChoiceParam, FloatParam, OtherParam, ParamDef, PluginParams};
-
-/// A finite, non-negative float (`message` otherwise).
-fn non_negative(v: f32, message: &str) -> Result<f32, String> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(message.to_string())
-    }
-}
+use super::{non_negative, other, ChoiceParam, FloatParam, OtherParam, ParamDef, PluginParams};
 
 /// `radiance` of `area`: a colour or a texture.
 pub(crate) const AREA_RADIANCE: OtherParam = other(

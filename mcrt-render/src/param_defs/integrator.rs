@@ -5,7 +5,7 @@
 //! each value as it reads it).
 
 use super::generate::plugin_params;
-use super::{in_half_open, BoolParam, FloatParam, IntParam};
+use super::{in_half_open, non_negative, BoolParam, FloatParam, IntParam};
 use crate::description::{IntegratorDesc, SampleCount};
 use crate::invalid::Invalid;
 use mcrt::integrator::Mlt;
@@ -173,13 +173,7 @@ pub(crate) const MIN_GAIN: FloatParam<f32> = FloatParam {
     name: "min_gain",
     default: 1.6,
     range: "≥ 0",
-    accept: |v| {
-        if v.is_finite() && v >= 0.0 {
-            Ok(v)
-        } else {
-            Err("must be finite and at least 0".into())
-        }
-    },
+    accept: |v| non_negative(v, "must be finite and at least 0"),
     doc: "from the third training pass on, the least factor by which the guide must promise to lower the second moment of the directional choices (`SdTree::selection_gain`) for training to go on; below it the rest of the samples are path traced without the guide; 0 always guides",
 };
 

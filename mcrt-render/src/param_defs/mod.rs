@@ -288,6 +288,15 @@ pub(crate) fn plugin(category: &str, plugin: &str) -> Option<&'static PluginPara
         .find(|p| p.category == category && p.plugin == plugin)
 }
 
+/// A float check: finite and non-negative (`message` otherwise).
+pub(crate) fn non_negative(v: f32, message: &str) -> Result<f32, String> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(message.to_string())
+    }
+}
+
 /// A float check: finite and in (`lo`, `hi`] (`message` otherwise).
 pub(crate) fn in_half_open(v: f32, lo: f32, hi: f32, message: &str) -> Result<f32, String> {
     if v > lo && v <= hi {

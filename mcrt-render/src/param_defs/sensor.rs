@@ -1,7 +1,7 @@
 //! The parameters of the sensors `perspective`, `thinlens` and `orthographic` (read by
 //! `loader/sensor.rs`).
 
-use super::{other, FloatParam, OtherParam, ParamDef, PluginParams};
+use super::{non_negative, other, FloatParam, OtherParam, ParamDef, PluginParams};
 use crate::description::ThinLensDesc;
 
 /// `fov`, degrees.
@@ -87,13 +87,7 @@ pub(crate) const APERTURE_RADIUS: FloatParam<f32> = FloatParam {
     name: "aperture_radius",
     default: 0.0,
     range: "≥ 0",
-    accept: |v| {
-        if v.is_finite() && v >= 0.0 {
-            Ok(v)
-        } else {
-            Err("must be finite and non-negative".into())
-        }
-    },
+    accept: |v| non_negative(v, "must be finite and non-negative"),
     doc: "required: radius of the lens (0 is a pinhole)",
 };
 
